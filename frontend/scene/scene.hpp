@@ -1,0 +1,46 @@
+// A scene as every backend sees it: triangles whose vertices have a world
+// position at shutter open and at shutter close (linear motion in between), a
+// thin-lens camera whose view may also differ between the two, flat materials.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace blurcull::frontend {
+
+struct Material {
+    glm::vec3 base_color{0.8f, 0.8f, 0.8f};
+    std::string name;
+};
+
+// Right-handed view space, camera at the origin looking down -z (OpenGL).
+// view depth w = -z_view. Projection: x_clip = (k_y / aspect) x_view,
+// y_clip = k_y y_view, w_clip = -z_view, with k_y = 1 / tan(yfov / 2).
+struct Camera {
+    glm::mat4 view_open{1.0f};   // world -> view at shutter open
+    glm::mat4 view_close{1.0f};  // world -> view at shutter close
+    float yfov = 0.8f;           // radians, full vertical field of view
+    float znear = 0.05f;         // near plane (view depth)
+    float lens_radius = 0.0f;    // thin-lens aperture radius, world units
+    float focus_distance = 10.0f;// view depth that is in focus
+};
+
+struct Scene {
+    std::string name;
+    // Per vertex; the two arrays have the same length.
+    std::vector<glm::vec3> position_open;
+    std::vector<glm::vec3> position_close;
+    // Per triangle.
+    std::vector<glm::uvec3> triangles;
+    std::vector<std::uint32_t> triangle_material;
+    std::vector<Material> materials;
+
+    Camera camera;
+    glm::vec3 light_direction{0.3f, 0.8f, 0.5f};  // towards the light, world space
+    glm::vec3 background{0.02f, 0.02f, 0.03f};
+};
+
+}  // namespace blurcull::frontend
