@@ -1,0 +1,5 @@
+// Umbrella header of the blurcull kernel.
+#pragma once
+
+#include "version.hpp"
+#include "kernel.hpp"
