@@ -1,0 +1,247 @@
+// Unit tests of the kernel's building blocks: the oracle against an
+// independent ray-triangle intersection, the circle of confusion, the
+// classifier, non-finite input and the sample pattern.
+#include "kernel_generators.hpp"
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <limits>
+#include <set>
+
+using namespace blurcull;
+using namespace blurcull::testing;
+
+namespace {
+
+Kd::MovingTriangle static_triangle(Kd::vec3 a, Kd::vec3 b, Kd::vec3 c) {
+    Kd::MovingTriangle tri;
+    Kd::vec3 v[3] = {a, b, c};
+    for (int i = 0; i < 3; ++i) {
+        tri.p[i] = tri.p[i + 3] = v[i];
+        tri.c[i] = tri.c[i + 3] = Kd::vec2(0.0);
+    }
+    return tri;
+}
+
+// Independent reference: intersect the eye ray lambda (s, 1) with the sheared
+// triangle by solving for barycentrics with Cramer's rule in long double.
+// Returns -1 for a miss, else the hit depth lambda; `margin` reports how close
+// to an edge the hit is (smallest barycentric).
+long double reference_hit(const Kd::MovingTriangle& tri, Kd::vec2 s, Kd::vec2 uv, double t, long double& margin) {
+    using L = long double;
+    Kd::vec3 v[3];
+    for (int i = 0; i < 3; ++i) v[i] = Kd::vertex_at(tri, i, t, uv);
+    // lambda d = v0 + b1 (v1 - v0) + b2 (v2 - v0), d = (s, 1)
+    L d[3] = {s.x, s.y, 1.0L};
+    L e1[3], e2[3], o[3];
+    for (int k = 0; k < 3; ++k) {
+        e1[k] = L(v[1][k]) - L(v[0][k]);
+        e2[k] = L(v[2][k]) - L(v[0][k]);
+        o[k] = L(v[0][k]);
+    }
+    // Solve [d, -e1, -e2] (lambda, b1, b2) = o
+    auto det3 = [](const L a[3], const L b[3], const L c[3]) {
+        return a[0] * (b[1] * c[2] - b[2] * c[1]) - b[0] * (a[1] * c[2] - a[2] * c[1]) + c[0] * (a[1] * b[2] - a[2] * b[1]);
+    };
+    L ne1[3] = {-e1[0], -e1[1], -e1[2]};
+    L ne2[3] = {-e2[0], -e2[1], -e2[2]};
+    L den = det3(d, ne1, ne2);
+    margin = 0;
+    if (den == 0) return -1;
+    L lambda = det3(o, ne1, ne2) / den;
+    L b1 = det3(d, o, ne2) / den;
+    L b2 = det3(d, ne1, o) / den;
+    L b0 = 1 - b1 - b2;
+    margin = std::min({b0, b1, b2});
+    if (b0 < 0 || b1 < 0 || b2 < 0) return -1;
+    return lambda;
+}
+
+}  // namespace
+
+TEST_CASE("oracle agrees with an independent ray-triangle intersection") {
+    Rng rng(42);
+    int compared = 0, covered = 0, ambiguous = 0;
+    for (int n = 0; n < 20000; ++n) {
+        Family family = n % 3 == 0 ? Family::near_crossing : (n % 3 == 1 ? Family::both : Family::motion);
+        Config cfg = make_config(rng, family);
+        for (int k = 0; k < 8; ++k) {
+            Sample5 smp = make_sample(rng, cfg);
+            long double margin = 0;
+            long double lambda = reference_hit(cfg.tri, smp.s, smp.uv, smp.t, margin);
+            bool expected = lambda >= (long double)cfg.near;
+            double depth = 0;
+            bool got = Kd::covers(cfg.tri, smp.s, smp.uv, smp.t, cfg.near, depth);
+            // Samples within rounding distance of an edge or of the near plane may go either way.
+            if (std::fabs(double(margin)) < 1e-9 || std::fabs(double(lambda - (long double)cfg.near)) < 1e-9 * cfg.near) {
+                ++ambiguous;
+                continue;
+            }
+            ++compared;
+            if (expected) ++covered;
+            REQUIRE(got == expected);
+            if (got) CHECK(depth == doctest::Approx(double(lambda)).epsilon(1e-9));
+        }
+    }
+    MESSAGE("oracle: ", compared, " samples compared (", covered, " covered), ", ambiguous, " within rounding of an edge");
+    CHECK(covered > 1000);
+    CHECK(compared > 100000);
+}
+
+TEST_CASE("oracle: simple cases, behind the eye and the near plane") {
+    // Triangle at depth 2 covering the screen centre.
+    Kd::MovingTriangle tri = static_triangle({-1, -1, 2}, {1, -1, 2}, {0, 1, 2});
+    double depth = 0;
+    CHECK(Kd::covers(tri, {0.0, 0.0}, {0.0, 0.0}, 0.5, 0.1, depth));
+    CHECK(depth == doctest::Approx(2.0));
+    CHECK_FALSE(Kd::covers(tri, {0.9, 0.9}, {0.0, 0.0}, 0.5, 0.1, depth));
+    // Winding does not matter.
+    Kd::MovingTriangle flipped = static_triangle({1, -1, 2}, {-1, -1, 2}, {0, 1, 2});
+    CHECK(Kd::covers(flipped, {0.0, 0.0}, {0.0, 0.0}, 0.5, 0.1, depth));
+    // The same triangle entirely behind the eye projects onto the centre too,
+    // but is not seen.
+    Kd::MovingTriangle behind = static_triangle({1, 1, -2}, {-1, 1, -2}, {0, -1, -2});
+    CHECK_FALSE(Kd::covers(behind, {0.0, 0.0}, {0.0, 0.0}, 0.5, 0.1, depth));
+    // Closer than the near plane: not covered.
+    CHECK_FALSE(Kd::covers(tri, {0.0, 0.0}, {0.0, 0.0}, 0.5, 2.5, depth));
+    // One vertex behind the eye: the triangle spans to infinity on one side only.
+    Kd::MovingTriangle crossing = static_triangle({-1, 0, 1}, {1, 0, 1}, {0, 1, -1});
+    CHECK(Kd::covers(crossing, {0.0, 0.1}, {0.0, 0.0}, 0.5, 0.01, depth));
+    CHECK(Kd::covers(crossing, {0.0, 5.0}, {0.0, 0.0}, 0.5, 0.01, depth));
+    CHECK_FALSE(Kd::covers(crossing, {0.0, -0.1}, {0.0, 0.0}, 0.5, 0.01, depth));
+    // Zero area: never covered.
+    Kd::MovingTriangle line = static_triangle({-1, 0, 1}, {1, 0, 1}, {0, 0, 1});
+    CHECK_FALSE(Kd::covers(line, {0.0, 0.0}, {0.0, 0.0}, 0.5, 0.01, depth));
+}
+
+TEST_CASE("oracle: motion and lens move the triangle as the model says") {
+    Kd::MovingTriangle tri = static_triangle({-0.1, -0.1, 1}, {0.1, -0.1, 1}, {0, 0.1, 1});
+    for (int i = 0; i < 3; ++i) tri.p[i + 3] = tri.p[i] + Kd::vec3(1.0, 0.0, 0.0);
+    double depth = 0;
+    CHECK(Kd::covers(tri, {0.0, 0.0}, {0.0, 0.0}, 0.0, 0.1, depth));
+    CHECK_FALSE(Kd::covers(tri, {0.0, 0.0}, {0.0, 0.0}, 1.0, 0.1, depth));
+    CHECK(Kd::covers(tri, {0.5, 0.0}, {0.0, 0.0}, 0.5, 0.1, depth));
+    // Lens shear: c = 0.5 shifts the triangle by u c / w in x.
+    Kd::MovingTriangle lens = static_triangle({-0.1, -0.1, 1}, {0.1, -0.1, 1}, {0, 0.1, 1});
+    for (int j = 0; j < 6; ++j) lens.c[j] = Kd::vec2(0.5, 0.25);
+    CHECK(Kd::covers(lens, {0.5, 0.0}, {1.0, 0.0}, 0.0, 0.1, depth));
+    CHECK_FALSE(Kd::covers(lens, {0.5, 0.0}, {-1.0, 0.0}, 0.0, 0.1, depth));
+    CHECK(Kd::covers(lens, {0.0, 0.25}, {0.0, 1.0}, 0.0, 0.1, depth));
+}
+
+TEST_CASE_TEMPLATE("thin-lens circle of confusion", Real, float, double) {
+    using K = kernel<Real>;
+    typename K::vec2 ab = K::thin_lens_coc(Real(2), Real(0.1), Real(5));
+    CHECK(K::coc_at(ab, Real(5)) == doctest::Approx(0.0));
+    CHECK(K::coc_at(ab, Real(0)) == doctest::Approx(-0.2));
+    CHECK(K::coc_at(ab, Real(10)) == doctest::Approx(0.2));
+    // Controllable defocus: zero inside the in-focus range, continuous at its edge, clamped.
+    CHECK(K::coc_controlled(ab, Real(5.4), Real(0.5), Real(1)) == Real(0));
+    CHECK(K::coc_controlled(ab, Real(4.6), Real(0.5), Real(1)) == Real(0));
+    CHECK(K::coc_controlled(ab, Real(5.5), Real(0.5), Real(1)) == doctest::Approx(0.0).epsilon(1e-6));
+    CHECK(K::coc_controlled(ab, Real(10), Real(0.5), Real(1)) == doctest::Approx(0.2 - 0.02));
+    CHECK(K::coc_controlled(ab, Real(0), Real(0.5), Real(1)) == doctest::Approx(-(0.2 - 0.02)));
+    CHECK(K::coc_controlled(ab, Real(100), Real(0), Real(0.5)) == doctest::Approx(0.5));
+    CHECK(K::coc_controlled(ab, Real(0), Real(0), Real(0.1)) == doctest::Approx(-0.1));
+}
+
+TEST_CASE_TEMPLATE("classify says what a triangle needs", Real, float, double) {
+    using K = kernel<Real>;
+    typename K::MovingTriangle tri = to_real<Real>(static_triangle({-1, -1, 2}, {1, -1, 2}, {0, 1, 2}));
+    CHECK(K::classify(tri) == 0);
+    typename K::MovingTriangle moving = tri;
+    moving.p[4].x += Real(0.25);
+    CHECK(K::classify(moving) == BC_NEEDS_MOTION);
+    typename K::MovingTriangle blurred = tri;
+    for (int j = 0; j < 6; ++j) blurred.c[j] = typename K::vec2(Real(0.01));
+    CHECK(K::classify(blurred) == BC_NEEDS_DEFOCUS);
+    blurred.p[3].z += Real(1);
+    CHECK(K::classify(blurred) == (BC_NEEDS_MOTION | BC_NEEDS_DEFOCUS));
+}
+
+TEST_CASE_TEMPLATE("NaN and Inf input: documented fallback, never a cull", Real, float, double) {
+    using K = kernel<Real>;
+    const Real bad[] = {std::numeric_limits<Real>::quiet_NaN(), std::numeric_limits<Real>::infinity(),
+                        -std::numeric_limits<Real>::infinity()};
+    Rng rng(7);
+    for (Real value : bad) {
+        for (int where = 0; where < 30; ++where) {
+            typename K::MovingTriangle tri = to_real<Real>(make_config(rng, Family::both).tri);
+            int j = where % 6;
+            switch (where / 6) {
+                case 0: tri.p[j].x = value; break;
+                case 1: tri.p[j].y = value; break;
+                case 2: tri.p[j].z = value; break;
+                case 3: tri.c[j].x = value; break;
+                default: tri.c[j].y = value; break;
+            }
+            CHECK(K::classify(tri) == BC_INVALID);
+            for (int method : all_methods) {
+                typename K::ScreenBound sb = K::screen_bound(tri, Real(0.05), method);
+                CHECK_FALSE(sb.empty);
+                CHECK(K::screen_contains(sb, typename K::vec2(Real(0.3), Real(-0.7))));
+                typename K::SampleBounds b =
+                    K::sample_bounds(tri, typename K::vec2(Real(0.1)), typename K::vec2(Real(0.11)), method);
+                CHECK(K::sample_passes(b, typename K::vec2(Real(0.5), Real(-0.5)), Real(0.5)));
+                CHECK(K::sample_passes(b, typename K::vec2(Real(-1), Real(1)), Real(1)));
+            }
+            Real depth = 0;
+            CHECK_FALSE(K::covers(tri, typename K::vec2(Real(0)), typename K::vec2(Real(0)), Real(0.5), Real(0.05), depth));
+        }
+    }
+    // A non-positive near plane is a caller error: no cull either.
+    typename K::MovingTriangle tri = to_real<Real>(static_triangle({-1, -1, 2}, {1, -1, 2}, {0, 1, 2}));
+    CHECK(K::screen_contains(K::screen_bound(tri, Real(0), BC_CULL_BBOX), typename K::vec2(Real(50), Real(50))));
+}
+
+TEST_CASE_TEMPLATE("screen bound: box of a static triangle, empty behind the near plane", Real, float, double) {
+    using K = kernel<Real>;
+    typename K::MovingTriangle tri = to_real<Real>(static_triangle({-1, -1, 2}, {1, -1, 2}, {0, 1, 2}));
+    typename K::ScreenBound sb = K::screen_bound(tri, Real(0.1), BC_CULL_BBOX);
+    CHECK(sb.lo.x == doctest::Approx(-0.5).epsilon(1e-4));  // widened by the margins
+    CHECK(sb.hi.x == doctest::Approx(0.5).epsilon(1e-4));
+    CHECK(sb.hi.y == doctest::Approx(0.5).epsilon(1e-4));
+    CHECK_FALSE(K::screen_contains(sb, typename K::vec2(Real(0.6), Real(0))));
+    typename K::ScreenBound hull = K::screen_bound(tri, Real(0.1), BC_CULL_HULL);
+    CHECK(hull.hull_count == 3);
+    CHECK(K::screen_contains(hull, typename K::vec2(Real(0), Real(0))));
+    CHECK_FALSE(K::screen_contains(hull, typename K::vec2(Real(0.45), Real(0.45))));  // in the box, not the hull
+    typename K::ScreenBound gone = K::screen_bound(tri, Real(3), BC_CULL_BBOX);
+    CHECK(gone.empty);
+}
+
+TEST_CASE_TEMPLATE("sample pattern: deterministic, stratified, in range", Real, float, double) {
+    using K = kernel<Real>;
+    for (std::uint32_t spp : {1u, 4u, 16u, 32u}) {
+        for (std::uint32_t px = 0; px < 6; ++px) {
+            std::set<int> time_strata, cells;
+            std::uint32_t n = 1;
+            while ((n + 1) * (n + 1) <= spp) ++n;
+            for (std::uint32_t j = 0; j < spp; ++j) {
+                typename K::PixelSample s = K::pixel_sample(px, 3u, j, spp, 9u);
+                typename K::PixelSample again = K::pixel_sample(px, 3u, j, spp, 9u);
+                CHECK(s.time == again.time);
+                CHECK(s.offset == again.offset);
+                CHECK(s.time >= Real(0));
+                CHECK(s.time < Real(1));
+                CHECK(s.offset.x >= Real(0));
+                CHECK(s.offset.x < Real(1));
+                CHECK(s.offset.y >= Real(0));
+                CHECK(s.offset.y < Real(1));
+                CHECK(s.lens.x * s.lens.x + s.lens.y * s.lens.y <= Real(1) + Real(1e-6));
+                time_strata.insert(int(s.time * Real(spp)));
+                if (j < n * n) cells.insert(int(s.offset.x * Real(n)) + int(n) * int(s.offset.y * Real(n)));
+            }
+            CHECK(time_strata.size() == spp);  // one sample per time stratum
+            CHECK(cells.size() == n * n);       // one sample per position stratum
+        }
+    }
+    // Float and double draw the same samples.
+    typename K::PixelSample s = K::pixel_sample(11u, 5u, 3u, 16u, 2u);
+    kernelf::PixelSample f = kernelf::pixel_sample(11u, 5u, 3u, 16u, 2u);
+    CHECK(double(s.time) == doctest::Approx(double(f.time)).epsilon(1e-6));
+    CHECK(double(s.lens.x) == doctest::Approx(double(f.lens.x)).epsilon(1e-5));
+    // Another seed gives other samples.
+    CHECK(K::pixel_sample(11u, 5u, 3u, 16u, 3u).time != s.time);
+}
