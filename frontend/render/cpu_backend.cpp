@@ -1,0 +1,266 @@
+#include "render/cpu_backend.hpp"
+
+#include "render/camera_model.hpp"
+#include "render/moving_triangle.hpp"
+#include "render/shading.hpp"
+#include "scene/scene_checks.hpp"
+
+#include <blurcull/kernel.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <limits>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace blurcull::frontend {
+namespace {
+
+// The CPU path runs the kernel in double: its bounds are then conservative
+// against the very oracle that decides coverage (the property tests prove it
+// for double against double), so every culling method gives the same image.
+using K = blurcull::kernel<double>;
+using Clock = std::chrono::steady_clock;
+
+constexpr int tile_size = 16;  // pixels per side of a binning and work tile
+
+double ms_since(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+int kernel_method(CullMethod method) {
+    switch (method) {
+        case CullMethod::bbox: return BC_CULL_BBOX;
+        case CullMethod::hull: return BC_CULL_HULL;
+        case CullMethod::dualspace: return BC_CULL_DUALSPACE;
+        case CullMethod::clip2: return BC_CULL_CLIP2;
+    }
+    return BC_CULL_BBOX;
+}
+
+struct PixelRect {
+    int x0, y0, x1, y1;  // inclusive
+};
+
+// Pixels whose footprint meets the NDC box [lo, hi], clamped to the image;
+// empty (x0 > x1) when they miss it.
+PixelRect pixel_rect(const CameraModel& model, K::vec2 lo, K::vec2 hi) {
+    const double w = model.width, h = model.height;
+    // raster x = (X + 1) w / 2, raster y = (1 - Y) h / 2 (rows grow downwards)
+    auto clamp_floor = [](double v, int limit) {
+        if (!(v > 0.0)) return 0;  // also NaN
+        if (v >= double(limit)) return limit;
+        return static_cast<int>(std::floor(v));
+    };
+    PixelRect r;
+    r.x0 = clamp_floor((lo.x + 1.0) * 0.5 * w, model.width);
+    r.x1 = clamp_floor((hi.x + 1.0) * 0.5 * w, model.width);
+    r.y0 = clamp_floor((1.0 - hi.y) * 0.5 * h, model.height);
+    r.y1 = clamp_floor((1.0 - lo.y) * 0.5 * h, model.height);
+    r.x1 = std::min(r.x1, model.width - 1);
+    r.y1 = std::min(r.y1, model.height - 1);
+    if (lo.x > 1.0 || hi.x < -1.0 || lo.y > 1.0 || hi.y < -1.0) r.x0 = r.x1 + 1;
+    return r;
+}
+
+struct TileSample {
+    K::vec2 ndc;
+    K::vec2 lens;
+    double time;
+};
+
+class Progress {
+public:
+    Progress(bool enabled, Clock::time_point start, int total) : enabled_(enabled), start_(start), total_(total) {}
+    void advance() {
+        const int done = done_.fetch_add(1) + 1;
+        if (!enabled_ || ms_since(start_) < 1000.0) return;
+        const int percent = static_cast<int>(100LL * done / total_);
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (percent != last_percent_) {
+            std::fprintf(stderr, "\rcpu: %3d%%", percent);
+            std::fflush(stderr);
+            last_percent_ = percent;
+            shown_ = true;
+        }
+    }
+    void finish() {
+        if (shown_) std::fprintf(stderr, "\rcpu: 100%%\n");
+    }
+
+private:
+    bool enabled_;
+    Clock::time_point start_;
+    int total_;
+    std::atomic<int> done_{0};
+    std::mutex mutex_;
+    int last_percent_ = -1;
+    bool shown_ = false;
+};
+
+}  // namespace
+
+RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, const CpuOptions& options) {
+    const Clock::time_point start = Clock::now();
+    validate_settings(settings);
+    validate_scene(scene);
+    if (options.footprint < 1) throw std::invalid_argument("cpu: footprint must be >= 1 pixel");
+    const CameraModel model(scene.camera, settings.width, settings.height);
+    const int method = kernel_method(settings.cull);
+    const double near = model.znear;
+    const int width = settings.width, height = settings.height;
+    const auto spp = static_cast<std::uint32_t>(settings.spp);
+    const int footprint = options.footprint;
+
+    RenderResult result;
+    RenderStats& stats = result.stats;
+    stats.triangles = scene.triangles.size();
+
+    // Setup: clip-space triangles, their screen rectangles, binned into tiles.
+    Clock::time_point phase = Clock::now();
+    const std::vector<glm::vec3> colours = shade_all(scene);
+    const std::size_t count = scene.triangles.size();
+    std::vector<K::MovingTriangle> triangles(count);
+    std::vector<PixelRect> rects(count);
+    const int tiles_x = (width + tile_size - 1) / tile_size;
+    const int tiles_y = (height + tile_size - 1) / tile_size;
+    std::vector<std::vector<std::uint32_t>> bins(static_cast<std::size_t>(tiles_x) * tiles_y);
+    std::size_t invalid = 0;
+    for (std::size_t i = 0; i < count; ++i) {
+        triangles[i] = make_moving_triangle<double>(scene, model, i);
+        if (K::classify(triangles[i]) == BC_INVALID) {
+            ++invalid;  // validate_scene checked the input; only overflow gets here
+            rects[i] = PixelRect{0, 0, -1, -1};
+            continue;
+        }
+        const K::ScreenBound bound = K::screen_bound(triangles[i], near, BC_CULL_BBOX);
+        rects[i] = bound.empty ? PixelRect{0, 0, -1, -1} : pixel_rect(model, bound.lo, bound.hi);
+        const PixelRect& r = rects[i];
+        if (r.x0 > r.x1 || r.y0 > r.y1) continue;
+        for (int ty = r.y0 / tile_size; ty <= r.y1 / tile_size; ++ty) {
+            for (int tx = r.x0 / tile_size; tx <= r.x1 / tile_size; ++tx) {
+                bins[static_cast<std::size_t>(ty) * tiles_x + tx].push_back(static_cast<std::uint32_t>(i));
+            }
+        }
+    }
+    if (invalid > 0) {
+        std::fprintf(stderr, "warning: cpu: skipped %zu triangles whose clip coordinates overflow\n", invalid);
+    }
+    stats.ms_per_phase.emplace_back("setup", ms_since(phase));
+
+    // Rasterization: tiles are handed out dynamically; within a tile the
+    // triangles run in index order and the depth test is strict, so the
+    // result does not depend on the schedule.
+    phase = Clock::now();
+    result.image = Image(width, height);
+    std::atomic<int> next_tile{0};
+    std::atomic<std::uint64_t> total_tested{0}, total_hit{0};
+    const int tile_count = tiles_x * tiles_y;
+    Progress progress(settings.progress, start, tile_count);
+
+    auto work = [&]() {
+        std::vector<TileSample> samples(static_cast<std::size_t>(tile_size) * tile_size * spp);
+        std::vector<double> depth(samples.size());
+        std::vector<std::uint32_t> hit(samples.size());
+        std::uint64_t tested = 0, hits = 0;
+        constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+        for (int tile = next_tile.fetch_add(1); tile < tile_count; tile = next_tile.fetch_add(1)) {
+            const int tx = tile % tiles_x, ty = tile / tiles_x;
+            const int x0 = tx * tile_size, y0 = ty * tile_size;
+            const int x1 = std::min(x0 + tile_size, width) - 1, y1 = std::min(y0 + tile_size, height) - 1;
+            const int tw = x1 - x0 + 1;
+            auto slot = [&](int px, int py, std::uint32_t j) {
+                return (static_cast<std::size_t>(py - y0) * tw + (px - x0)) * spp + j;
+            };
+            for (int py = y0; py <= y1; ++py) {
+                for (int px = x0; px <= x1; ++px) {
+                    for (std::uint32_t j = 0; j < spp; ++j) {
+                        const kernelf::PixelSample s = kernelf::pixel_sample(
+                            static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py), j, spp, settings.seed);
+                        const std::size_t k = slot(px, py, j);
+                        samples[k] = TileSample{K::vec2(model.sample_ndc(px, py, s.offset)), K::vec2(s.lens), s.time};
+                        depth[k] = std::numeric_limits<double>::infinity();
+                        hit[k] = none;
+                    }
+                }
+            }
+            for (std::uint32_t index : bins[static_cast<std::size_t>(tile)]) {
+                const K::MovingTriangle& tri = triangles[index];
+                const PixelRect& r = rects[index];
+                const K::ScreenBound bound = K::screen_bound(tri, near, method);
+                const int rx0 = std::max(r.x0, x0), rx1 = std::min(r.x1, x1);
+                const int ry0 = std::max(r.y0, y0), ry1 = std::min(r.y1, y1);
+                // Footprints are blocks of the image grid clipped to the
+                // triangle's rectangle; the bounds hold for any footprint.
+                for (int fy = ry0 - (ry0 % footprint); fy <= ry1; fy += footprint) {
+                    for (int fx = rx0 - (rx0 % footprint); fx <= rx1; fx += footprint) {
+                        const int px0 = std::max(fx, rx0), px1 = std::min(fx + footprint - 1, rx1);
+                        const int py0 = std::max(fy, ry0), py1 = std::min(fy + footprint - 1, ry1);
+                        const glm::vec4 top_left = model.pixel_ndc_bounds(px0, py0);
+                        const glm::vec4 bottom_right = model.pixel_ndc_bounds(px1, py1);
+                        const K::vec2 lo(top_left.x, bottom_right.y), hi(bottom_right.z, top_left.w);
+                        const K::SampleBounds sb = K::sample_bounds(tri, lo, hi, method);
+                        if (sb.empty) continue;
+                        for (int py = py0; py <= py1; ++py) {
+                            for (int px = px0; px <= px1; ++px) {
+                                for (std::uint32_t j = 0; j < spp; ++j) {
+                                    const std::size_t k = slot(px, py, j);
+                                    const TileSample& s = samples[k];
+                                    if (!K::screen_contains(bound, s.ndc) || !K::sample_passes(sb, s.lens, s.time))
+                                        continue;
+                                    ++tested;
+                                    double z = 0.0;
+                                    if (!K::covers(tri, s.ndc, s.lens, s.time, near, z)) continue;
+                                    ++hits;
+                                    if (z < depth[k]) {
+                                        depth[k] = z;
+                                        hit[k] = index;
+                                    }
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+            for (int py = y0; py <= y1; ++py) {
+                for (int px = x0; px <= x1; ++px) {
+                    glm::vec3 sum(0.0f);
+                    for (std::uint32_t j = 0; j < spp; ++j) {
+                        const std::uint32_t id = hit[slot(px, py, j)];
+                        sum += id == none ? scene.background : colours[id];
+                    }
+                    result.image.at(px, py) = resolve_box(sum, settings.spp);
+                }
+            }
+            progress.advance();
+        }
+        total_tested.fetch_add(tested);
+        total_hit.fetch_add(hits);
+    };
+
+    const int threads =
+        settings.threads > 0 ? settings.threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    std::vector<std::thread> helpers;
+    try {
+        for (int i = 1; i < std::min(threads, tile_count); ++i) helpers.emplace_back(work);
+    } catch (...) {
+        next_tile.store(tile_count);
+        for (std::thread& helper : helpers) helper.join();
+        throw;
+    }
+    work();
+    for (std::thread& helper : helpers) helper.join();
+    progress.finish();
+    stats.ms_per_phase.emplace_back("raster+resolve", ms_since(phase));
+
+    stats.samples_tested = total_tested.load();
+    stats.samples_hit = total_hit.load();
+    stats.ms_total = ms_since(start);
+    return result;
+}
+
+}  // namespace blurcull::frontend

@@ -1,0 +1,27 @@
+// The CPU reference rasterizer: exact stochastic rasterization with a
+// per-sample z-buffer, culling by the kernel (docs/cpu-renderer.md).
+#pragma once
+
+#include "render/render_types.hpp"
+#include "scene/scene.hpp"
+
+namespace blurcull::frontend {
+
+struct CpuOptions {
+    // Side, in pixels, of the screen footprint the per-footprint sample bounds
+    // (dualspace, clip2) are computed for: 1 = per pixel; larger amortises
+    // their setup over more samples at the price of looser bounds.
+    int footprint = 1;
+};
+
+// Renders with settings.spp samples per pixel, sample j of pixel (px, py)
+// taken from kernel::pixel_sample(px, py, j, spp, seed) — the samples every
+// backend uses. Culling only skips samples the exact test would reject, so the
+// image is the same for every settings.cull (tests/test_frontend_cpu.cpp).
+// stats.samples_tested counts the exact tests run (samples that passed the
+// cull), stats.samples_hit those that found coverage. Deterministic whatever
+// the thread count. Throws std::invalid_argument for bad settings and
+// SceneError for a bad scene.
+RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, const CpuOptions& options = {});
+
+}  // namespace blurcull::frontend
