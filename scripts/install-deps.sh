@@ -18,6 +18,8 @@ packages=(
   doctest-dev libbenchmark-dev valgrind
   # frontend: scenes, CPU and Embree backends, PNG output
   libtinygltf-dev libembree-dev libstb-dev
+  # the blurcull command: option parsing and JSON output
+  libcli11-dev nlohmann-json3-dev
   # GL backend (planned) and shader validation
   glslang-tools libosmesa6-dev libegl-dev libgl-dev libgles-dev libgl1-mesa-dri
   libglfw3-dev xvfb xauth
