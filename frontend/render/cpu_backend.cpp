@@ -109,12 +109,19 @@ RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, cons
     validate_settings(settings);
     validate_scene(scene);
     if (options.footprint < 1) throw std::invalid_argument("cpu: footprint must be >= 1 pixel");
+    if (options.block < 0) throw std::invalid_argument("cpu: block must be >= 0 pixels");
     const CameraModel model(scene.camera, settings.width, settings.height);
     const int method = kernel_method(settings.cull);
     const double near = model.znear;
     const int width = settings.width, height = settings.height;
     const auto spp = static_cast<std::uint32_t>(settings.spp);
     const int footprint = options.footprint;
+    // Blocks: the coarser level of the footprint hierarchy, a multiple of the footprint.
+    const int block = options.block > footprint ? options.block - options.block % footprint : footprint;
+    // Only the per-footprint methods bound lens and time; a static, in-focus
+    // triangle has neither to bound, whatever the method.
+    const bool cull_bounds = method == BC_CULL_DUALSPACE || method == BC_CULL_CLIP2;
+    const K::SampleBounds no_bounds = K::no_sample_bounds();
 
     RenderResult result;
     RenderStats& stats = result.stats;
@@ -126,13 +133,15 @@ RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, cons
     const std::size_t count = scene.triangles.size();
     std::vector<K::MovingTriangle> triangles(count);
     std::vector<PixelRect> rects(count);
+    std::vector<int> classes(count);
     const int tiles_x = (width + tile_size - 1) / tile_size;
     const int tiles_y = (height + tile_size - 1) / tile_size;
     std::vector<std::vector<std::uint32_t>> bins(static_cast<std::size_t>(tiles_x) * tiles_y);
     std::size_t invalid = 0;
     for (std::size_t i = 0; i < count; ++i) {
         triangles[i] = make_moving_triangle<double>(scene, model, i);
-        if (K::classify(triangles[i]) == BC_INVALID) {
+        classes[i] = K::classify(triangles[i]);
+        if (classes[i] == BC_INVALID) {
             ++invalid;  // validate_scene checked the input; only overflow gets here
             rects[i] = PixelRect{0, 0, -1, -1};
             continue;
@@ -194,33 +203,54 @@ RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, cons
                 const K::ScreenBound bound = K::screen_bound(tri, near, method);
                 const int rx0 = std::max(r.x0, x0), rx1 = std::min(r.x1, x1);
                 const int ry0 = std::max(r.y0, y0), ry1 = std::min(r.y1, y1);
-                // Footprints are blocks of the image grid clipped to the
-                // triangle's rectangle; the bounds hold for any footprint.
-                for (int fy = ry0 - (ry0 % footprint); fy <= ry1; fy += footprint) {
-                    for (int fx = rx0 - (rx0 % footprint); fx <= rx1; fx += footprint) {
-                        const int px0 = std::max(fx, rx0), px1 = std::min(fx + footprint - 1, rx1);
-                        const int py0 = std::max(fy, ry0), py1 = std::min(fy + footprint - 1, ry1);
-                        const glm::vec4 top_left = model.pixel_ndc_bounds(px0, py0);
-                        const glm::vec4 bottom_right = model.pixel_ndc_bounds(px1, py1);
-                        const K::vec2 lo(top_left.x, bottom_right.y), hi(bottom_right.z, top_left.w);
-                        const K::SampleBounds sb = K::sample_bounds(tri, lo, hi, method);
-                        if (sb.empty) continue;
-                        for (int py = py0; py <= py1; ++py) {
-                            for (int px = px0; px <= px1; ++px) {
-                                for (std::uint32_t j = 0; j < spp; ++j) {
-                                    const std::size_t k = slot(px, py, j);
-                                    const TileSample& s = samples[k];
-                                    if (!K::screen_contains(bound, s.ndc) || !K::sample_passes(sb, s.lens, s.time))
-                                        continue;
-                                    ++tested;
-                                    double z = 0.0;
-                                    if (!K::covers(tri, s.ndc, s.lens, s.time, near, z)) continue;
-                                    ++hits;
-                                    if (z < depth[k]) {
-                                        depth[k] = z;
-                                        hit[k] = index;
-                                    }
+                const bool needs_bounds = cull_bounds && classes[index] != 0;
+                auto bounds_of = [&](int px0, int py0, int px1, int py1) {
+                    const glm::vec4 top_left = model.pixel_ndc_bounds(px0, py0);
+                    const glm::vec4 bottom_right = model.pixel_ndc_bounds(px1, py1);
+                    return K::sample_bounds(tri, K::vec2(top_left.x, bottom_right.y),
+                                            K::vec2(bottom_right.z, top_left.w), method);
+                };
+                auto test_samples = [&](int px0, int py0, int px1, int py1, const K::SampleBounds& sb) {
+                    for (int py = py0; py <= py1; ++py) {
+                        for (int px = px0; px <= px1; ++px) {
+                            for (std::uint32_t j = 0; j < spp; ++j) {
+                                const std::size_t k = slot(px, py, j);
+                                const TileSample& s = samples[k];
+                                if (!K::screen_contains(bound, s.ndc) || !K::sample_passes(sb, s.lens, s.time))
+                                    continue;
+                                ++tested;
+                                double z = 0.0;
+                                if (!K::covers(tri, s.ndc, s.lens, s.time, near, z)) continue;
+                                ++hits;
+                                if (z < depth[k]) {
+                                    depth[k] = z;
+                                    hit[k] = index;
                                 }
+                            }
+                        }
+                    }
+                };
+                // Blocks of the image grid clipped to the triangle's rectangle;
+                // the bounds hold for any footprint. A block whose bounds hold
+                // nothing is skipped whole; the others are bounded again per
+                // footprint when footprints are smaller than blocks.
+                for (int by = ry0 - (ry0 % block); by <= ry1; by += block) {
+                    for (int bx = rx0 - (rx0 % block); bx <= rx1; bx += block) {
+                        const int bx0 = std::max(bx, rx0), bx1 = std::min(bx + block - 1, rx1);
+                        const int by0 = std::max(by, ry0), by1 = std::min(by + block - 1, ry1);
+                        if (!needs_bounds) {
+                            test_samples(bx0, by0, bx1, by1, no_bounds);
+                            continue;
+                        }
+                        if (block > footprint) {
+                            if (bounds_of(bx0, by0, bx1, by1).empty) continue;
+                        }
+                        for (int fy = by0 - (by0 % footprint); fy <= by1; fy += footprint) {
+                            for (int fx = bx0 - (bx0 % footprint); fx <= bx1; fx += footprint) {
+                                const int px0 = std::max(fx, bx0), px1 = std::min(fx + footprint - 1, bx1);
+                                const int py0 = std::max(fy, by0), py1 = std::min(fy + footprint - 1, by1);
+                                const K::SampleBounds sb = bounds_of(px0, py0, px1, py1);
+                                if (!sb.empty) test_samples(px0, py0, px1, py1, sb);
                             }
                         }
                     }

@@ -12,6 +12,9 @@ struct CpuOptions {
     // (dualspace, clip2) are computed for: 1 = per pixel; larger amortises
     // their setup over more samples at the price of looser bounds.
     int footprint = 1;
+    // Side, in pixels, of the blocks bounded first: a block whose bounds hold
+    // nothing is skipped without bounding its footprints. <= footprint: off.
+    int block = 4;
 };
 
 // Renders with settings.spp samples per pixel, sample j of pixel (px, py)

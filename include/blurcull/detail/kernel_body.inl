@@ -19,7 +19,7 @@
 #define BC_INVALID 4
 
 #define BC_HULL_MAX 24
-#define BC_BREAKS_MAX 14
+#define BC_BREAKS_MAX 8
 
 // Margin policy: every rounded quantity is widened by BC_MARGIN machine
 // epsilons of the magnitude it was computed from (docs/kernel.md, "Margins").
@@ -43,7 +43,9 @@ struct SampleBounds {
     vec2 u_range;  // lens u in [u_range.x, u_range.y]
     vec2 v_range;
     vec4 tx;       // t >= tx.x + tx.y u  and  t <= tx.z + tx.w u
+    vec4 tx2;      // a second pair of lines in (u, t), same form
     vec4 ty;       // t >= ty.x + ty.y v  and  t <= ty.z + ty.w v
+    vec4 ty2;
 };
 
 BC_FN real bc_err(real magnitude) {
@@ -267,7 +269,7 @@ BC_FN ScreenBound screen_bound(BC_IN(MovingTriangle) tri, real near, int method)
     b.lo = vec2(ex.x, ey.x);
     b.hi = vec2(ex.y, ey.y);
     b.empty = ex.x > ex.y || ey.x > ey.y;
-    if (method == BC_CULL_HULL && !b.empty) bc_build_hull(tri, near, b);
+    if ((method == BC_CULL_HULL || method == BC_CULL_CLIP2) && !b.empty) bc_build_hull(tri, near, b);
     return b;
 }
 
@@ -514,68 +516,41 @@ BC_FN vec2 bc_fit_line(real u[BC_BREAKS_MAX], real value[BC_BREAKS_MAX], int n, 
     return vec2(offset - sign * pad, slope);
 }
 
-// Stage 2, time bounds as two lines in (u, t): split the lens range at the
-// roots of the offsets, bound the covered times on every piece and at every
-// root, and fit one line below the lower ends and one above the upper ends.
-// Narrows `lens` to where something can be covered. False: nothing can.
-BC_FN bool bc_stage2(BC_IN(MovingTriangle) tri, int axis, real s0, real s1, BC_INOUT(vec2) lens, BC_OUT(vec4) lines) {
+// Stage 2 for one condition ("some offset e_k + u c_k <= 0", k over the three
+// vertices at t = 0 and t = 1): split the lens range at the offsets' roots,
+// bound the covered times on every piece, and fit one line below their lower
+// ends and one above their upper ends. Narrows `lens` to where the condition
+// can hold. False: it holds nowhere in the lens range.
+BC_FN bool bc_condition_lines(vec3 e0, vec3 e1, vec3 c0, vec3 c1, vec3 tol0, vec3 tol1,
+                              BC_INOUT(vec2) lens, BC_OUT(vec4) lines) {
     lines = vec4(real(0), real(0), real(1), real(0));
-    vec3 ea0;  // condition A: x - s1 w (+ u c) <= 0
-    vec3 ea1;
-    vec3 eb0;  // condition B, negated: s0 w - x (- u c) <= 0
-    vec3 eb1;
-    vec3 c0;
-    vec3 c1;
-    vec3 ta0;
-    vec3 ta1;
-    vec3 tb0;
-    vec3 tb1;
-    real umax = max(real(1), max(abs(lens.x), abs(lens.y)));
+    vec4 r;
     bool defocus = false;
     for (int i = 0; i < 3; ++i) {
-        vec3 p0 = tri.p[i];
-        vec3 p1 = tri.p[i + 3];
-        c0[i] = tri.c[i][axis];
-        c1[i] = tri.c[i + 3][axis];
         if (c0[i] != real(0) || c1[i] != real(0)) defocus = true;
-        ea0[i] = p0[axis] - s1 * p0.z;
-        ea1[i] = p1[axis] - s1 * p1.z;
-        eb0[i] = s0 * p0.z - p0[axis];
-        eb1[i] = s0 * p1.z - p1[axis];
-        ta0[i] = bc_err(abs(p0[axis]) + abs(s1 * p0.z) + abs(c0[i]) * umax);
-        ta1[i] = bc_err(abs(p1[axis]) + abs(s1 * p1.z) + abs(c1[i]) * umax);
-        tb0[i] = bc_err(abs(p0[axis]) + abs(s0 * p0.z) + abs(c0[i]) * umax);
-        tb1[i] = bc_err(abs(p1[axis]) + abs(s0 * p1.z) + abs(c1[i]) * umax);
     }
-    vec4 ra;
-    vec4 rb;
     if (!defocus) {
-        // Offsets do not depend on u: one constant interval.
-        if (!bc_covered_times(ea0, ea1, c0, c1, ta0, ta1, real(0), real(0), ra)) return false;
-        if (!bc_covered_times(eb0, eb1, -c0, -c1, tb0, tb1, real(0), real(0), rb)) return false;
-        lines = vec4(max(ra.x, rb.x), real(0), min(ra.z, rb.z), real(0));
-        return lines.x <= lines.z;
+        // The offsets do not depend on u: one constant interval.
+        if (!bc_covered_times(e0, e1, c0, c1, tol0, tol1, real(0), real(0), r)) return false;
+        lines = vec4(r.x, real(0), r.z, real(0));
+        return true;
     }
-    // Break points: the lens range and the offsets' roots inside it.
+    // Break points: the lens range and the roots inside it, sorted.
     real u[BC_BREAKS_MAX];
     int n = 0;
     u[n] = lens.x;
     n = n + 1;
     real root_error = real(0);
-    for (int j = 0; j < 12; ++j) {
+    for (int j = 0; j < 6; ++j) {
         int i = j % 3;
-        int k = (j / 3) % 2;
-        bool for_b = j >= 6;
-        real c = k == 0 ? c0[i] : c1[i];
+        real c = j < 3 ? c0[i] : c1[i];
         if (c == real(0)) continue;
-        real e = for_b ? (k == 0 ? eb0[i] : eb1[i]) : (k == 0 ? ea0[i] : ea1[i]);
-        real tol = for_b ? (k == 0 ? tb0[i] : tb1[i]) : (k == 0 ? ta0[i] : ta1[i]);
-        real root = for_b ? e / c : -e / c;
+        real root = -(j < 3 ? e0[i] : e1[i]) / c;
         if (!(root > lens.x && root < lens.y)) continue;
         bool known = false;
         for (int q = 0; q < n; ++q) known = known || u[q] == root;
-        if (known) continue;  // the break point is evaluated once
-        root_error = max(root_error, tol / abs(c) + bc_err(abs(root)));
+        if (known) continue;
+        root_error = max(root_error, (j < 3 ? tol0[i] : tol1[i]) / abs(c) + bc_err(abs(root)));
         int q = n;
         while (q > 1 && u[q - 1] > root) {
             u[q] = u[q - 1];
@@ -592,32 +567,28 @@ BC_FN bool bc_stage2(BC_IN(MovingTriangle) tri, int axis, real s0, real s1, BC_I
         lower[j] = bc_huge();
         upper[j] = -bc_huge();
     }
-    // Every break point on its own (roots are where the covered set may jump).
-    for (int j = 0; j < n; ++j) {
-        if (bc_covered_times(ea0, ea1, c0, c1, ta0, ta1, u[j], u[j], ra) &&
-            bc_covered_times(eb0, eb1, -c0, -c1, tb0, tb1, u[j], u[j], rb)) {
-            lower[j] = max(ra.x, rb.x);
-            upper[j] = min(ra.z, rb.z);
-        }
-    }
     // Every open piece between break points. A root computed with an error of
-    // root_error shifts a piece's end: the piece's lines are widened by their
-    // slope times that error.
+    // root_error shifts a piece's end: its lines widen by slope * root_error.
     for (int j = 0; j + 1 < n; ++j) {
         real a = u[j];
         real b = u[j + 1];
         if (!(b > a)) continue;
-        if (!bc_covered_times(ea0, ea1, c0, c1, ta0, ta1, a, b, ra)) continue;
-        if (!bc_covered_times(eb0, eb1, -c0, -c1, tb0, tb1, a, b, rb)) continue;
-        // Both A's and B's lines bound the piece; keep the tighter of each.
-        vec2 lo = ra.x + ra.y >= rb.x + rb.y ? vec2(ra.x, ra.y) : vec2(rb.x, rb.y);
-        vec2 hi = ra.z + ra.w <= rb.z + rb.w ? vec2(ra.z, ra.w) : vec2(rb.z, rb.w);
-        real widen_lo = abs(lo.y - lo.x) / (b - a) * root_error;
-        real widen_hi = abs(hi.y - hi.x) / (b - a) * root_error;
-        lower[j] = min(lower[j], lo.x - widen_lo);
-        lower[j + 1] = min(lower[j + 1], lo.y - widen_lo);
-        upper[j] = max(upper[j], hi.x + widen_hi);
-        upper[j + 1] = max(upper[j + 1], hi.y + widen_hi);
+        if (!bc_covered_times(e0, e1, c0, c1, tol0, tol1, a, b, r)) continue;
+        real widen_lo = abs(r.y - r.x) / (b - a) * root_error;
+        real widen_hi = abs(r.w - r.z) / (b - a) * root_error;
+        lower[j] = min(lower[j], r.x - widen_lo);
+        lower[j + 1] = min(lower[j + 1], r.y - widen_lo);
+        upper[j] = max(upper[j], r.z + widen_hi);
+        upper[j + 1] = max(upper[j + 1], r.w + widen_hi);
+    }
+    // A break point between two pieces that hold nothing can still hold the
+    // condition exactly on it; elsewhere the closed pieces' lines cover it.
+    for (int j = 0; j < n; ++j) {
+        if (lower[j] < bc_huge()) continue;
+        if (bc_covered_times(e0, e1, c0, c1, tol0, tol1, u[j], u[j], r)) {
+            lower[j] = r.x;
+            upper[j] = r.z;
+        }
     }
     int first = -1;
     int last = -1;
@@ -636,6 +607,43 @@ BC_FN bool bc_stage2(BC_IN(MovingTriangle) tri, int axis, real s0, real s1, BC_I
     return true;
 }
 
+// Stage 2, time bounds as lines in (u, t), per footprint condition: A (the
+// offsets from the footprint's far edge s1 reach <= 0) and B (those from its
+// near edge s0 reach >= 0, passed negated). A covered sample satisfies both,
+// so it lies between both pairs of lines. Narrows `lens`. False: nothing can
+// be covered.
+BC_FN bool bc_stage2(BC_IN(MovingTriangle) tri, int axis, real s0, real s1, BC_INOUT(vec2) lens,
+                     BC_OUT(vec4) lines_a, BC_OUT(vec4) lines_b) {
+    vec3 ea0;  // condition A: x - s1 w (+ u c) <= 0
+    vec3 ea1;
+    vec3 eb0;  // condition B, negated: s0 w - x (- u c) <= 0
+    vec3 eb1;
+    vec3 c0;
+    vec3 c1;
+    vec3 ta0;
+    vec3 ta1;
+    vec3 tb0;
+    vec3 tb1;
+    real umax = max(real(1), max(abs(lens.x), abs(lens.y)));
+    for (int i = 0; i < 3; ++i) {
+        vec3 p0 = tri.p[i];
+        vec3 p1 = tri.p[i + 3];
+        c0[i] = tri.c[i][axis];
+        c1[i] = tri.c[i + 3][axis];
+        ea0[i] = p0[axis] - s1 * p0.z;
+        ea1[i] = p1[axis] - s1 * p1.z;
+        eb0[i] = s0 * p0.z - p0[axis];
+        eb1[i] = s0 * p1.z - p1[axis];
+        ta0[i] = bc_err(abs(p0[axis]) + abs(s1 * p0.z) + abs(c0[i]) * umax);
+        ta1[i] = bc_err(abs(p1[axis]) + abs(s1 * p1.z) + abs(c1[i]) * umax);
+        tb0[i] = bc_err(abs(p0[axis]) + abs(s0 * p0.z) + abs(c0[i]) * umax);
+        tb1[i] = bc_err(abs(p1[axis]) + abs(s0 * p1.z) + abs(c1[i]) * umax);
+    }
+    lines_b = vec4(real(0), real(0), real(1), real(0));
+    if (!bc_condition_lines(ea0, ea1, c0, c1, ta0, ta1, lens, lines_a)) return false;
+    return bc_condition_lines(eb0, eb1, -c0, -c1, tb0, tb1, lens, lines_b);
+}
+
 // ---- per-footprint sample bounds ------------------------------------------------
 
 BC_FN SampleBounds no_sample_bounds() {
@@ -644,7 +652,9 @@ BC_FN SampleBounds no_sample_bounds() {
     r.u_range = vec2(real(-1), real(1));
     r.v_range = vec2(real(-1), real(1));
     r.tx = vec4(real(0), real(0), real(1), real(0));
-    r.ty = vec4(real(0), real(0), real(1), real(0));
+    r.tx2 = r.tx;
+    r.ty = r.tx;
+    r.ty2 = r.tx;
     return r;
 }
 
@@ -662,7 +672,8 @@ BC_FN SampleBounds sample_bounds(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi
     s_hi = s_hi + pad;
     for (int axis = 0; axis < 2; ++axis) {
         vec2 lens;
-        vec4 lines;
+        vec4 lines = vec4(real(0), real(0), real(1), real(0));
+        vec4 lines2 = lines;
         if (method == BC_CULL_DUALSPACE) {
             vec2 tr;
             if (!bc_dual_time(tri, axis, s_lo[axis], s_hi[axis], tr)) {
@@ -673,7 +684,7 @@ BC_FN SampleBounds sample_bounds(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi
             lens = bc_dual_lens(tri, axis, s_lo[axis], s_hi[axis]);
         } else {
             lens = bc_stage1(tri, axis, s_lo[axis], s_hi[axis]);
-            if (lens.x > lens.y || !bc_stage2(tri, axis, s_lo[axis], s_hi[axis], lens, lines)) {
+            if (lens.x > lens.y || !bc_stage2(tri, axis, s_lo[axis], s_hi[axis], lens, lines, lines2)) {
                 r.empty = true;
                 return r;
             }
@@ -685,9 +696,11 @@ BC_FN SampleBounds sample_bounds(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi
         if (axis == 0) {
             r.u_range = lens;
             r.tx = lines;
+            r.tx2 = lines2;
         } else {
             r.v_range = lens;
             r.ty = lines;
+            r.ty2 = lines2;
         }
     }
     return r;
@@ -698,5 +711,7 @@ BC_FN bool sample_passes(BC_IN(SampleBounds) b, vec2 uv, real t) {
     if (uv.x < b.u_range.x || uv.x > b.u_range.y || uv.y < b.v_range.x || uv.y > b.v_range.y) return false;
     if (t < b.tx.x + b.tx.y * uv.x || t > b.tx.z + b.tx.w * uv.x) return false;
     if (t < b.ty.x + b.ty.y * uv.y || t > b.ty.z + b.ty.w * uv.y) return false;
+    if (t < b.tx2.x + b.tx2.y * uv.x || t > b.tx2.z + b.tx2.w * uv.x) return false;
+    if (t < b.ty2.x + b.ty2.y * uv.y || t > b.ty2.z + b.ty2.w * uv.y) return false;
     return true;
 }
