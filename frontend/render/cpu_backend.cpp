@@ -167,7 +167,7 @@ RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, cons
     phase = Clock::now();
     result.image = Image(width, height);
     std::atomic<int> next_tile{0};
-    std::atomic<std::uint64_t> total_tested{0}, total_hit{0};
+    std::atomic<std::uint64_t> total_tested{0}, total_hit{0}, total_bounded{0}, total_bounded_empty{0};
     const int tile_count = tiles_x * tiles_y;
     Progress progress(settings.progress, start, tile_count);
 
@@ -175,7 +175,7 @@ RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, cons
         std::vector<TileSample> samples(static_cast<std::size_t>(tile_size) * tile_size * spp);
         std::vector<double> depth(samples.size());
         std::vector<std::uint32_t> hit(samples.size());
-        std::uint64_t tested = 0, hits = 0;
+        std::uint64_t tested = 0, hits = 0, bounded = 0, bounded_empty = 0;
         constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
         for (int tile = next_tile.fetch_add(1); tile < tile_count; tile = next_tile.fetch_add(1)) {
             const int tx = tile % tiles_x, ty = tile / tiles_x;
@@ -207,8 +207,11 @@ RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, cons
                 auto bounds_of = [&](int px0, int py0, int px1, int py1) {
                     const glm::vec4 top_left = model.pixel_ndc_bounds(px0, py0);
                     const glm::vec4 bottom_right = model.pixel_ndc_bounds(px1, py1);
-                    return K::sample_bounds(tri, K::vec2(top_left.x, bottom_right.y),
-                                            K::vec2(bottom_right.z, top_left.w), method);
+                    K::SampleBounds sb = K::sample_bounds(tri, K::vec2(top_left.x, bottom_right.y),
+                                                          K::vec2(bottom_right.z, top_left.w), method);
+                    ++bounded;
+                    if (sb.empty) ++bounded_empty;
+                    return sb;
                 };
                 auto test_samples = [&](int px0, int py0, int px1, int py1, const K::SampleBounds& sb) {
                     for (int py = py0; py <= py1; ++py) {
@@ -216,7 +219,8 @@ RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, cons
                             for (std::uint32_t j = 0; j < spp; ++j) {
                                 const std::size_t k = slot(px, py, j);
                                 const TileSample& s = samples[k];
-                                if (!K::screen_contains(bound, s.ndc) || !K::sample_passes(sb, s.lens, s.time))
+                                // The lens/time test first: it is cheaper than a hull and culls more.
+                                if (!K::sample_passes(sb, s.lens, s.time) || !K::screen_contains(bound, s.ndc))
                                     continue;
                                 ++tested;
                                 double z = 0.0;
@@ -270,6 +274,8 @@ RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, cons
         }
         total_tested.fetch_add(tested);
         total_hit.fetch_add(hits);
+        total_bounded.fetch_add(bounded);
+        total_bounded_empty.fetch_add(bounded_empty);
     };
 
     const int threads =
@@ -289,6 +295,8 @@ RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, cons
 
     stats.samples_tested = total_tested.load();
     stats.samples_hit = total_hit.load();
+    stats.bounds_computed = total_bounded.load();
+    stats.bounds_empty = total_bounded_empty.load();
     stats.ms_total = ms_since(start);
     return result;
 }

@@ -11,10 +11,10 @@ struct CpuOptions {
     // Side, in pixels, of the screen footprint the per-footprint sample bounds
     // (dualspace, clip2) are computed for: 1 = per pixel; larger amortises
     // their setup over more samples at the price of looser bounds.
-    int footprint = 1;
+    int footprint = 4;
     // Side, in pixels, of the blocks bounded first: a block whose bounds hold
     // nothing is skipped without bounding its footprints. <= footprint: off.
-    int block = 4;
+    int block = 16;
 };
 
 // Renders with settings.spp samples per pixel, sample j of pixel (px, py)
