@@ -1,0 +1,29 @@
+// Procedural stand-ins for the four workloads of the clip-space sample culling
+// thesis (Hand, Car, Dragonfly, FairyForest): similar triangle counts and the
+// same kind of blur, generated deterministically (no files, no std::
+// distributions), so every backend and benchmark sees identical geometry.
+#pragma once
+
+#include "scene/scene.hpp"
+#include "scene/scene_error.hpp"
+
+#include <string>
+#include <vector>
+
+namespace blurcull::frontend {
+
+struct SceneOptions {
+    // Multiplies every blur: object displacement, camera displacement and
+    // rotation angle, and lens radius (the thesis's "x2" rows are 2).
+    float blur_scale = 1.0f;
+    // Image width / height; the camera's yfov is chosen so the subject fits.
+    float aspect = 4.0f / 3.0f;
+};
+
+// "hand", "car", "dragonfly", "forest". Throws SceneError for any other name,
+// or for a blur_scale / aspect that is negative, zero (aspect) or not finite.
+Scene make_builtin_scene(const std::string& name, const SceneOptions& options);
+
+std::vector<std::string> builtin_scene_names();
+
+}  // namespace blurcull::frontend

@@ -1,0 +1,126 @@
+#include "scene/scene_checks.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace blurcull::frontend {
+
+namespace {
+
+bool is_finite(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+bool is_finite(const glm::mat4& m) {
+    for (int column = 0; column < 4; ++column) {
+        for (int row = 0; row < 4; ++row) {
+            if (!std::isfinite(m[column][row])) return false;
+        }
+    }
+    return true;
+}
+
+[[noreturn]] void fail(const Scene& scene, const std::string& problem) {
+    throw SceneError("scene '" + scene.name + "': " + problem);
+}
+
+glm::vec3 eye_position(const glm::mat4& view) {
+    return glm::vec3(glm::inverse(view)[3]);
+}
+
+}  // namespace
+
+void validate_scene(const Scene& scene) {
+    const std::size_t vertex_count = scene.position_open.size();
+    if (scene.position_close.size() != vertex_count) {
+        fail(scene, std::to_string(vertex_count) + " open positions but " +
+                        std::to_string(scene.position_close.size()) + " close positions");
+    }
+    if (scene.triangle_material.size() != scene.triangles.size()) {
+        fail(scene, std::to_string(scene.triangles.size()) + " triangles but " +
+                        std::to_string(scene.triangle_material.size()) + " triangle materials");
+    }
+    for (std::size_t i = 0; i < vertex_count; ++i) {
+        if (!is_finite(scene.position_open[i]) || !is_finite(scene.position_close[i])) {
+            fail(scene, "vertex " + std::to_string(i) + " has a non-finite position");
+        }
+    }
+    for (std::size_t t = 0; t < scene.triangles.size(); ++t) {
+        const glm::uvec3& tri = scene.triangles[t];
+        for (int corner = 0; corner < 3; ++corner) {
+            if (tri[corner] >= vertex_count) {
+                fail(scene, "triangle " + std::to_string(t) + " uses vertex " +
+                                std::to_string(tri[corner]) + " but there are only " +
+                                std::to_string(vertex_count) + " vertices");
+            }
+        }
+        if (scene.triangle_material[t] >= scene.materials.size()) {
+            fail(scene, "triangle " + std::to_string(t) + " uses material " +
+                            std::to_string(scene.triangle_material[t]) + " but there are only " +
+                            std::to_string(scene.materials.size()) + " materials");
+        }
+    }
+    const Camera& camera = scene.camera;
+    if (!is_finite(camera.view_open) || !is_finite(camera.view_close)) {
+        fail(scene, "camera view matrix is not finite");
+    }
+    if (!(camera.yfov > 0.0f && camera.yfov < 3.14159265f)) {
+        fail(scene, "camera yfov " + std::to_string(camera.yfov) + " is outside (0, pi)");
+    }
+    if (!(camera.znear > 0.0f) || !std::isfinite(camera.znear)) {
+        fail(scene, "camera znear " + std::to_string(camera.znear) + " is not positive");
+    }
+    if (!(camera.lens_radius >= 0.0f) || !std::isfinite(camera.lens_radius)) {
+        fail(scene, "camera lens radius " + std::to_string(camera.lens_radius) + " is negative");
+    }
+    if (!(camera.focus_distance > 0.0f) || !std::isfinite(camera.focus_distance)) {
+        fail(scene, "camera focus distance " + std::to_string(camera.focus_distance) +
+                        " is not positive");
+    }
+    if (!is_finite(scene.light_direction) || !is_finite(scene.background)) {
+        fail(scene, "light direction or background colour is not finite");
+    }
+}
+
+SceneStats describe(const Scene& scene) {
+    SceneStats stats;
+    stats.triangles = scene.triangles.size();
+    stats.vertices = scene.position_open.size();
+    const std::size_t paired = std::min(scene.position_open.size(), scene.position_close.size());
+    if (paired > 0) {
+        stats.bounds_min = glm::vec3(INFINITY);
+        stats.bounds_max = glm::vec3(-INFINITY);
+    }
+    for (std::size_t i = 0; i < paired; ++i) {
+        const glm::vec3& open = scene.position_open[i];
+        const glm::vec3& close = scene.position_close[i];
+        stats.bounds_min = glm::min(stats.bounds_min, glm::min(open, close));
+        stats.bounds_max = glm::max(stats.bounds_max, glm::max(open, close));
+        if (open != close) {
+            stats.object_motion = true;
+            stats.max_vertex_displacement =
+                std::max(stats.max_vertex_displacement, glm::length(close - open));
+        }
+    }
+    const Camera& camera = scene.camera;
+    stats.camera_motion = camera.view_open != camera.view_close;
+    if (stats.camera_motion) {
+        stats.camera_displacement =
+            glm::length(eye_position(camera.view_close) - eye_position(camera.view_open));
+        // Relative rotation R = R_close R_open^T; its angle from atan2 of the
+        // skew part and the trace, in double so small angles stay accurate.
+        const glm::dmat3 relative = glm::dmat3(glm::mat3(camera.view_close)) *
+                                    glm::transpose(glm::dmat3(glm::mat3(camera.view_open)));
+        const glm::dvec3 skew(relative[1][2] - relative[2][1], relative[2][0] - relative[0][2],
+                              relative[0][1] - relative[1][0]);
+        const double trace = relative[0][0] + relative[1][1] + relative[2][2];
+        stats.camera_rotation =
+            static_cast<float>(std::atan2(0.5 * glm::length(skew), 0.5 * (trace - 1.0)));
+    }
+    stats.lens_radius = camera.lens_radius;
+    stats.focus_distance = camera.focus_distance;
+    return stats;
+}
+
+}  // namespace blurcull::frontend
