@@ -42,6 +42,9 @@ struct RenderSettings {
     CullMethod cull = CullMethod::clip2;
     int threads = 0;  // 0 = std::thread::hardware_concurrency()
     bool progress = true;  // report progress on stderr when a render is slow
+    // Which renderer: "stochastic" (render_cpu), "interleave", "interval" or
+    // "accum" (render/interleaved_backend.hpp, docs/sampling.md).
+    std::string method = "stochastic";
 };
 
 // Throws std::invalid_argument with a one-line message when a setting is out of range.
