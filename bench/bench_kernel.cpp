@@ -452,7 +452,7 @@ int main(int argc, char** argv) {
     register_precision<double>();
     // A short default run (about 150 benchmarks); an explicit
     // --benchmark_min_time on the command line wins.
-    static char default_min_time[] = "--benchmark_min_time=0.02";
+    static char default_min_time[] = "--benchmark_min_time=0.01";
     std::vector<char*> args(argv, argv + argc);
     bool has_min_time = false;
     for (int k = 1; k < argc; ++k) {
