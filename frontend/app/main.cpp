@@ -1,0 +1,40 @@
+// The `blurcull` command: renders built-in or glTF scenes with motion blur and
+// depth of field on the chosen backend, and reports what the culling cost.
+#include "app/render_command.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <exception>
+#include <string>
+
+int main(int argc, char** argv) {
+    using namespace blurcull::frontend;
+    CLI::App app{"blurcull: motion blur and depth of field by stochastic rasterization with sample culling"};
+    app.set_version_flag("--version", "blurcull 0.1.0");
+    app.require_subcommand(0, 1);
+    // One line naming the flag and what it accepts, like every other error.
+    app.failure_message([](const CLI::App*, const CLI::Error& error) {
+        return std::string("blurcull: error: ") + error.what() + " (see blurcull render --help)\n";
+    });
+
+    RenderCommand render;
+    CLI::App* render_app = app.add_subcommand("render", "render a scene to a PNG (the default command)");
+    render.add_options(*render_app);
+    CLI::App* scenes_app = app.add_subcommand("scenes", "list the built-in scenes");
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& error) {
+        // CLI11 names the flag and the accepted range. --help and --version
+        // exit 0; usage errors exit 2.
+        return app.exit(error) == 0 ? 0 : 2;
+    }
+    try {
+        if (scenes_app->parsed()) return list_scenes();
+        return render.run();  // `blurcull` alone renders the default scene
+    } catch (const std::exception& error) {
+        std::fprintf(stderr, "blurcull: error: %s\n", error.what());
+        return 1;
+    }
+}

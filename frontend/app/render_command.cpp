@@ -1,0 +1,230 @@
+#include "app/render_command.hpp"
+
+#include "render/cpu_backend.hpp"
+#include "render/embree_backend.hpp"
+#include "render/image.hpp"
+#include "render/render_types.hpp"
+#include "scene/builtin_scenes.hpp"
+#include "scene/gltf_loader.hpp"
+#include "scene/scene_checks.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+
+namespace blurcull::frontend {
+namespace {
+
+bool ends_with(const std::string& text, const std::string& suffix) {
+    return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+bool is_gltf_path(const std::string& name) { return ends_with(name, ".gltf") || ends_with(name, ".glb"); }
+
+std::string stem(const std::string& path) {
+    std::size_t slash = path.find_last_of('/');
+    std::string base = slash == std::string::npos ? path : path.substr(slash + 1);
+    std::size_t dot = base.find_last_of('.');
+    return dot == std::string::npos || dot == 0 ? base : base.substr(0, dot);
+}
+
+void parse_size(const std::string& text, int& width, int& height) {
+    std::size_t x = text.find('x');
+    auto bad = [&]() {
+        return std::invalid_argument("--size: expected WxH with W and H in [1, 65536], got '" + text + "'");
+    };
+    if (x == std::string::npos || x == 0 || x + 1 >= text.size()) throw bad();
+    try {
+        std::size_t used_w = 0, used_h = 0;
+        long w = std::stol(text.substr(0, x), &used_w);
+        long h = std::stol(text.substr(x + 1), &used_h);
+        if (used_w != x || used_h != text.size() - x - 1 || w < 1 || h < 1 || w > 65536 || h > 65536) throw bad();
+        width = static_cast<int>(w);
+        height = static_cast<int>(h);
+    } catch (const std::logic_error&) {
+        throw bad();
+    }
+}
+
+void parse_shutter(const std::string& text, float& open, float& close) {
+    std::size_t comma = text.find(',');
+    auto bad = [&]() {
+        return std::invalid_argument("--shutter: expected OPEN,CLOSE with finite OPEN <= CLOSE, got '" + text + "'");
+    };
+    if (comma == std::string::npos) throw bad();
+    try {
+        std::size_t used_open = 0, used_close = 0;
+        double o = std::stod(text.substr(0, comma), &used_open);
+        double c = std::stod(text.substr(comma + 1), &used_close);
+        if (used_open != comma || used_close != text.size() - comma - 1 || !std::isfinite(o) || !std::isfinite(c) ||
+            o > c)
+            throw bad();
+        open = static_cast<float>(o);
+        close = static_cast<float>(c);
+    } catch (const std::logic_error&) {
+        throw bad();
+    }
+}
+
+// A built-in scene's motion is defined over its nominal shutter [0, 1];
+// another shutter re-samples that linear motion at OPEN and CLOSE.
+void resample_shutter(Scene& scene, float open, float close) {
+    for (std::size_t v = 0; v < scene.position_open.size(); ++v) {
+        glm::vec3 p0 = scene.position_open[v], p1 = scene.position_close[v];
+        scene.position_open[v] = glm::mix(p0, p1, open);
+        scene.position_close[v] = glm::mix(p0, p1, close);
+    }
+    glm::mat4 v0 = scene.camera.view_open, v1 = scene.camera.view_close;
+    scene.camera.view_open = v0 + (v1 - v0) * open;
+    scene.camera.view_close = v0 + (v1 - v0) * close;
+}
+
+// Lens radius for an f-number: R = f / (2 N), with the focal length of a
+// 35 mm camera (24 mm sensor height) of the same vertical field of view,
+// in scene units taken as metres.
+float lens_radius_for_fstop(float yfov, double fstop) {
+    double focal_length = 0.012 / std::tan(0.5 * double(yfov));
+    return static_cast<float>(focal_length / (2.0 * fstop));
+}
+
+}  // namespace
+
+void RenderCommand::add_options(CLI::App& app) {
+    app.add_option("--scene", scene, "built-in scene name (blurcull scenes) or a .gltf/.glb file")
+        ->capture_default_str();
+    app.add_option("--backend", backend, "cpu, embree, gl or auto (auto: the best available)")
+        ->check(CLI::IsMember({"auto", "cpu", "embree", "gl"}))
+        ->capture_default_str();
+    app.add_option("--cull", cull, "culling method")
+        ->check(CLI::IsMember({"bbox", "hull", "dualspace", "clip2"}))
+        ->capture_default_str();
+    app.add_option("--spp", spp, "samples per pixel")->check(CLI::Range(1, 1024))->capture_default_str();
+    app.add_option("--size", size, "image size WxH")->capture_default_str();
+    auto* radius = app.add_option("--lens-radius", lens_radius, "thin-lens aperture radius (scene units)")
+                       ->check(CLI::Range(0.0, 1e6));
+    auto* fstop_option =
+        app.add_option("--fstop", fstop, "f-number (35 mm equivalent focal length)")->check(CLI::Range(0.1, 1e6));
+    radius->excludes(fstop_option);
+    app.add_option("--focus", focus, "focus distance (view depth, scene units)")->check(CLI::Range(1e-6, 1e9));
+    app.add_option("--shutter", shutter,
+                   "OPEN,CLOSE: animation seconds for glTF, fractions of the nominal shutter for built-in scenes");
+    app.add_option("--blur-scale", blur_scale, "multiplies motion and lens radius (thesis x2 rows: 2)")
+        ->check(CLI::Range(0.0, 1000.0))
+        ->capture_default_str();
+    app.add_option("--seed", seed, "sample pattern seed")->capture_default_str();
+    app.add_option("-o,--output", output, "PNG to write (default: <scene>.png in the current folder)");
+    app.add_flag("--json", json, "print one JSON object with the render's statistics on stdout");
+    app.add_option("--threads", threads, "worker threads (0: all cores)")->check(CLI::Range(0, 1024));
+    app.add_option("--footprint", footprint, "cpu: pixels per side of a culling footprint")
+        ->check(CLI::Range(1, 64))
+        ->capture_default_str();
+    app.add_flag("-q,--quiet", quiet, "no progress on stderr");
+}
+
+int RenderCommand::run() const {
+    RenderSettings settings;
+    parse_size(size, settings.width, settings.height);
+    settings.spp = spp;
+    settings.seed = seed;
+    settings.cull = parse_cull_method(cull);
+    settings.threads = threads;
+    settings.progress = !quiet;
+    const float aspect = static_cast<float>(settings.width) / static_cast<float>(settings.height);
+
+    float shutter_open = 0.0f, shutter_close = 1.0f;
+    if (!shutter.empty()) parse_shutter(shutter, shutter_open, shutter_close);
+
+    // Refuse before rendering when the output cannot be written.
+    const std::string out_path = output.empty() ? stem(scene) + ".png" : output;
+    {
+        std::size_t slash = out_path.find_last_of('/');
+        std::string folder = slash == std::string::npos ? "." : (slash == 0 ? "/" : out_path.substr(0, slash));
+        if (access(folder.c_str(), W_OK) != 0) {
+            throw std::runtime_error("-o: cannot write '" + out_path + "': folder '" + folder + "' is not writable");
+        }
+    }
+
+    Scene loaded;
+    if (is_gltf_path(scene)) {
+        GltfOptions gltf;
+        gltf.aspect = aspect;
+        gltf.blur_scale = static_cast<float>(blur_scale);
+        if (!shutter.empty()) {
+            gltf.shutter_open = shutter_open;
+            gltf.shutter_close = shutter_close;
+        }
+        loaded = load_gltf_scene(scene, gltf);
+    } else {
+        SceneOptions options;
+        options.blur_scale = static_cast<float>(blur_scale);
+        options.aspect = aspect;
+        loaded = make_builtin_scene(scene, options);
+        if (!shutter.empty()) resample_shutter(loaded, shutter_open, shutter_close);
+    }
+    if (lens_radius >= 0.0) loaded.camera.lens_radius = static_cast<float>(lens_radius * blur_scale);
+    if (fstop > 0.0) loaded.camera.lens_radius = lens_radius_for_fstop(loaded.camera.yfov, fstop) * float(blur_scale);
+    if (focus > 0.0) loaded.camera.focus_distance = static_cast<float>(focus);
+    validate_scene(loaded);
+
+    std::string used_backend = backend;
+    if (backend == "gl") {
+        throw std::runtime_error("--backend gl: the OpenGL backend is not built yet (planned); use --backend cpu or embree");
+    }
+    if (backend == "auto") used_backend = "cpu";
+
+    RenderResult result;
+    if (used_backend == "embree") {
+        result = render_embree(loaded, settings);
+    } else {
+        CpuOptions options;
+        options.footprint = footprint;
+        result = render_cpu(loaded, settings, options);
+    }
+    write_png(out_path, result.image);
+
+    const RenderStats& stats = result.stats;
+    if (json) {
+        nlohmann::ordered_json summary;
+        summary["scene"] = loaded.name.empty() ? stem(scene) : loaded.name;
+        summary["backend"] = used_backend;
+        summary["cull"] = used_backend == "embree" ? "none" : cull;
+        summary["spp"] = settings.spp;
+        summary["width"] = settings.width;
+        summary["height"] = settings.height;
+        summary["seed"] = settings.seed;
+        summary["blur_scale"] = blur_scale;
+        summary["lens_radius"] = loaded.camera.lens_radius;
+        summary["focus_distance"] = loaded.camera.focus_distance;
+        summary["triangles"] = stats.triangles;
+        summary["samples_tested"] = stats.samples_tested;
+        summary["samples_hit"] = stats.samples_hit;
+        summary["ste"] = stats.ste();
+        summary["ms_total"] = stats.ms_total;
+        nlohmann::ordered_json phases = nlohmann::ordered_json::object();
+        for (const auto& [name, ms] : stats.ms_per_phase) phases[name] = ms;
+        summary["ms_per_phase"] = phases;
+        summary["output"] = out_path;
+        std::printf("%s\n", summary.dump().c_str());
+    } else {
+        std::printf("%s: %zu triangles, %dx%d, %d spp, backend %s, cull %s\n", scene.c_str(), stats.triangles,
+                    settings.width, settings.height, settings.spp, used_backend.c_str(),
+                    used_backend == "embree" ? "none" : cull.c_str());
+        std::printf("  %llu samples tested, %llu hit, STE %.1f%%, %.0f ms\n",
+                    static_cast<unsigned long long>(stats.samples_tested),
+                    static_cast<unsigned long long>(stats.samples_hit), 100.0 * stats.ste(), stats.ms_total);
+        std::printf("  wrote %s\n", out_path.c_str());
+    }
+    return 0;
+}
+
+int list_scenes() {
+    for (const std::string& name : builtin_scene_names()) std::printf("%s\n", name.c_str());
+    return 0;
+}
+
+}  // namespace blurcull::frontend
