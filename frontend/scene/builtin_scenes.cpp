@@ -351,6 +351,7 @@ float framing_yfov(const Scene& scene, const glm::mat4& view, std::uint32_t firs
 // `angle` about the world-space `axis` through the eye.
 glm::mat4 moved_view(const glm::mat4& view_open, const glm::vec3& eye_offset,
                      const glm::vec3& axis, float angle) {
+    if (eye_offset == glm::vec3(0.0f) && angle == 0.0f) return view_open;  // exactly static
     const glm::mat4 camera_to_world = glm::inverse(view_open);
     const glm::vec3 eye(camera_to_world[3]);
     const glm::mat4 turned = glm::translate(glm::mat4(1.0f), eye + eye_offset) *
@@ -411,7 +412,7 @@ Scene make_hand(float blur, float aspect) {
             direction = rotation(curl_axis, finger.curl * static_cast<float>(joint + 1) * 0.6f) * direction;
             const glm::vec3 end = start + direction * finger.lengths[joint];
             mesh.capsule(hand.point(start), hand.point(end), radius, 22, 5, skin);
-            if (f == 1 && joint == 1) middle_finger_focus = hand.point(0.5f * (start + end));
+            if (f == 1 && joint == 0) middle_finger_focus = hand.point(0.5f * (start + end));
             if (joint == 2) {
                 const glm::vec3 back = glm::normalize(glm::cross(direction, curl_axis));
                 const glm::vec3 center = end - direction * (finger.lengths[joint] * 0.35f) +

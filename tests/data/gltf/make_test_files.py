@@ -1,0 +1,185 @@
+#!/usr/bin/env python3
+"""Writes the small glTF files that tests/test_frontend_scenes.cpp loads.
+
+Each malformed file breaks exactly one rule, so each test can check that the
+loader's one-line error names that problem. Run from this folder:
+    python3 make_test_files.py
+"""
+import base64
+import copy
+import json
+import math
+import struct
+
+POSITIONS = [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)]
+
+
+def data_uri(payload):
+    return "data:application/octet-stream;base64," + base64.b64encode(payload).decode("ascii")
+
+
+def floats(values):
+    return struct.pack("<%df" % len(values), *values)
+
+
+def triangle_model(indices=(0, 1, 2), positions=POSITIONS):
+    """One indexed triangle: buffer = positions (float VEC3) then uint16 indices."""
+    position_bytes = floats([c for p in positions for c in p])
+    index_bytes = struct.pack("<%dH" % len(indices), *indices)
+    index_bytes += b"\0" * (-len(index_bytes) % 4)
+    payload = position_bytes + index_bytes
+    return {
+        "asset": {"version": "2.0", "generator": "blurcull make_test_files.py"},
+        "scene": 0,
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": 0}]}],
+        "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.4, 0.8, 1.0]}}],
+        "buffers": [{"byteLength": len(payload), "uri": data_uri(payload)}],
+        "bufferViews": [
+            {"buffer": 0, "byteOffset": 0, "byteLength": len(position_bytes)},
+            {"buffer": 0, "byteOffset": len(position_bytes), "byteLength": 2 * len(indices)},
+        ],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": len(positions), "type": "VEC3",
+             "min": [0.0, 0.0, 0.0], "max": [1.0, 1.0, 0.0]},
+            {"bufferView": 1, "componentType": 5123, "count": len(indices), "type": "SCALAR"},
+        ],
+    }
+
+
+def add_animation(model, times, translations):
+    """Appends a translation animation of node 0 with the given keyframes."""
+    payload = floats(times) + floats([c for t in translations for c in t])
+    buffer_index = len(model["buffers"])
+    model["buffers"].append({"byteLength": len(payload), "uri": data_uri(payload)})
+    view = len(model["bufferViews"])
+    model["bufferViews"] += [
+        {"buffer": buffer_index, "byteOffset": 0, "byteLength": 4 * len(times)},
+        {"buffer": buffer_index, "byteOffset": 4 * len(times), "byteLength": 12 * len(translations)},
+    ]
+    accessor = len(model["accessors"])
+    model["accessors"] += [
+        {"bufferView": view, "componentType": 5126, "count": len(times), "type": "SCALAR"},
+        {"bufferView": view + 1, "componentType": 5126, "count": len(translations), "type": "VEC3"},
+    ]
+    model["animations"] = [{
+        "samplers": [{"input": accessor, "output": accessor + 1, "interpolation": "LINEAR"}],
+        "channels": [{"sampler": 0, "target": {"node": 0, "path": "translation"}}],
+    }]
+    return model
+
+
+def add_camera(model, yfov, znear=0.1):
+    model["cameras"] = [{"type": "perspective", "perspective": {"yfov": yfov, "znear": znear}}]
+    model["nodes"].append({"camera": 0, "translation": [0.3, 0.3, 3.0]})
+    model["scenes"][0]["nodes"].append(len(model["nodes"]) - 1)
+    return model
+
+
+def write(name, model):
+    with open(name, "w", encoding="ascii") as out:
+        json.dump(model, out, indent=1, allow_nan=True)
+        out.write("\n")
+
+
+def glb(model):
+    text = json.dumps(model).encode("ascii")
+    text += b" " * (-len(text) % 4)
+    body = struct.pack("<II", len(text), 0x4E4F534A) + text
+    return struct.pack("<4sII", b"glTF", 2, 12 + len(body)) + body
+
+
+def main():
+    # --- valid files ---
+    write("triangle.gltf", triangle_model())
+    write("triangle_animated.gltf",
+          add_animation(triangle_model(), [0.0, 1.0], [(0.0, 0.0, 0.0), (2.0, 0.0, 0.0)]))
+    with open("triangle.glb", "wb") as out:
+        out.write(glb(triangle_model()))
+
+    # Strip (4 vertices -> 2 triangles), fan (5 -> 3), non-indexed triangles
+    # with uint8 indices elsewhere, and a points primitive that is skipped.
+    model = triangle_model()
+    strip = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (1, 1, 0)]
+    fan = [(0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1), (-1, 1, 1)]
+    extra = floats([c for p in strip + fan for c in p]) + struct.pack("<4B", 0, 1, 2, 0)
+    model["buffers"].append({"byteLength": len(extra), "uri": data_uri(extra)})
+    model["bufferViews"] += [
+        {"buffer": 1, "byteOffset": 0, "byteLength": 12 * len(strip)},
+        {"buffer": 1, "byteOffset": 12 * len(strip), "byteLength": 12 * len(fan)},
+        {"buffer": 1, "byteOffset": 12 * (len(strip) + len(fan)), "byteLength": 3},
+    ]
+    model["accessors"] += [
+        {"bufferView": 2, "componentType": 5126, "count": 4, "type": "VEC3"},
+        {"bufferView": 3, "componentType": 5126, "count": 5, "type": "VEC3"},
+        {"bufferView": 4, "componentType": 5121, "count": 3, "type": "SCALAR"},
+    ]
+    model["meshes"][0]["primitives"] += [
+        {"attributes": {"POSITION": 2}, "mode": 5},
+        {"attributes": {"POSITION": 3}, "mode": 6},
+        {"attributes": {"POSITION": 3}, "indices": 4},
+        {"attributes": {"POSITION": 3}, "mode": 0},
+    ]
+    write("modes.gltf", model)
+
+    # A primitive with a NaN position is skipped with a warning; the other loads.
+    model = triangle_model()
+    bad = floats([0.0, 0.0, 0.0, float("nan"), 0.0, 0.0, 0.0, 1.0, 0.0])
+    model["buffers"].append({"byteLength": len(bad), "uri": data_uri(bad)})
+    model["bufferViews"].append({"buffer": 1, "byteOffset": 0, "byteLength": len(bad)})
+    model["accessors"].append({"bufferView": 2, "componentType": 5126, "count": 3, "type": "VEC3"})
+    model["meshes"][0]["primitives"].append({"attributes": {"POSITION": 2}})
+    write("nan_position.gltf", model)
+
+    # --- malformed files, one broken rule each ---
+    text = json.dumps(triangle_model(), indent=1)
+    with open("bad_json.gltf", "w", encoding="ascii") as out:
+        out.write(text[: len(text) // 2])
+
+    model = triangle_model()
+    model["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 7
+    write("bad_accessor_index.gltf", model)
+
+    model = triangle_model()
+    model["accessors"][0]["count"] = 30
+    write("bad_accessor_past_end.gltf", model)
+
+    model = triangle_model()
+    model["bufferViews"][1]["byteLength"] = 4000
+    write("bad_buffer_view_past_end.gltf", model)
+
+    write("bad_index_value.gltf", triangle_model(indices=(0, 1, 5)))
+
+    write("bad_camera_yfov.gltf", add_camera(triangle_model(), 0.0))
+    write("bad_camera_znear.gltf", add_camera(triangle_model(), 0.8, znear=0.0))
+
+    model = triangle_model()
+    model["nodes"] = [{"mesh": 0}, {"children": [2]}, {"children": [3]}, {"children": [1]}]
+    write("bad_node_cycle.gltf", model)
+
+    model = triangle_model()
+    model["nodes"] = [{"mesh": 0, "children": [2]}, {"children": [2]}, {}]
+    model["scenes"][0]["nodes"] = [0, 1]
+    write("bad_node_two_parents.gltf", model)
+
+    model = triangle_model()
+    model["nodes"] = [{"children": [i + 1]} for i in range(1100)] + [{"mesh": 0}]
+    write("bad_node_depth.gltf", model)
+
+    write("bad_keyframes_order.gltf",
+          add_animation(triangle_model(), [0.0, 1.0, 0.5],
+                        [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (2.0, 0.0, 0.0)]))
+    write("bad_keyframes_nan.gltf",
+          add_animation(triangle_model(), [0.0, math.nan], [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0)]))
+
+    model = triangle_model()
+    model["buffers"][0]["uri"] = "does_not_exist.bin"
+    write("bad_missing_buffer.gltf", model)
+
+    with open("bad_truncated.glb", "wb") as out:
+        out.write(glb(triangle_model())[:200])
+
+
+if __name__ == "__main__":
+    main()
