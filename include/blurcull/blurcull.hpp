@@ -3,3 +3,4 @@
 
 #include "version.hpp"
 #include "kernel.hpp"
+#include "patterns.hpp"
