@@ -52,6 +52,16 @@ BC_FN real bc_err(real magnitude) {
     return magnitude * (real(BC_MARGIN) * bc_epsilon());
 }
 
+// Dialect rule (docs/glsl.md): no function call inside a loop condition
+// joined by && or || (Mesa 22 miscompiles `while (k > 0 && f(...))`): test it
+// in the body and break.
+
+// a.x b.x + a.y b.y + a.z b.z summed left to right, as GLM does: GLSL's dot()
+// may sum in another order (llvmpipe: a.x b.x + (a.y b.y + a.z b.z)).
+BC_FN real bc_dot3(vec3 a, vec3 b) {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+
 BC_FN bool bc_finite(real x) {
     return abs(x) <= bc_huge();  // false for NaN and +-Inf
 }
@@ -123,10 +133,10 @@ BC_FN bool covers(BC_IN(MovingTriangle) tri, vec2 s, vec2 uv, real t, real near,
     vec3 v2 = vertex_at(tri, 2, t, uv);
     vec3 ray = vec3(s.x, s.y, real(1));
     vec3 n12 = cross(v1, v2);
-    real e0 = dot(n12, ray);
-    real e1 = dot(cross(v2, v0), ray);
-    real e2 = dot(cross(v0, v1), ray);
-    real det = dot(v0, n12);
+    real e0 = bc_dot3(n12, ray);
+    real e1 = bc_dot3(cross(v2, v0), ray);
+    real e2 = bc_dot3(cross(v0, v1), ray);
+    real det = bc_dot3(v0, n12);
     if (!(det != real(0))) return false;  // zero area seen edge-on (or NaN)
     if (det < real(0)) {
         e0 = -e0;
@@ -214,7 +224,8 @@ BC_FN void bc_build_hull(BC_IN(MovingTriangle) tri, real near, BC_INOUT(ScreenBo
             vec2 sp = vec2(tri.p[j].x + lens.x * c.x, tri.p[j].y + lens.y * c.y) / tri.p[j].z;
             // insertion sort by (x, y)
             int k = n;
-            while (k > 0 && bc_point_less(sp, pts[k - 1])) {
+            while (k > 0) {
+                if (!bc_point_less(sp, pts[k - 1])) break;
                 pts[k] = pts[k - 1];
                 k = k - 1;
             }
@@ -226,13 +237,19 @@ BC_FN void bc_build_hull(BC_IN(MovingTriangle) tri, real near, BC_INOUT(ScreenBo
     vec2 hull[BC_HULL_MAX + 1];
     int h = 0;
     for (int j = 0; j < n; ++j) {  // lower chain
-        while (h >= 2 && bc_turn(hull[h - 2], hull[h - 1], pts[j]) <= real(0)) h = h - 1;
+        while (h >= 2) {
+            if (!(bc_turn(hull[h - 2], hull[h - 1], pts[j]) <= real(0))) break;
+            h = h - 1;
+        }
         hull[h] = pts[j];
         h = h + 1;
     }
     int lower = h + 1;
     for (int j = n - 2; j >= 0; --j) {  // upper chain
-        while (h >= lower && bc_turn(hull[h - 2], hull[h - 1], pts[j]) <= real(0)) h = h - 1;
+        while (h >= lower) {
+            if (!(bc_turn(hull[h - 2], hull[h - 1], pts[j]) <= real(0))) break;
+            h = h - 1;
+        }
         hull[h] = pts[j];
         h = h + 1;
     }
@@ -493,9 +510,12 @@ BC_FN vec2 bc_fit_line(real u[BC_BREAKS_MAX], real value[BC_BREAKS_MAX], int n, 
     for (int j = 0; j < n; ++j) {
         if (!(abs(value[j]) < bc_huge())) continue;
         vec2 pj = vec2(u[j], sign * value[j]);
-        while (h >= 2 && bc_turn(vec2(u[hull[h - 2]], sign * value[hull[h - 2]]),
-                                 vec2(u[hull[h - 1]], sign * value[hull[h - 1]]), pj) <= real(0))
+        while (h >= 2) {
+            if (!(bc_turn(vec2(u[hull[h - 2]], sign * value[hull[h - 2]]),
+                          vec2(u[hull[h - 1]], sign * value[hull[h - 1]]), pj) <= real(0)))
+                break;
             h = h - 1;
+        }
         hull[h] = j;
         h = h + 1;
     }

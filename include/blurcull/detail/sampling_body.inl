@@ -35,7 +35,8 @@ BC_FN uint bc_gcd(uint a, uint b) {
 BC_FN uint bc_coprime_multiplier(uint n, uint h) {
     if (n <= 2u) return 1u;
     uint m = 1u + h % (n - 1u);
-    for (int guard = 0; guard < 64 && bc_gcd(m, n) != 1u; ++guard) {
+    for (int guard = 0; guard < 64; ++guard) {
+        if (bc_gcd(m, n) == 1u) break;
         m = m + 1u;
         if (m >= n) m = 1u;
     }
