@@ -21,3 +21,7 @@
 #define BC_IN(T) const T&
 #define BC_OUT(T) T&
 #define BC_INOUT(T) T&
+// Keeps the compiler from reassociating or fusing the expression that
+// initialises a variable: GLSL's `precise`, nothing in C++ (which does
+// neither without -ffast-math / fp-contract).
+#define BC_PRECISE

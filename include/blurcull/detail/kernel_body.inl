@@ -57,9 +57,11 @@ BC_FN real bc_err(real magnitude) {
 // in the body and break.
 
 // a.x b.x + a.y b.y + a.z b.z summed left to right, as GLM does: GLSL's dot()
-// may sum in another order (llvmpipe: a.x b.x + (a.y b.y + a.z b.z)).
+// may sum in another order (llvmpipe: a.x b.x + (a.y b.y + a.z b.z)), and
+// without `precise` Mesa reorders the sum when b.z = 1.
 BC_FN real bc_dot3(vec3 a, vec3 b) {
-    return a.x * b.x + a.y * b.y + a.z * b.z;
+    BC_PRECISE real sum = a.x * b.x + a.y * b.y + a.z * b.z;
+    return sum;
 }
 
 BC_FN bool bc_finite(real x) {
@@ -386,13 +388,42 @@ BC_FN vec2 bc_dual_lens(BC_IN(MovingTriangle) tri, int axis, real s0, real s1) {
 
 // ---- clip-space two-stage bounds --------------------------------------------------
 
-// Stage 1, lens bounds. Vertex end j meets the footprint edge s at lens
-// position u_j(s) = (s w_j - x_j) / c_j. While every c has one strict sign,
-// u_j(t) is a monotone linear fraction of t, so A and B need
-// u <= max_j u_j(s1) and u >= min_j u_j(s0) (c > 0; c < 0 swaps s0 and s1).
-// A vertex on or across the focal plane (mixed signs, or c = 0) leaves the
-// whole lens.
-BC_FN vec2 bc_stage1(BC_IN(MovingTriangle) tri, int axis, real s0, real s1) {
+// Where each vertex end meets the footprint's edges: the lens position
+// u_j(s) = (s w_j - x_j) / c_j (the thesis's u = F (s w - x) / (R' (w - F))),
+// for s = s0 (`near_edge`) and s = s1 (`far_edge`), with a bound on the
+// rounding error of each. They are stage 1's bounds and stage 2's roots.
+// err[j] < 0 marks c_j = 0 (no such position).
+struct BcEdgeCrossings {
+    real near_edge[6];
+    real far_edge[6];
+    real err[6];
+};
+
+BC_FN BcEdgeCrossings bc_edge_crossings(BC_IN(MovingTriangle) tri, int axis, real s0, real s1) {
+    BcEdgeCrossings x;
+    real s_max = max(abs(s0), abs(s1));
+    for (int j = 0; j < 6; ++j) {
+        real c = tri.c[j][axis];
+        x.near_edge[j] = real(0);
+        x.far_edge[j] = real(0);
+        x.err[j] = real(-1);
+        if (c == real(0)) continue;
+        real inv_c = real(1) / c;
+        real px = tri.p[j][axis];
+        real w = tri.p[j].z;
+        x.near_edge[j] = (s0 * w - px) * inv_c;
+        x.far_edge[j] = (s1 * w - px) * inv_c;
+        x.err[j] = bc_err((abs(px) + s_max * abs(w)) * abs(inv_c) + max(abs(x.near_edge[j]), abs(x.far_edge[j])));
+        if (!bc_finite(x.near_edge[j]) || !bc_finite(x.far_edge[j]) || !bc_finite(x.err[j])) x.err[j] = bc_huge();
+    }
+    return x;
+}
+
+// Stage 1, lens bounds. While every c has one strict sign, u_j(t) is a
+// monotone linear fraction of t, so A and B need u <= max_j u_j(s1) and
+// u >= min_j u_j(s0) (c > 0; c < 0 swaps s0 and s1). A vertex on or across
+// the focal plane (mixed signs, or c = 0) leaves the whole lens.
+BC_FN vec2 bc_stage1(BC_IN(MovingTriangle) tri, int axis, BC_IN(BcEdgeCrossings) x) {
     bool positive = true;
     bool negative = true;
     for (int j = 0; j < 6; ++j) {
@@ -404,53 +435,63 @@ BC_FN vec2 bc_stage1(BC_IN(MovingTriangle) tri, int axis, real s0, real s1) {
     real lo = bc_huge();
     real hi = -bc_huge();
     for (int j = 0; j < 6; ++j) {
-        real x = tri.p[j][axis];
-        real w = tri.p[j].z;
-        real c = tri.c[j][axis];
-        real u0 = (s0 * w - x) / c;
-        real u1 = (s1 * w - x) / c;
-        real pad0 = bc_err((abs(s0 * w) + abs(x)) / abs(c) + abs(u0));
-        real pad1 = bc_err((abs(s1 * w) + abs(x)) / abs(c) + abs(u1));
-        if (isnan(u0) || isnan(u1) || isnan(pad0) || isnan(pad1)) return r;
+        if (!(x.err[j] < bc_huge())) return r;
         if (positive) {
-            lo = min(lo, u0 - pad0);
-            hi = max(hi, u1 + pad1);
+            lo = min(lo, x.near_edge[j] - x.err[j]);
+            hi = max(hi, x.far_edge[j] + x.err[j]);
         } else {
-            lo = min(lo, u1 - pad1);
-            hi = max(hi, u0 + pad0);
+            lo = min(lo, x.far_edge[j] - x.err[j]);
+            hi = max(hi, x.near_edge[j] + x.err[j]);
         }
     }
     return vec2(max(lo, real(-1)), min(hi, real(1)));
 }
 
-// Lines below and above the crossing time r(u) = N(u) / D(u) of one vertex on
-// [a, b], N = e0 + u c0, D = (e0 - e1) + u (c0 - c1): a linear fraction, so of
-// one curvature wherever D keeps its sign. At each end the lower line takes
-// the smaller of chord and mid-point tangent (the tangent is below where r is
-// convex, the chord where it is concave), the upper line the larger.
-// Returns (lower at a, lower at b, upper at a, upper at b); where D may vanish
-// on [a, b] nothing better than [0, 1] is known.
-BC_FN vec4 bc_crossing_lines(real e0, real e1, real c0, real c1, real tol, real a, real b) {
+// A line below (side = 1) or above (side = -1) the crossing time
+// r(u) = N(u) / D(u) of one vertex on [a, b], N = e0 + u c0,
+// D = (e0 - e1) + u (c0 - c1), returned as its values at a and b. A linear
+// fraction has one curvature wherever D keeps its sign: the mid-point tangent
+// lies below it where it is convex and the chord where it is concave (above:
+// the other way round). r'' = -2 dc (c0 de - e0 dc) / D^3, so the sign of
+// `bend` times D tells which; when rounding leaves the sign in doubt both are
+// taken. Where D may vanish on [a, b] nothing better than 0 (below) or 1
+// (above) is known. `tol` bounds the error of e0 and of e0 - e1.
+BC_FN vec2 bc_crossing_line(real e0, real e1, real c0, real c1, real tol, real a, real b, real side) {
+    vec2 fallback = side > real(0) ? vec2(real(0)) : vec2(real(1));
     real dc = c0 - c1;
     real de = e0 - e1;
     real da = de + a * dc;
     real db = de + b * dc;
-    if (!(da * db > real(0)) || min(abs(da), abs(db)) <= tol) return vec4(real(0), real(0), real(1), real(1));
-    real m = real(0.5) * (a + b);
-    real dm = de + m * dc;
-    real nm = e0 + m * c0;
-    real ra = (e0 + a * c0) / da;
-    real rb = (e0 + b * c0) / db;
-    real rm = nm / dm;
-    real slope = (c0 * dm - nm * dc) / (dm * dm);
-    real ta = rm + slope * (a - m);
-    real tb = rm + slope * (b - m);
-    real pad = real(2) * tol * (real(1) + max(max(abs(ra), abs(rb)), abs(rm))) / min(abs(da), abs(db)) +
-               bc_err(real(1) + abs(slope) * (b - a) + abs(ra) + abs(rb));
-    vec4 lines = vec4(min(ra, ta) - pad, min(rb, tb) - pad, max(ra, ta) + pad, max(rb, tb) + pad);
-    if (!bc_finite(lines.x) || !bc_finite(lines.y) || !bc_finite(lines.z) || !bc_finite(lines.w))
-        return vec4(real(0), real(0), real(1), real(1));
-    return lines;
+    if (!(da * db > real(0)) || min(abs(da), abs(db)) <= tol) return fallback;
+    real bend = dc * (c0 * de - e0 * dc);
+    real bend_error = abs(dc) * ((abs(c0) + abs(dc)) * tol + bc_err(abs(c0 * de) + abs(e0 * dc)));
+    bool sure = abs(bend) > bend_error;
+    bool convex = bend * da < real(0);
+    bool tangent = !sure || (side > real(0)) == convex;
+    bool chord = !sure || !tangent;
+    vec2 line = vec2(side * bc_huge());  // replaced below by the lower (upper) of the candidates
+    if (chord) {
+        real ia = real(1) / da;
+        real ib = real(1) / db;
+        real ra = (e0 + a * c0) * ia;
+        real rb = (e0 + b * c0) * ib;
+        real pad = real(2) * tol * (real(1) + max(abs(ra), abs(rb))) * max(abs(ia), abs(ib)) +
+                   bc_err(real(1) + abs(ra) + abs(rb));
+        line = vec2(ra, rb) - vec2(side * pad);
+    }
+    if (tangent) {
+        real h = real(0.5) * (b - a);
+        real m = a + h;
+        real im = real(1) / (de + m * dc);
+        real rm = (e0 + m * c0) * im;
+        real slope = (c0 - rm * dc) * im;
+        real pad = real(2) * tol * abs(im) * ((real(1) + abs(rm)) * (real(1) + h * abs(dc) * abs(im)) + h * abs(slope)) +
+                   bc_err(real(1) + abs(rm) + abs(slope) * h);
+        vec2 t = vec2(rm - slope * h, rm + slope * h) - vec2(side * pad);
+        line = side > real(0) ? min(line, t) : max(line, t);
+    }
+    if (!bc_finite(line.x) || !bc_finite(line.y)) return fallback;
+    return line;
 }
 
 // Stage 2 on one lens interval [a, b] for condition A written as
@@ -460,8 +501,8 @@ BC_FN vec4 bc_crossing_lines(real e0, real e1, real c0, real c1, real tol, real 
 //   from 0 if some vertex starts inside, else the earliest crossing of a vertex
 //   that ends inside; to 1 if some vertex ends inside, else the latest
 //   crossing of a vertex that starts inside;
-// nothing if no vertex is ever inside. Returns false for nothing, else the
-// lines in `lines` as in bc_crossing_lines.
+// nothing if no vertex is ever inside. Returns false for nothing, else in
+// `lines` (lower at a, lower at b, upper at a, upper at b).
 BC_FN bool bc_covered_times(vec3 e0, vec3 e1, vec3 c0, vec3 c1, vec3 tol0, vec3 tol1, real a, real b,
                             BC_OUT(vec4) lines) {
     lines = vec4(real(0), real(0), real(1), real(1));
@@ -481,13 +522,12 @@ BC_FN bool bc_covered_times(vec3 e0, vec3 e1, vec3 c0, vec3 c1, vec3 tol0, vec3 
     vec2 lower = vec2(bc_huge());
     vec2 upper = vec2(-bc_huge());
     for (int i = 0; i < 3; ++i) {
-        bool enters = !starts_inside && d1[i] <= tol1[i];
-        bool leaves = !ends_inside && d0[i] <= tol0[i];
-        if (enters || leaves) {
-            vec4 r = bc_crossing_lines(e0[i], e1[i], c0[i], c1[i], tol0[i] + tol1[i], a, b);
-            if (enters) lower = min(lower, vec2(r.x, r.y));
-            if (leaves) upper = max(upper, vec2(r.z, r.w));
-        }
+        // A vertex enters (ends inside, so not when one starts inside) or
+        // leaves (starts inside, so not when one ends inside), never both.
+        if (!starts_inside && d1[i] <= tol1[i])
+            lower = min(lower, bc_crossing_line(e0[i], e1[i], c0[i], c1[i], tol0[i] + tol1[i], a, b, real(1)));
+        if (!ends_inside && d0[i] <= tol0[i])
+            upper = max(upper, bc_crossing_line(e0[i], e1[i], c0[i], c1[i], tol0[i] + tol1[i], a, b, real(-1)));
     }
     if (!starts_inside) {
         lines.x = lower.x;
@@ -541,8 +581,8 @@ BC_FN vec2 bc_fit_line(real u[BC_BREAKS_MAX], real value[BC_BREAKS_MAX], int n, 
 // bound the covered times on every piece, and fit one line below their lower
 // ends and one above their upper ends. Narrows `lens` to where the condition
 // can hold. False: it holds nowhere in the lens range.
-BC_FN bool bc_condition_lines(vec3 e0, vec3 e1, vec3 c0, vec3 c1, vec3 tol0, vec3 tol1,
-                              BC_INOUT(vec2) lens, BC_OUT(vec4) lines) {
+BC_FN bool bc_condition_lines(vec3 e0, vec3 e1, vec3 c0, vec3 c1, vec3 tol0, vec3 tol1, vec3 roots0, vec3 roots1,
+                              vec3 root_err0, vec3 root_err1, BC_INOUT(vec2) lens, BC_OUT(vec4) lines) {
     lines = vec4(real(0), real(0), real(1), real(0));
     vec4 r;
     bool defocus = false;
@@ -563,14 +603,16 @@ BC_FN bool bc_condition_lines(vec3 e0, vec3 e1, vec3 c0, vec3 c1, vec3 tol0, vec
     real root_error = real(0);
     for (int j = 0; j < 6; ++j) {
         int i = j % 3;
-        real c = j < 3 ? c0[i] : c1[i];
-        if (c == real(0)) continue;
-        real root = -(j < 3 ? e0[i] : e1[i]) / c;
+        real err = j < 3 ? root_err0[i] : root_err1[i];
+        if (err < real(0)) continue;  // c = 0: this offset has no root
+        real root = j < 3 ? roots0[i] : roots1[i];
         if (!(root > lens.x && root < lens.y)) continue;
         bool known = false;
-        for (int q = 0; q < n; ++q) known = known || u[q] == root;
+        for (int q = 0; q < n; ++q) {
+            if (u[q] == root) known = true;
+        }
         if (known) continue;
-        root_error = max(root_error, (j < 3 ? tol0[i] : tol1[i]) / abs(c) + bc_err(abs(root)));
+        root_error = max(root_error, err);
         int q = n;
         while (q > 1 && u[q - 1] > root) {
             u[q] = u[q - 1];
@@ -632,11 +674,11 @@ BC_FN bool bc_condition_lines(vec3 e0, vec3 e1, vec3 c0, vec3 c1, vec3 tol0, vec
 // near edge s0 reach >= 0, passed negated). A covered sample satisfies both,
 // so it lies between both pairs of lines. Narrows `lens`. False: nothing can
 // be covered.
-BC_FN bool bc_stage2(BC_IN(MovingTriangle) tri, int axis, real s0, real s1, BC_INOUT(vec2) lens,
-                     BC_OUT(vec4) lines_a, BC_OUT(vec4) lines_b) {
-    vec3 ea0;  // condition A: x - s1 w (+ u c) <= 0
+BC_FN bool bc_stage2(BC_IN(MovingTriangle) tri, int axis, real s0, real s1, BC_IN(BcEdgeCrossings) x,
+                     BC_INOUT(vec2) lens, BC_OUT(vec4) lines_a, BC_OUT(vec4) lines_b) {
+    vec3 ea0;  // condition A: x - s1 w (+ u c) <= 0, roots u_j(s1)
     vec3 ea1;
-    vec3 eb0;  // condition B, negated: s0 w - x (- u c) <= 0
+    vec3 eb0;  // condition B, negated: s0 w - x (- u c) <= 0, roots u_j(s0)
     vec3 eb1;
     vec3 c0;
     vec3 c1;
@@ -659,9 +701,14 @@ BC_FN bool bc_stage2(BC_IN(MovingTriangle) tri, int axis, real s0, real s1, BC_I
         tb0[i] = bc_err(abs(p0[axis]) + abs(s0 * p0.z) + abs(c0[i]) * umax);
         tb1[i] = bc_err(abs(p1[axis]) + abs(s0 * p1.z) + abs(c1[i]) * umax);
     }
+    vec3 err0 = vec3(x.err[0], x.err[1], x.err[2]);
+    vec3 err1 = vec3(x.err[3], x.err[4], x.err[5]);
     lines_b = vec4(real(0), real(0), real(1), real(0));
-    if (!bc_condition_lines(ea0, ea1, c0, c1, ta0, ta1, lens, lines_a)) return false;
-    return bc_condition_lines(eb0, eb1, -c0, -c1, tb0, tb1, lens, lines_b);
+    if (!bc_condition_lines(ea0, ea1, c0, c1, ta0, ta1, vec3(x.far_edge[0], x.far_edge[1], x.far_edge[2]),
+                            vec3(x.far_edge[3], x.far_edge[4], x.far_edge[5]), err0, err1, lens, lines_a))
+        return false;
+    return bc_condition_lines(eb0, eb1, -c0, -c1, tb0, tb1, vec3(x.near_edge[0], x.near_edge[1], x.near_edge[2]),
+                              vec3(x.near_edge[3], x.near_edge[4], x.near_edge[5]), err0, err1, lens, lines_b);
 }
 
 // ---- per-footprint sample bounds ------------------------------------------------
@@ -703,8 +750,9 @@ BC_FN SampleBounds sample_bounds(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi
             lines = vec4(tr.x, real(0), tr.y, real(0));
             lens = bc_dual_lens(tri, axis, s_lo[axis], s_hi[axis]);
         } else {
-            lens = bc_stage1(tri, axis, s_lo[axis], s_hi[axis]);
-            if (lens.x > lens.y || !bc_stage2(tri, axis, s_lo[axis], s_hi[axis], lens, lines, lines2)) {
+            BcEdgeCrossings crossings = bc_edge_crossings(tri, axis, s_lo[axis], s_hi[axis]);
+            lens = bc_stage1(tri, axis, crossings);
+            if (lens.x > lens.y || !bc_stage2(tri, axis, s_lo[axis], s_hi[axis], crossings, lens, lines, lines2)) {
                 r.empty = true;
                 return r;
             }
