@@ -324,7 +324,7 @@ TEST_CASE("picture of the interleaved tile layout (docs/images/interleaved-tiles
     // Cells coloured by their tuple (red = t, green = u, blue = v), tile
     // borders dark, each lattice corner marked in its colour (red, green, blue).
     const blurcull::InterleavedTiles tiles = blurcull::make_interleaved_tiles(blurcull::InterleavedTileOptions{});
-    const int tiles_x = 6, tiles_y = 4, cell = 8, w = tiles.width;
+    const int tiles_x = 6, tiles_y = 4, cell = 12, w = tiles.width;
     Image image(tiles_x * w * cell + 1, tiles_y * w * cell + 1, glm::vec3(0.05f));
     for (int gy = 0; gy < tiles_y * w; ++gy) {
         for (int gx = 0; gx < tiles_x * w; ++gx) {
@@ -335,8 +335,10 @@ TEST_CASE("picture of the interleaved tile layout (docs/images/interleaved-tiles
                 for (int x = 1; x < cell; ++x) image.at(gx * cell + x, gy * cell + y) = colour;
             }
             for (int k = 0; k <= cell; ++k) {
-                if (tile_left) image.at(gx * cell, gy * cell + k) = glm::vec3(0.0f);
-                if (tile_top) image.at(gx * cell + k, gy * cell) = glm::vec3(0.0f);
+                for (int thick = 0; thick < 2; ++thick) {
+                    if (tile_left && gx * cell + thick < image.width) image.at(gx * cell + thick, gy * cell + k) = glm::vec3(0.0f);
+                    if (tile_top && gy * cell + thick < image.height) image.at(gx * cell + k, gy * cell + thick) = glm::vec3(0.0f);
+                }
             }
         }
     }
@@ -344,10 +346,12 @@ TEST_CASE("picture of the interleaved tile layout (docs/images/interleaved-tiles
     for (int cy = 0; cy <= tiles_y; ++cy) {
         for (int cx = 0; cx <= tiles_x; ++cx) {
             const std::uint32_t colour = blurcull::patternsf::interleaved_corner_colour(std::uint32_t(cx), std::uint32_t(cy), tiles.seed);
-            for (int y = -3; y <= 3; ++y) {
-                for (int x = -3; x <= 3; ++x) {
+            for (int y = -6; y <= 6; ++y) {
+                for (int x = -6; x <= 6; ++x) {
                     const int ix = cx * w * cell + x, iy = cy * w * cell + y;
-                    if (ix >= 0 && iy >= 0 && ix < image.width && iy < image.height) image.at(ix, iy) = marks[colour];
+                    const bool ring = std::abs(x) == 6 || std::abs(y) == 6;
+                    if (ix >= 0 && iy >= 0 && ix < image.width && iy < image.height)
+                        image.at(ix, iy) = ring ? glm::vec3(0.0f) : marks[colour];
                 }
             }
         }

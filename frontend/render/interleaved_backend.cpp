@@ -126,6 +126,12 @@ CellRect cell_rect(const CameraModel& model, const K::ScreenBound& bound, int sc
     return r;
 }
 
+struct Sample {
+    K::vec2 ndc;
+    K::vec2 lens;
+    double time;
+};
+
 int thread_count(const RenderSettings& settings, int items) {
     const int threads =
         settings.threads > 0 ? settings.threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
@@ -247,6 +253,23 @@ RenderResult render_interleave(const Scene& scene, const RenderSettings& setting
         const K::vec2 uv(tuple.x, tuple.y);
         const double t = tuple.z;
         const std::size_t tuple_base = static_cast<std::size_t>(k);
+        // The one sample of tuple k in each tile: lattice cell and NDC, computed once.
+        std::vector<glm::ivec2> cells(prototypes.size());
+        std::vector<K::vec2> ndcs(prototypes.size());
+        for (int ty = 0; ty < tiles_y; ++ty) {
+            for (int tx = 0; tx < tiles_x; ++tx) {
+                const std::size_t tile = static_cast<std::size_t>(ty) * tiles_x + tx;
+                const int slot = tiles.tuple_slot[prototypes[tile] * static_cast<std::size_t>(n) + tuple_base];
+                const int gx = tx * tile_w + slot % tile_w, gy = ty * tile_w + slot / tile_w;
+                cells[tile] = glm::ivec2(gx, gy);
+                if (gx >= cells_x || gy >= cells_y) continue;  // past the image's edge
+                const glm::vec2 jitter = patternsf::interleaved_jitter(static_cast<std::uint32_t>(gx),
+                                                                       static_cast<std::uint32_t>(gy), settings.seed);
+                const glm::vec2 offset((static_cast<float>(gx % side) + jitter.x) / static_cast<float>(side),
+                                       (static_cast<float>(gy % side) + jitter.y) / static_cast<float>(side));
+                ndcs[tile] = K::vec2(model.sample_ndc(gx / side, gy / side, glm::min(offset, glm::vec2(0.99999994f))));
+            }
+        }
         for (std::size_t index = 0; index < frame.triangles.size(); ++index) {
             if (!frame.visible[index]) continue;
             const K::MovingTriangle& tri = frame.triangles[index];
@@ -259,16 +282,11 @@ RenderResult render_interleave(const Scene& scene, const RenderSettings& setting
             }
             for (int ty = r.y0 / tile_w; ty <= r.y1 / tile_w; ++ty) {
                 for (int tx = r.x0 / tile_w; tx <= r.x1 / tile_w; ++tx) {
-                    const std::size_t prototype = prototypes[static_cast<std::size_t>(ty) * tiles_x + tx];
-                    const int slot = tiles.tuple_slot[prototype * static_cast<std::size_t>(n) + tuple_base];
-                    const int gx = tx * tile_w + slot % tile_w, gy = ty * tile_w + slot / tile_w;
+                    const std::size_t tile = static_cast<std::size_t>(ty) * tiles_x + tx;
+                    const int gx = cells[tile].x, gy = cells[tile].y;
                     if (gx < r.x0 || gx > r.x1 || gy < r.y0 || gy > r.y1) continue;
                     const int px = gx / side, py = gy / side, sx = gx % side, sy = gy % side;
-                    const glm::vec2 jitter = patternsf::interleaved_jitter(static_cast<std::uint32_t>(gx),
-                                                                           static_cast<std::uint32_t>(gy), settings.seed);
-                    const glm::vec2 offset((static_cast<float>(sx) + jitter.x) / static_cast<float>(side),
-                                           (static_cast<float>(sy) + jitter.y) / static_cast<float>(side));
-                    const K::vec2 ndc(model.sample_ndc(px, py, glm::min(offset, glm::vec2(0.99999994f))));
+                    const K::vec2 ndc = ndcs[tile];
                     if (!K::screen_contains(bound, ndc)) continue;
                     ++local.tested;
                     double z = 0.0;
@@ -313,6 +331,18 @@ RenderResult render_interval(const Scene& scene, const RenderSettings& settings)
         // just outside [j, j + 1] / N.
         const double t0 = std::max(0.0, double(j) / strata - 1e-6);
         const double t1 = std::min(1.0, double(j + 1) / strata + 1e-6);
+        // Sample j of every pixel, computed once per stratum.
+        std::vector<Sample> plane(static_cast<std::size_t>(width) * height);
+        for (int py = 0; py < height; ++py) {
+            for (int px = 0; px < width; ++px) {
+                const kernelf::PixelSample s =
+                    patternsf::interval_sample(static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py),
+                                               static_cast<std::uint32_t>(j), static_cast<std::uint32_t>(strata),
+                                               settings.seed);
+                plane[static_cast<std::size_t>(py) * width + px] =
+                    Sample{K::vec2(model.sample_ndc(px, py, s.offset)), K::vec2(s.lens), double(s.time)};
+            }
+        }
         for (std::size_t index = 0; index < frame.triangles.size(); ++index) {
             if (!frame.visible[index]) continue;
             const K::MovingTriangle& tri = frame.triangles[index];
@@ -325,15 +355,11 @@ RenderResult render_interval(const Scene& scene, const RenderSettings& settings)
             }
             for (int py = r.y0; py <= r.y1; ++py) {
                 for (int px = r.x0; px <= r.x1; ++px) {
-                    const kernelf::PixelSample s =
-                        patternsf::interval_sample(static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py),
-                                                   static_cast<std::uint32_t>(j), static_cast<std::uint32_t>(strata),
-                                                   settings.seed);
-                    const K::vec2 ndc(model.sample_ndc(px, py, s.offset));
-                    if (!K::screen_contains(bound, ndc)) continue;
+                    const Sample& s = plane[static_cast<std::size_t>(py) * width + px];
+                    if (!K::screen_contains(bound, s.ndc)) continue;
                     ++local.tested;
                     double z = 0.0;
-                    if (!K::covers(tri, ndc, K::vec2(s.lens), double(s.time), near, z)) continue;
+                    if (!K::covers(tri, s.ndc, s.lens, s.time, near, z)) continue;
                     ++local.hit;
                     const std::size_t sample = (static_cast<std::size_t>(py) * width + px) * strata + static_cast<std::size_t>(j);
                     depth_test(z, static_cast<std::uint32_t>(index), depth[sample], hits[sample]);
