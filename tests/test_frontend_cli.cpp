@@ -1,0 +1,153 @@
+// The `blurcull` command as a user runs it: renders with a JSON summary and a
+// PNG, and refuses bad input with one line naming the problem and a non-zero
+// exit. BLURCULL_CLI is the path of the built executable.
+#include "render/image.hpp"
+
+#include <doctest/doctest.h>
+#include <nlohmann/json.hpp>
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+namespace {
+
+struct Run {
+    int status = -1;
+    std::string out;
+    std::string err;
+};
+
+// Runs the command with the given arguments in a scratch folder.
+Run run_cli(const std::string& arguments) {
+    namespace fs = std::filesystem;
+    static const fs::path folder = fs::temp_directory_path() / "blurcull_cli_test";
+    fs::create_directories(folder);
+    const fs::path err_file = folder / "stderr.txt";
+    std::string command = "cd '" + folder.string() + "' && '" + BLURCULL_CLI + "' " + arguments + " 2>'" +
+                          err_file.string() + "'";
+    Run run;
+    FILE* pipe = popen(command.c_str(), "r");
+    REQUIRE(pipe != nullptr);
+    std::array<char, 4096> buffer{};
+    while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) run.out.append(buffer.data(), n);
+    int raw = pclose(pipe);
+    run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    if (FILE* f = std::fopen(err_file.string().c_str(), "r")) {
+        while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), f)) run.err.append(buffer.data(), n);
+        std::fclose(f);
+    }
+    return run;
+}
+
+std::size_t lines(const std::string& text) {
+    std::size_t n = 0;
+    for (char c : text) n += c == '\n';
+    return n;
+}
+
+const std::string shared_dir = BLURCULL_SHARED_DIR;
+const std::string data_dir = std::string(BLURCULL_SOURCE_DIR) + "/tests/data/gltf";
+
+}  // namespace
+
+TEST_CASE("blurcull render writes a PNG and a JSON summary") {
+    Run run = run_cli("render --scene car --size 64x48 --spp 4 --cull dualspace --json -o car_test.png");
+    INFO(run.err);
+    REQUIRE(run.status == 0);
+    nlohmann::json summary = nlohmann::json::parse(run.out);
+    for (const char* key : {"scene", "backend", "cull", "spp", "width", "height", "triangles", "samples_tested",
+                            "samples_hit", "ste", "ms_total", "ms_per_phase"}) {
+        CHECK_MESSAGE(summary.contains(key), key);
+    }
+    CHECK(summary["scene"] == "car");
+    CHECK(summary["backend"] == "cpu");
+    CHECK(summary["cull"] == "dualspace");
+    CHECK(summary["width"] == 64);
+    CHECK(summary["spp"] == 4);
+    CHECK(summary["triangles"].get<int>() > 50000);
+    CHECK(summary["samples_hit"].get<double>() > 0);
+    CHECK(summary["ste"].get<double>() ==
+          doctest::Approx(summary["samples_hit"].get<double>() / summary["samples_tested"].get<double>()));
+    blurcull::frontend::Image image =
+        blurcull::frontend::read_png((std::filesystem::temp_directory_path() / "blurcull_cli_test/car_test.png").string());
+    CHECK(image.width == 64);
+    CHECK(image.height == 48);
+}
+
+TEST_CASE("blurcull render: the Embree backend and a glTF scene") {
+    Run embree = run_cli("render --scene hand --size 48x36 --spp 2 --backend embree --json -o hand_embree.png");
+    INFO(embree.err);
+    REQUIRE(embree.status == 0);
+    CHECK(nlohmann::json::parse(embree.out)["backend"] == "embree");
+    const std::string box = shared_dir + "/scenes/khronos/BoxAnimated.gltf";
+    if (!std::filesystem::exists(box)) {
+        MESSAGE("skipped the Khronos model: " << box << " is missing");
+        return;
+    }
+    Run gltf = run_cli("render --scene '" + box + "' --size 48x36 --spp 2 --shutter 0.5,0.9 --json -o box.png");
+    INFO(gltf.err);
+    REQUIRE(gltf.status == 0);
+    CHECK(nlohmann::json::parse(gltf.out)["triangles"] == 254);
+}
+
+TEST_CASE("bad input: one line naming the problem, non-zero exit, no output file") {
+    struct Case {
+        std::string arguments;
+        std::string expected;  // a word the message must contain
+    };
+    const Case cases[] = {
+        {"render --spp 0", "--spp"},
+        {"render --spp 100000", "--spp"},
+        {"render --size 0x10", "--size"},
+        {"render --size 640", "--size"},
+        {"render --size 99999x10", "--size"},
+        {"render --cull nope", "--cull"},
+        {"render --backend vulkan", "--backend"},
+        {"render --lens-radius -1", "--lens-radius"},
+        {"render --lens-radius 0.1 --fstop 2", "excludes"},
+        {"render --fstop 0", "--fstop"},
+        {"render --focus 0", "--focus"},
+        {"render --shutter 1", "--shutter"},
+        {"render --shutter 0.5,0.1", "--shutter"},
+        {"render --shutter nan,1", "--shutter"},
+        {"render --blur-scale -2", "--blur-scale"},
+        {"render --seed -1", "--seed"},
+        {"render --threads -3", "--threads"},
+        {"render --scene nowhere", "unknown scene"},
+        {"render --scene missing_file.gltf", "missing_file.gltf"},
+        {"render -o /nonexistent-folder/x.png", "not writable"},
+        {"render --backend gl", "--backend gl"},
+        {"render --bogus", "bogus"},
+        {"render --scene '" + data_dir + "/bad_json.gltf'", "bad_json.gltf"},
+        {"render --scene '" + data_dir + "/bad_accessor_past_end.gltf'", "bad_accessor_past_end.gltf"},
+        {"render --scene '" + data_dir + "/bad_truncated.glb'", "bad_truncated.glb"},
+        {"render --scene '" + data_dir + "/bad_camera_yfov.gltf'", "bad_camera_yfov.gltf"},
+        {"render --scene '" + data_dir + "/bad_node_cycle.gltf'", "bad_node_cycle.gltf"},
+    };
+    for (const Case& c : cases) {
+        bool has_output = c.arguments.find(" -o ") != std::string::npos;
+        Run run = run_cli(c.arguments + " --size 32x24 -q" + (has_output ? "" : " -o should_not_exist.png"));
+        INFO(c.arguments, " -> status ", run.status, ", stderr: ", run.err);
+        CHECK(run.status != 0);
+        CHECK(run.status != -1);  // exited, did not crash
+        CHECK(lines(run.err) == 1);
+        CHECK(run.err.find(c.expected) != std::string::npos);
+        CHECK(run.out.empty());
+        CHECK_FALSE(std::filesystem::exists(std::filesystem::temp_directory_path() /
+                                            "blurcull_cli_test/should_not_exist.png"));
+    }
+}
+
+TEST_CASE("blurcull scenes lists the built-in scenes; --version and --help exit 0") {
+    Run scenes = run_cli("scenes");
+    CHECK(scenes.status == 0);
+    CHECK(scenes.out == "hand\ncar\ndragonfly\nforest\n");
+    CHECK(run_cli("--version").status == 0);
+    Run help = run_cli("render --help");
+    CHECK(help.status == 0);
+    CHECK(help.out.find("--cull") != std::string::npos);
+}
