@@ -3,6 +3,7 @@
 #include "render/cpu_backend.hpp"
 #include "render/embree_backend.hpp"
 #include "render/image.hpp"
+#include "render/interleaved_backend.hpp"
 #include "render/render_types.hpp"
 #include "scene/builtin_scenes.hpp"
 #include "scene/gltf_loader.hpp"
@@ -103,6 +104,10 @@ void RenderCommand::add_options(CLI::App& app) {
     app.add_option("--cull", cull, "culling method")
         ->check(CLI::IsMember({"bbox", "hull", "dualspace", "clip2"}))
         ->capture_default_str();
+    app.add_option("--method", method,
+                   "stochastic (culled stochastic rasterization), interleave, interval or accum (cpu backend)")
+        ->check(CLI::IsMember({"stochastic", "interleave", "interval", "accum"}))
+        ->capture_default_str();
     app.add_option("--spp", spp, "samples per pixel")->check(CLI::Range(1, 1024))->capture_default_str();
     app.add_option("--size", size, "image size WxH")->capture_default_str();
     auto* radius = app.add_option("--lens-radius", lens_radius, "thin-lens aperture radius (scene units)")
@@ -132,6 +137,7 @@ int RenderCommand::run() const {
     settings.spp = spp;
     settings.seed = seed;
     settings.cull = parse_cull_method(cull);
+    settings.method = method;
     settings.threads = threads;
     settings.progress = !quiet;
     const float aspect = static_cast<float>(settings.width) / static_cast<float>(settings.height);
@@ -177,9 +183,14 @@ int RenderCommand::run() const {
     }
     if (backend == "auto") used_backend = "cpu";
 
+    if (used_backend == "embree" && method != "stochastic") {
+        throw std::runtime_error("--method " + method + ": only the cpu backend has it; use --backend cpu");
+    }
     RenderResult result;
     if (used_backend == "embree") {
         result = render_embree(loaded, settings);
+    } else if (method != "stochastic") {
+        result = render_with_method(loaded, settings);
     } else {
         CpuOptions options;
         options.footprint = footprint;
@@ -192,7 +203,8 @@ int RenderCommand::run() const {
         nlohmann::ordered_json summary;
         summary["scene"] = loaded.name.empty() ? stem(scene) : loaded.name;
         summary["backend"] = used_backend;
-        summary["cull"] = used_backend == "embree" ? "none" : cull;
+        summary["method"] = method;
+        summary["cull"] = used_backend == "embree" || method != "stochastic" ? "none" : cull;
         summary["spp"] = settings.spp;
         summary["width"] = settings.width;
         summary["height"] = settings.height;

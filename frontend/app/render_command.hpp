@@ -12,6 +12,7 @@ struct RenderCommand {
     std::string scene = "forest";
     std::string backend = "auto";
     std::string cull = "clip2";
+    std::string method = "stochastic";
     int spp = 16;
     std::string size = "1024x768";
     double lens_radius = -1.0;  // < 0: the scene's own
