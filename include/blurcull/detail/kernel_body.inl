@@ -469,7 +469,9 @@ BC_FN vec2 bc_crossing_line(real e0, real e1, real c0, real c1, real tol, real a
     bool convex = bend * da < real(0);
     bool tangent = !sure || (side > real(0)) == convex;
     bool chord = !sure || !tangent;
-    vec2 line = vec2(side * bc_huge());  // replaced below by the lower (upper) of the candidates
+    // BC_PRECISE: without it Mesa reorders `(r - slope h) - pad` and the
+    // shader's line moves by an ULP, which the fit over tiny pieces magnifies.
+    BC_PRECISE vec2 line = vec2(side * bc_huge());  // replaced below by the lower (upper) of the candidates
     if (chord) {
         real ia = real(1) / da;
         real ib = real(1) / db;
@@ -487,7 +489,7 @@ BC_FN vec2 bc_crossing_line(real e0, real e1, real c0, real c1, real tol, real a
         real slope = (c0 - rm * dc) * im;
         real pad = real(2) * tol * abs(im) * ((real(1) + abs(rm)) * (real(1) + h * abs(dc) * abs(im)) + h * abs(slope)) +
                    bc_err(real(1) + abs(rm) + abs(slope) * h);
-        vec2 t = vec2(rm - slope * h, rm + slope * h) - vec2(side * pad);
+        BC_PRECISE vec2 t = vec2(rm - slope * h, rm + slope * h) - vec2(side * pad);
         line = side > real(0) ? min(line, t) : max(line, t);
     }
     if (!bc_finite(line.x) || !bc_finite(line.y)) return fallback;
