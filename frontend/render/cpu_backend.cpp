@@ -187,9 +187,10 @@ RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, cons
             };
             for (int py = y0; py <= y1; ++py) {
                 for (int px = x0; px <= x1; ++px) {
+                    const kernelf::PixelSampleSetup pattern = kernelf::pixel_sample_setup(
+                        static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py), spp, settings.seed);
                     for (std::uint32_t j = 0; j < spp; ++j) {
-                        const kernelf::PixelSample s = kernelf::pixel_sample(
-                            static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py), j, spp, settings.seed);
+                        const kernelf::PixelSample s = kernelf::pixel_sample_from(pattern, j);
                         const std::size_t k = slot(px, py, j);
                         samples[k] = TileSample{K::vec2(model.sample_ndc(px, py, s.offset)), K::vec2(s.lens), s.time};
                         depth[k] = std::numeric_limits<double>::infinity();

@@ -66,30 +66,57 @@ struct PixelSample {
     real time;    // shutter time in [0,1)
 };
 
-BC_FN PixelSample pixel_sample(uint px, uint py, uint index, uint spp, uint seed) {
-    uint pixel_key = bc_hash3(px, py, seed);
-    uint h = bc_hash3(pixel_key, index, 0x68bc21ebu);
-    uint n = 1u;
-    while ((n + 1u) * (n + 1u) <= spp) n = n + 1u;
-    uint cells = n * n;
+// What pixel_sample computes once per pixel: its key, the stratum counts and
+// the two permutations (position strata, time strata).
+struct PixelSampleSetup {
+    uint key;
+    uint spp;
+    uint n;          // position strata per side
+    uint cells;      // n * n
+    uint cell_mul;   // cell = (cell_mul * index + cell_add) % cells
+    uint cell_add;
+    uint time_mul;   // stratum = (time_mul * index + time_add) % spp
+    uint time_add;
+};
+
+BC_FN PixelSampleSetup pixel_sample_setup(uint px, uint py, uint spp, uint seed) {
+    PixelSampleSetup p;
+    p.key = bc_hash3(px, py, seed);
+    p.spp = spp;
+    p.n = 1u;
+    while ((p.n + 1u) * (p.n + 1u) <= spp) p.n = p.n + 1u;
+    p.cells = p.n * p.n;
+    p.cell_mul = bc_coprime_multiplier(p.cells, bc_hash(p.key ^ 0x2545f491u));
+    p.cell_add = bc_hash(p.key ^ 0x9e3779b9u);
+    p.time_mul = bc_coprime_multiplier(spp, bc_hash(p.key ^ 0x85ebca6bu));
+    p.time_add = bc_hash(p.key ^ 0xc2b2ae35u);
+    return p;
+}
+
+// Sample `index` of a pixel, from its setup (a renderer that draws all of a
+// pixel's samples computes the setup once).
+BC_FN PixelSample pixel_sample_from(BC_IN(PixelSampleSetup) p, uint index) {
+    uint h = bc_hash3(p.key, index, 0x68bc21ebu);
     PixelSample s;
     // Position: a per-pixel permutation of the n x n strata, jittered.
-    if (index < cells) {
-        uint m = bc_coprime_multiplier(cells, bc_hash(pixel_key ^ 0x2545f491u));
-        uint cell = (m * index + bc_hash(pixel_key ^ 0x9e3779b9u)) % cells;
-        s.offset = vec2((real(cell % n) + bc_unit(bc_hash(h ^ 1u))) / real(n),
-                        (real(cell / n) + bc_unit(bc_hash(h ^ 2u))) / real(n));
+    if (index < p.cells) {
+        uint cell = (p.cell_mul * index + p.cell_add) % p.cells;
+        s.offset = vec2((real(cell % p.n) + bc_unit(bc_hash(h ^ 1u))) / real(p.n),
+                        (real(cell / p.n) + bc_unit(bc_hash(h ^ 2u))) / real(p.n));
     } else {
         s.offset = vec2(bc_unit(bc_hash(h ^ 1u)), bc_unit(bc_hash(h ^ 2u)));
     }
     // Time: stratified over the shutter, strata permuted independently of position.
-    uint mt = bc_coprime_multiplier(spp, bc_hash(pixel_key ^ 0x85ebca6bu));
-    uint stratum = (mt * index + bc_hash(pixel_key ^ 0xc2b2ae35u)) % spp;
-    s.time = (real(stratum) + bc_unit(bc_hash(h ^ 3u))) / real(spp);
+    uint stratum = (p.time_mul * index + p.time_add) % p.spp;
+    s.time = (real(stratum) + bc_unit(bc_hash(h ^ 3u))) / real(p.spp);
     if (s.time >= real(1)) s.time = real(0.99999994);
     s.lens = bc_square_to_disk(vec2(bc_unit(bc_hash(h ^ 4u)), bc_unit(bc_hash(h ^ 5u))));
     // Rounding in cos/sin may step a hair outside the disk; the culling bounds
     // assume |u|, |v| <= 1.
     s.lens = clamp(s.lens, vec2(real(-1)), vec2(real(1)));
     return s;
+}
+
+BC_FN PixelSample pixel_sample(uint px, uint py, uint index, uint spp, uint seed) {
+    return pixel_sample_from(pixel_sample_setup(px, py, spp, seed), index);
 }
