@@ -1,0 +1,73 @@
+// The OpenGL 4.5 core entry points blurcull uses, as a table of function
+// pointers filled by the context that loaded them (gl_context.hpp).
+//
+// No loader library: libepoxy aborts under OSMesa, glad is not packaged as a
+// library on Debian 12, and libOSMesa exports only part of GL directly, so
+// every entry point comes from eglGetProcAddress or OSMesaGetProcAddress.
+// To use another function, add one X(...) line below.
+#pragma once
+
+#include <GL/glcorearb.h>
+
+// X(type of the pointer, name without the gl prefix)
+#define BLURCULL_GL_FUNCTIONS(X)                                   \
+    X(PFNGLGETERRORPROC, GetError)                                 \
+    X(PFNGLGETSTRINGPROC, GetString)                               \
+    X(PFNGLGETINTEGERVPROC, GetIntegerv)                           \
+    X(PFNGLGETINTEGERI_VPROC, GetIntegeri_v)                       \
+    X(PFNGLFINISHPROC, Finish)                                     \
+    X(PFNGLCREATESHADERPROC, CreateShader)                         \
+    X(PFNGLSHADERSOURCEPROC, ShaderSource)                         \
+    X(PFNGLCOMPILESHADERPROC, CompileShader)                       \
+    X(PFNGLGETSHADERIVPROC, GetShaderiv)                           \
+    X(PFNGLGETSHADERINFOLOGPROC, GetShaderInfoLog)                 \
+    X(PFNGLDELETESHADERPROC, DeleteShader)                         \
+    X(PFNGLCREATEPROGRAMPROC, CreateProgram)                       \
+    X(PFNGLATTACHSHADERPROC, AttachShader)                         \
+    X(PFNGLDETACHSHADERPROC, DetachShader)                         \
+    X(PFNGLLINKPROGRAMPROC, LinkProgram)                           \
+    X(PFNGLGETPROGRAMIVPROC, GetProgramiv)                         \
+    X(PFNGLGETPROGRAMINFOLOGPROC, GetProgramInfoLog)               \
+    X(PFNGLDELETEPROGRAMPROC, DeleteProgram)                       \
+    X(PFNGLUSEPROGRAMPROC, UseProgram)                             \
+    X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)             \
+    X(PFNGLUNIFORM1IPROC, Uniform1i)                               \
+    X(PFNGLUNIFORM1UIPROC, Uniform1ui)                             \
+    X(PFNGLUNIFORM1FPROC, Uniform1f)                               \
+    X(PFNGLGENBUFFERSPROC, GenBuffers)                             \
+    X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                       \
+    X(PFNGLBINDBUFFERPROC, BindBuffer)                             \
+    X(PFNGLBINDBUFFERBASEPROC, BindBufferBase)                     \
+    X(PFNGLBUFFERDATAPROC, BufferData)                             \
+    X(PFNGLBUFFERSUBDATAPROC, BufferSubData)                       \
+    X(PFNGLGETBUFFERSUBDATAPROC, GetBufferSubData)                 \
+    X(PFNGLDISPATCHCOMPUTEPROC, DispatchCompute)                   \
+    X(PFNGLMEMORYBARRIERPROC, MemoryBarrier)                       \
+    X(PFNGLGENFRAMEBUFFERSPROC, GenFramebuffers)                   \
+    X(PFNGLDELETEFRAMEBUFFERSPROC, DeleteFramebuffers)             \
+    X(PFNGLBINDFRAMEBUFFERPROC, BindFramebuffer)                   \
+    X(PFNGLCHECKFRAMEBUFFERSTATUSPROC, CheckFramebufferStatus)     \
+    X(PFNGLGENTEXTURESPROC, GenTextures)                           \
+    X(PFNGLDELETETEXTURESPROC, DeleteTextures)                     \
+    X(PFNGLBINDTEXTUREPROC, BindTexture)                           \
+    X(PFNGLTEXSTORAGE2DPROC, TexStorage2D)                         \
+    X(PFNGLFRAMEBUFFERTEXTURE2DPROC, FramebufferTexture2D)         \
+    X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)                   \
+    X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)             \
+    X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray)                   \
+    X(PFNGLVIEWPORTPROC, Viewport)                                 \
+    X(PFNGLCLEARCOLORPROC, ClearColor)                             \
+    X(PFNGLCLEARPROC, Clear)                                       \
+    X(PFNGLREADPIXELSPROC, ReadPixels)                             \
+    X(PFNGLDRAWARRAYSPROC, DrawArrays)
+
+namespace blurcull::gl {
+
+// Every pointer is non-null once a context has loaded the table.
+struct Functions {
+#define BLURCULL_GL_DECLARE(type, name) type name = nullptr;
+    BLURCULL_GL_FUNCTIONS(BLURCULL_GL_DECLARE)
+#undef BLURCULL_GL_DECLARE
+};
+
+}  // namespace blurcull::gl

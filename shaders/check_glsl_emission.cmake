@@ -1,0 +1,62 @@
+# CTest glsl_emission: the emitted GLSL holds the headers' formulas, and only
+# them (docs/glsl.md, "One source").
+#  1. Every function defined with BC_FN in the bodies is defined in
+#     blurcull_kernel.glsl.
+#  2. Every public one (not bc_-prefixed) is called by check_kernel.comp, so
+#     glslangValidator sees it used.
+#  3. With one definition renamed away (as if deleted from the header), the
+#     check shader fails glslangValidator: the build would break.
+cmake_minimum_required(VERSION 3.16)
+
+file(READ "${KERNEL_GLSL}" glsl)
+file(READ "${CHECK_GLSL}" check)
+# The check main is what follows the library in check_kernel.comp.
+string(FIND "${check}" "// ---- end of the blurcull kernel library ----" library_end)
+if(library_end LESS 0)
+  message(FATAL_ERROR "check_kernel.comp has no end-of-library marker")
+endif()
+string(SUBSTRING "${check}" ${library_end} -1 check_main)
+
+string(REPLACE "|" ";" body_files "${BODIES}")
+set(function_count 0)
+set(public_functions "")
+foreach(body ${body_files})
+  file(READ "${body}" text)
+  string(REGEX MATCHALL "BC_FN[ \t\r\n]+[A-Za-z_][A-Za-z_0-9]*[ \t\r\n]+[A-Za-z_][A-Za-z_0-9]*[ \t\r\n]*\\(" definitions "${text}")
+  foreach(definition ${definitions})
+    string(REGEX REPLACE "^BC_FN[ \t\r\n]+([A-Za-z_][A-Za-z_0-9]*)[ \t\r\n]+([A-Za-z_][A-Za-z_0-9]*).*$" "\\1;\\2" parts "${definition}")
+    list(GET parts 0 return_type)
+    list(GET parts 1 name)
+    math(EXPR function_count "${function_count} + 1")
+    if(NOT glsl MATCHES "[ \t\n]${return_type}[ \t]+${name}[ \t]*\\(")
+      message(SEND_ERROR "${name} (${body}) is not defined in ${KERNEL_GLSL}")
+    endif()
+    if(NOT name MATCHES "^bc_")
+      list(APPEND public_functions ${name})
+      if(NOT check_main MATCHES "[^A-Za-z_0-9]${name}[ \t]*\\(")
+        message(SEND_ERROR "${name} is public but shaders/glsl/check_kernel.comp does not call it")
+      endif()
+    endif()
+  endforeach()
+endforeach()
+list(LENGTH public_functions public_count)
+# The bodies define about 40 functions, 13 of them public; fewer means the
+# pattern above stopped matching them.
+if(function_count LESS 20 OR public_count LESS 10)
+  message(FATAL_ERROR "found only ${function_count} BC_FN functions (${public_count} public) in ${BODIES}")
+endif()
+message(STATUS "${function_count} BC_FN functions, all in the GLSL; ${public_count} public, all called: ${public_functions}")
+
+# 3. Delete `covers` (rename its definition) and expect glslangValidator to fail.
+string(REGEX REPLACE "BC_FN[ \t]+bool[ \t]+covers[ \t]*\\(" "BC_FN bool covers_deleted(" broken "${check}")
+if(broken STREQUAL check)
+  message(FATAL_ERROR "could not find the definition of covers in ${CHECK_GLSL}")
+endif()
+file(MAKE_DIRECTORY "${WORK_DIR}")
+file(WRITE "${WORK_DIR}/without_covers.comp" "${broken}")
+execute_process(COMMAND "${VALIDATOR}" -l "${WORK_DIR}/without_covers.comp"
+                RESULT_VARIABLE result OUTPUT_VARIABLE output ERROR_VARIABLE output)
+if(result EQUAL 0)
+  message(FATAL_ERROR "glslangValidator accepted the check shader without covers():\n${output}")
+endif()
+message(STATUS "without covers() glslangValidator fails as it should")

@@ -1,0 +1,533 @@
+// GPU/host parity of the shared kernel: a GLSL 4.50 compute shader built from
+// the emitted blurcull_kernel.glsl runs screen_bound + screen_contains,
+// sample_bounds + sample_passes (all four methods), covers, classify and
+// pixel_sample on host-generated inputs in a headless Mesa context; the host
+// runs kernel<float> on the same float inputs. Every decision must agree, every
+// bound value within kMaxBoundUlps (docs/glsl.md states the tolerance and the
+// measured numbers).
+//
+// No GL context (no Mesa): fails when CI=true, else skips with a message.
+
+// Host code must not contract a*b+c into an fma: llvmpipe does not fuse
+// (design brief, section 8). Before any include, so the kernel's functions
+// instantiated below are compiled this way too.
+#if defined(__clang__)
+#pragma clang fp contract(off)
+#elif defined(__GNUC__)
+#pragma GCC optimize("fp-contract=off")
+#endif
+
+#include "kernel_generators.hpp"
+
+#include <blurcull/glsl/kernel_glsl.hpp>
+#include <gl/gl_context.hpp>
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+using namespace blurcull;
+using namespace blurcull::testing;
+using Kf = kernel<float>;
+
+namespace {
+
+// Tolerances (docs/glsl.md, "Parity"). Decisions: identical. Bound values
+// and the covers depth: + - * / min max abs on llvmpipe round like the host,
+// so they are expected bit-identical; the tolerance is 0 ULP. The lens
+// position of pixel_sample goes through cos and sin, which differ by a few ULP.
+constexpr std::int64_t kMaxBoundUlps = 0;
+constexpr std::int64_t kMaxLensUlps = 8;
+
+constexpr int kConfigs = 32768;
+constexpr int kSamplesPerConfig = 4;  // 131072 inputs
+
+// Input layout (floats): per config the triangle (p: 18, c: 12), near,
+// s_lo, s_hi; per input the sample (s, uv, t) and its pixel-sample key.
+constexpr int kConfigFloats = 36;
+constexpr int kInputFloats = 5;
+constexpr int kInputKeys = 4;  // px, py, index, spp
+// Output layout (uints, floats as their bits): per config and method the
+// screen bound (empty, lo, hi, hull_count, 24 edges) and sample bounds (empty,
+// u_range, v_range, tx, tx2, ty, ty2), then classify; per input the decision
+// bits, the covers depth and the pixel sample (offset, lens, time).
+constexpr int kScreenUints = 1 + 2 + 2 + 1 + 3 * BC_HULL_MAX;
+constexpr int kSampleUints = 1 + 2 + 2 + 4 * 4;
+constexpr int kConfigUints = 4 * (kScreenUints + kSampleUints) + 1;
+constexpr int kInputUints = 2 + 5;
+
+// The shader's main: the library (blurcull_kernel.glsl) comes before it.
+const char* const kParityMain = R"glsl(
+layout(local_size_x = 64) in;
+layout(std430, binding = 0) readonly buffer Configs { float config_in[]; };
+layout(std430, binding = 1) readonly buffer Inputs { float input_in[]; };
+layout(std430, binding = 2) readonly buffer Keys { uint key_in[]; };
+layout(std430, binding = 3) writeonly buffer ConfigResults { uint config_out[]; };
+layout(std430, binding = 4) writeonly buffer InputResults { uint input_out[]; };
+uniform uint input_count;
+uniform uint samples_per_config;
+
+const int CONFIG_FLOATS = 36;
+const int INPUT_FLOATS = 5;
+const int SCREEN_UINTS = 6 + 3 * BC_HULL_MAX;
+const int SAMPLE_UINTS = 21;
+const int CONFIG_UINTS = 4 * (SCREEN_UINTS + SAMPLE_UINTS) + 1;
+const int INPUT_UINTS = 7;
+
+void put(int at, float value) { config_out[at] = floatBitsToUint(value); }
+
+void main() {
+    uint id = gl_GlobalInvocationID.x;
+    if (id >= input_count) return;
+    int config = int(id / samples_per_config);
+    int c = config * CONFIG_FLOATS;
+    MovingTriangle tri;
+    for (int j = 0; j < 6; ++j) {
+        tri.p[j] = vec3(config_in[c + 3 * j], config_in[c + 3 * j + 1], config_in[c + 3 * j + 2]);
+        tri.c[j] = vec2(config_in[c + 18 + 2 * j], config_in[c + 19 + 2 * j]);
+    }
+    float near = config_in[c + 30];
+    vec2 s_lo = vec2(config_in[c + 31], config_in[c + 32]);
+    vec2 s_hi = vec2(config_in[c + 33], config_in[c + 34]);
+    int i = int(id) * INPUT_FLOATS;
+    vec2 s = vec2(input_in[i], input_in[i + 1]);
+    vec2 uv = vec2(input_in[i + 2], input_in[i + 3]);
+    float t = input_in[i + 4];
+
+    bool first = id % samples_per_config == 0u;
+    uint decisions = 0u;
+    for (int method = 0; method < 4; ++method) {
+        ScreenBound sb = screen_bound(tri, near, method);
+        SampleBounds b = sample_bounds(tri, s_lo, s_hi, method);
+        if (screen_contains(sb, s)) decisions |= 1u << (1 + method);
+        if (sample_passes(b, uv, t)) decisions |= 1u << (5 + method);
+        if (!first) continue;
+        int o = config * CONFIG_UINTS + method * (SCREEN_UINTS + SAMPLE_UINTS);
+        config_out[o] = sb.empty ? 1u : 0u;
+        put(o + 1, sb.lo.x); put(o + 2, sb.lo.y); put(o + 3, sb.hi.x); put(o + 4, sb.hi.y);
+        config_out[o + 5] = uint(sb.hull_count);
+        for (int k = 0; k < BC_HULL_MAX; ++k) {
+            put(o + 6 + 3 * k, sb.hull_edge[k].x);
+            put(o + 7 + 3 * k, sb.hull_edge[k].y);
+            put(o + 8 + 3 * k, sb.hull_edge[k].z);
+        }
+        o += SCREEN_UINTS;
+        config_out[o] = b.empty ? 1u : 0u;
+        put(o + 1, b.u_range.x); put(o + 2, b.u_range.y);
+        put(o + 3, b.v_range.x); put(o + 4, b.v_range.y);
+        for (int k = 0; k < 4; ++k) {
+            put(o + 5 + k, b.tx[k]);
+            put(o + 9 + k, b.tx2[k]);
+            put(o + 13 + k, b.ty[k]);
+            put(o + 17 + k, b.ty2[k]);
+        }
+    }
+    if (first) config_out[config * CONFIG_UINTS + CONFIG_UINTS - 1] = uint(classify(tri));
+    float depth;
+    if (covers(tri, s, uv, t, near, depth)) decisions |= 1u;
+    int k = int(id) * 4;
+    PixelSample ps = pixel_sample(key_in[k], key_in[k + 1], key_in[k + 2], key_in[k + 3], 0x5eedu);
+    int o = int(id) * INPUT_UINTS;
+    input_out[o] = decisions;
+    input_out[o + 1] = floatBitsToUint(depth);
+    input_out[o + 2] = floatBitsToUint(ps.offset.x);
+    input_out[o + 3] = floatBitsToUint(ps.offset.y);
+    input_out[o + 4] = floatBitsToUint(ps.lens.x);
+    input_out[o + 5] = floatBitsToUint(ps.lens.y);
+    input_out[o + 6] = floatBitsToUint(ps.time);
+}
+)glsl";
+
+constexpr std::uint32_t kPixelSeed = 0x5eedu;
+
+const char* const kDecisionNames[] = {
+    "covers",
+    "screen_contains bbox", "screen_contains hull", "screen_contains dualspace", "screen_contains clip2",
+    "sample_passes bbox", "sample_passes hull", "sample_passes dualspace", "sample_passes clip2"};
+
+// The sample-bound values in output order, two uints per name.
+const char* const kSampleFieldNames[] = {"u_range", "v_range", "tx", "tx", "tx2", "tx2", "ty", "ty", "ty2", "ty2"};
+
+std::uint32_t bits_of(float x) {
+    std::uint32_t b;
+    std::memcpy(&b, &x, sizeof b);
+    return b;
+}
+
+float float_of(std::uint32_t b) {
+    float x;
+    std::memcpy(&x, &b, sizeof x);
+    return x;
+}
+
+// Distance in representable floats; NaN against anything else counts as
+// "infinitely" far, two NaNs as equal.
+std::int64_t ulp_distance(float a, float b) {
+    if (std::isnan(a) || std::isnan(b)) return std::isnan(a) && std::isnan(b) ? 0 : INT64_MAX;
+    auto ordered = [](float x) {
+        std::int64_t raw = static_cast<std::int64_t>(bits_of(x));
+        return raw & 0x80000000 ? -(raw & 0x7fffffff) : raw;
+    };
+    std::int64_t d = ordered(a) - ordered(b);
+    return d < 0 ? -d : d;
+}
+
+bool is_ci() {
+    const char* ci = std::getenv("CI");
+    return ci != nullptr && (std::string(ci) == "true" || std::string(ci) == "1");
+}
+
+// A context, or nothing after saying why (and failing in CI).
+std::optional<gl::HeadlessContext> context_or_skip(std::optional<gl::ContextKind> kind = std::nullopt) {
+    try {
+        return kind ? gl::HeadlessContext::create(*kind) : gl::HeadlessContext::create();
+    } catch (const gl::GlError& e) {
+        if (is_ci()) FAIL("no headless OpenGL 4.5 context in CI: " << std::string(e.what()));
+        MESSAGE("SKIPPED: no headless OpenGL 4.5 context (" << std::string(e.what()) << "); CI=true makes this a failure");
+        return std::nullopt;
+    }
+}
+
+struct Inputs {
+    std::vector<float> configs;
+    std::vector<float> samples;
+    std::vector<std::uint32_t> keys;
+    int config_count = 0;
+};
+
+Inputs make_inputs(int config_count, std::uint64_t seed) {
+    Inputs in;
+    in.config_count = config_count;
+    Rng rng(seed);
+    std::vector<Family> families = all_families();
+    for (int n = 0; n < config_count; ++n) {
+        Config cfg = make_config(rng, families[static_cast<std::size_t>(n) % families.size()]);
+        Kf::MovingTriangle tri = to_real<float>(cfg.tri);
+        for (int j = 0; j < 6; ++j)
+            for (int a = 0; a < 3; ++a) in.configs.push_back(tri.p[j][a]);
+        for (int j = 0; j < 6; ++j)
+            for (int a = 0; a < 2; ++a) in.configs.push_back(tri.c[j][a]);
+        in.configs.push_back(static_cast<float>(cfg.near));
+        in.configs.push_back(static_cast<float>(cfg.s_lo.x));
+        in.configs.push_back(static_cast<float>(cfg.s_lo.y));
+        in.configs.push_back(static_cast<float>(cfg.s_hi.x));
+        in.configs.push_back(static_cast<float>(cfg.s_hi.y));
+        in.configs.push_back(0.0f);  // padding to kConfigFloats
+        for (int k = 0; k < kSamplesPerConfig; ++k) {
+            Sample5 s = make_sample(rng, cfg);
+            in.samples.push_back(static_cast<float>(s.s.x));
+            in.samples.push_back(static_cast<float>(s.s.y));
+            in.samples.push_back(static_cast<float>(s.uv.x));
+            in.samples.push_back(static_cast<float>(s.uv.y));
+            in.samples.push_back(static_cast<float>(s.t));
+            std::uint32_t spp = 1u + static_cast<std::uint32_t>(rng.below(64));
+            in.keys.push_back(static_cast<std::uint32_t>(rng.below(4096)));
+            in.keys.push_back(static_cast<std::uint32_t>(rng.below(4096)));
+            in.keys.push_back(static_cast<std::uint32_t>(rng.below(static_cast<int>(spp) + 2)));
+            in.keys.push_back(spp);
+        }
+    }
+    return in;
+}
+
+struct GpuResults {
+    std::vector<std::uint32_t> configs;
+    std::vector<std::uint32_t> inputs;
+    double milliseconds = 0.0;
+};
+
+GpuResults run_gpu(const gl::HeadlessContext& context, const Inputs& in) {
+    const gl::Functions& f = context.gl();
+    gl::Program program(f, {{GL_COMPUTE_SHADER, {glsl::kernel_source(), kParityMain}}});
+    auto input_count = static_cast<std::uint32_t>(in.config_count * kSamplesPerConfig);
+    auto bytes = [](const auto& v) { return v.size() * sizeof(v[0]); };
+    gl::Buffer configs(f, GL_SHADER_STORAGE_BUFFER, bytes(in.configs), in.configs.data());
+    gl::Buffer samples(f, GL_SHADER_STORAGE_BUFFER, bytes(in.samples), in.samples.data());
+    gl::Buffer keys(f, GL_SHADER_STORAGE_BUFFER, bytes(in.keys), in.keys.data());
+    GpuResults out;
+    out.configs.assign(static_cast<std::size_t>(in.config_count) * kConfigUints, 0u);
+    out.inputs.assign(static_cast<std::size_t>(input_count) * kInputUints, 0u);
+    gl::Buffer config_results(f, GL_SHADER_STORAGE_BUFFER, bytes(out.configs));
+    gl::Buffer input_results(f, GL_SHADER_STORAGE_BUFFER, bytes(out.inputs));
+    configs.bind_base(0);
+    samples.bind_base(1);
+    keys.bind_base(2);
+    config_results.bind_base(3);
+    input_results.bind_base(4);
+    f.UseProgram(program.id());
+    f.Uniform1ui(f.GetUniformLocation(program.id(), "input_count"), input_count);
+    f.Uniform1ui(f.GetUniformLocation(program.id(), "samples_per_config"), kSamplesPerConfig);
+    auto start = std::chrono::steady_clock::now();
+    f.DispatchCompute((input_count + 63u) / 64u, 1, 1);
+    f.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    f.Finish();
+    out.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    gl::check_gl(f, "running the parity shader");
+    config_results.read(out.configs.data(), bytes(out.configs));
+    input_results.read(out.inputs.data(), bytes(out.inputs));
+    f.UseProgram(0);
+    return out;
+}
+
+// Host results in the GPU's layout.
+struct HostResults {
+    std::vector<std::uint32_t> configs;
+    std::vector<std::uint32_t> inputs;
+};
+
+HostResults run_host(const Inputs& in) {
+    HostResults out;
+    out.configs.assign(static_cast<std::size_t>(in.config_count) * kConfigUints, 0u);
+    out.inputs.assign(static_cast<std::size_t>(in.config_count) * kSamplesPerConfig * kInputUints, 0u);
+    for (int n = 0; n < in.config_count; ++n) {
+        const float* c = &in.configs[static_cast<std::size_t>(n) * kConfigFloats];
+        Kf::MovingTriangle tri;
+        for (int j = 0; j < 6; ++j) {
+            tri.p[j] = Kf::vec3(c[3 * j], c[3 * j + 1], c[3 * j + 2]);
+            tri.c[j] = Kf::vec2(c[18 + 2 * j], c[19 + 2 * j]);
+        }
+        float near = c[30];
+        Kf::vec2 s_lo(c[31], c[32]);
+        Kf::vec2 s_hi(c[33], c[34]);
+        std::uint32_t* co = &out.configs[static_cast<std::size_t>(n) * kConfigUints];
+        std::array<Kf::ScreenBound, 4> screens;
+        std::array<Kf::SampleBounds, 4> bounds;
+        for (int method = 0; method < 4; ++method) {
+            const Kf::ScreenBound& sb = screens[static_cast<std::size_t>(method)] = Kf::screen_bound(tri, near, method);
+            const Kf::SampleBounds& b = bounds[static_cast<std::size_t>(method)] =
+                Kf::sample_bounds(tri, s_lo, s_hi, method);
+            std::uint32_t* o = co + method * (kScreenUints + kSampleUints);
+            o[0] = sb.empty ? 1u : 0u;
+            o[1] = bits_of(sb.lo.x);
+            o[2] = bits_of(sb.lo.y);
+            o[3] = bits_of(sb.hi.x);
+            o[4] = bits_of(sb.hi.y);
+            o[5] = static_cast<std::uint32_t>(sb.hull_count);
+            for (int k = 0; k < BC_HULL_MAX; ++k)
+                for (int a = 0; a < 3; ++a) o[6 + 3 * k + a] = bits_of(sb.hull_edge[k][a]);
+            o += kScreenUints;
+            o[0] = b.empty ? 1u : 0u;
+            o[1] = bits_of(b.u_range.x);
+            o[2] = bits_of(b.u_range.y);
+            o[3] = bits_of(b.v_range.x);
+            o[4] = bits_of(b.v_range.y);
+            for (int k = 0; k < 4; ++k) {
+                o[5 + k] = bits_of(b.tx[k]);
+                o[9 + k] = bits_of(b.tx2[k]);
+                o[13 + k] = bits_of(b.ty[k]);
+                o[17 + k] = bits_of(b.ty2[k]);
+            }
+        }
+        co[kConfigUints - 1] = static_cast<std::uint32_t>(Kf::classify(tri));
+        for (int k = 0; k < kSamplesPerConfig; ++k) {
+            std::size_t id = static_cast<std::size_t>(n) * kSamplesPerConfig + static_cast<std::size_t>(k);
+            const float* s = &in.samples[id * kInputFloats];
+            Kf::vec2 pos(s[0], s[1]);
+            Kf::vec2 uv(s[2], s[3]);
+            float t = s[4];
+            std::uint32_t decisions = 0u;
+            for (int method = 0; method < 4; ++method) {
+                if (Kf::screen_contains(screens[static_cast<std::size_t>(method)], pos)) decisions |= 1u << (1 + method);
+                if (Kf::sample_passes(bounds[static_cast<std::size_t>(method)], uv, t)) decisions |= 1u << (5 + method);
+            }
+            float depth = 0.0f;
+            if (Kf::covers(tri, pos, uv, t, near, depth)) decisions |= 1u;
+            const std::uint32_t* key = &in.keys[id * kInputKeys];
+            Kf::PixelSample ps = Kf::pixel_sample(key[0], key[1], key[2], key[3], kPixelSeed);
+            std::uint32_t* io = &out.inputs[id * kInputUints];
+            io[0] = decisions;
+            io[1] = bits_of(depth);
+            io[2] = bits_of(ps.offset.x);
+            io[3] = bits_of(ps.offset.y);
+            io[4] = bits_of(ps.lens.x);
+            io[5] = bits_of(ps.lens.y);
+            io[6] = bits_of(ps.time);
+        }
+    }
+    return out;
+}
+
+// Every difference between host and GPU, counted and measured.
+struct Comparison {
+    long decisions = 0;            // decisions compared
+    long decision_mismatches = 0;
+    std::map<std::string, long> mismatch_by_name;
+    long values = 0;               // bound values compared
+    std::int64_t max_bound_ulps = 0;
+    long bound_values_differing = 0;
+    std::int64_t max_depth_ulps = 0;
+    std::int64_t max_offset_time_ulps = 0;
+    std::int64_t max_lens_ulps = 0;
+    std::string first_mismatch;
+    std::array<long, 9> host_true{};  // per decision bit: how often the host said true
+    long inputs = 0;
+    std::map<std::string, std::int64_t> max_ulps_by_name;  // values that differ, by field
+    std::string worst_value;
+};
+
+void note_decision(Comparison& cmp, bool host, bool gpu, const std::string& name, int config) {
+    ++cmp.decisions;
+    if (host == gpu) return;
+    ++cmp.decision_mismatches;
+    ++cmp.mismatch_by_name[name];
+    if (cmp.first_mismatch.empty())
+        cmp.first_mismatch = name + " of config " + std::to_string(config) + ": host " + (host ? "true" : "false") +
+                             ", GPU " + (gpu ? "true" : "false");
+}
+
+void note_equal(Comparison& cmp, std::uint32_t host, std::uint32_t gpu, const std::string& name, int config) {
+    ++cmp.decisions;
+    if (host == gpu) return;
+    ++cmp.decision_mismatches;
+    ++cmp.mismatch_by_name[name];
+    if (cmp.first_mismatch.empty())
+        cmp.first_mismatch = name + " of config " + std::to_string(config) + ": host " + std::to_string(host) +
+                             ", GPU " + std::to_string(gpu);
+}
+
+void note_value(Comparison& cmp, std::uint32_t host, std::uint32_t gpu, const std::string& name, int config) {
+    ++cmp.values;
+    std::int64_t d = ulp_distance(float_of(host), float_of(gpu));
+    if (d == 0) return;
+    ++cmp.bound_values_differing;
+    std::int64_t& worst = cmp.max_ulps_by_name[name];
+    worst = std::max(worst, d);
+    if (d > cmp.max_bound_ulps) {
+        char text[160];
+        std::snprintf(text, sizeof text, "%s of config %d: host %.9g, GPU %.9g", name.c_str(), config,
+                      static_cast<double>(float_of(host)), static_cast<double>(float_of(gpu)));
+        cmp.worst_value = text;
+    }
+    cmp.max_bound_ulps = std::max(cmp.max_bound_ulps, d);
+}
+
+Comparison compare(const Inputs& in, const HostResults& host, const GpuResults& gpu) {
+    Comparison cmp;
+    const char* methods[] = {"bbox", "hull", "dualspace", "clip2"};
+    for (int n = 0; n < in.config_count; ++n) {
+        const std::uint32_t* h = &host.configs[static_cast<std::size_t>(n) * kConfigUints];
+        const std::uint32_t* g = &gpu.configs[static_cast<std::size_t>(n) * kConfigUints];
+        for (int method = 0; method < 4; ++method) {
+            int o = method * (kScreenUints + kSampleUints);
+            std::string m = methods[method];
+            note_decision(cmp, h[o] != 0u, g[o] != 0u, "screen_bound.empty " + m, n);
+            note_equal(cmp, h[o + 5], g[o + 5], "screen_bound.hull_count " + m, n);
+            for (int k = 1; k <= 4; ++k) note_value(cmp, h[o + k], g[o + k], "screen_bound.lo/hi " + m, n);
+            int edges = static_cast<int>(std::min(h[o + 5], g[o + 5]));
+            for (int k = 0; k < 3 * edges; ++k) note_value(cmp, h[o + 6 + k], g[o + 6 + k], "screen_bound.hull_edge " + m, n);
+            o += kScreenUints;
+            note_decision(cmp, h[o] != 0u, g[o] != 0u, "sample_bounds.empty " + m, n);
+            if (h[o] == 0u && g[o] == 0u)
+                for (int k = 1; k < kSampleUints; ++k)
+                    note_value(cmp, h[o + k], g[o + k], std::string("sample_bounds.") + kSampleFieldNames[(k - 1) / 2] + " " + m, n);
+        }
+        note_equal(cmp, h[kConfigUints - 1], g[kConfigUints - 1], "classify", n);
+        for (int k = 0; k < kSamplesPerConfig; ++k) {
+            std::size_t id = static_cast<std::size_t>(n) * kSamplesPerConfig + static_cast<std::size_t>(k);
+            const std::uint32_t* hi = &host.inputs[id * kInputUints];
+            const std::uint32_t* gi = &gpu.inputs[id * kInputUints];
+            ++cmp.inputs;
+            for (int bit = 0; bit < 9; ++bit) {
+                note_decision(cmp, (hi[0] >> bit) & 1u, (gi[0] >> bit) & 1u, kDecisionNames[bit], n);
+                cmp.host_true[static_cast<std::size_t>(bit)] += (hi[0] >> bit) & 1u;
+            }
+            if ((hi[0] & gi[0] & 1u) != 0u)
+                cmp.max_depth_ulps = std::max(cmp.max_depth_ulps, ulp_distance(float_of(hi[1]), float_of(gi[1])));
+            for (int q : {2, 3, 6})
+                cmp.max_offset_time_ulps =
+                    std::max(cmp.max_offset_time_ulps, ulp_distance(float_of(hi[q]), float_of(gi[q])));
+            for (int q : {4, 5})
+                cmp.max_lens_ulps = std::max(cmp.max_lens_ulps, ulp_distance(float_of(hi[q]), float_of(gi[q])));
+        }
+    }
+    return cmp;
+}
+
+void check_parity(const gl::HeadlessContext& context, int config_count, std::uint64_t seed) {
+    Inputs in = make_inputs(config_count, seed);
+    GpuResults gpu = run_gpu(context, in);
+    HostResults host = run_host(in);
+    Comparison cmp = compare(in, host, gpu);
+    MESSAGE(std::string(gl::context_kind_name(context.kind()))
+            << " (" << context.renderer() << "): " << config_count * kSamplesPerConfig << " inputs, " << config_count
+            << " configs, GPU " << gpu.milliseconds << " ms; " << cmp.decisions << " decisions, "
+            << cmp.decision_mismatches << " differ; " << cmp.values << " bound values, " << cmp.bound_values_differing
+            << " differ, max " << cmp.max_bound_ulps << " ULP; covers depth max " << cmp.max_depth_ulps
+            << " ULP; pixel_sample offset/time max " << cmp.max_offset_time_ulps << " ULP, lens max "
+            << cmp.max_lens_ulps << " ULP");
+    std::string true_counts;
+    for (int bit = 0; bit < 9; ++bit)
+        true_counts += std::string(bit ? ", " : "") + kDecisionNames[bit] + " " + std::to_string(cmp.host_true[static_cast<std::size_t>(bit)]);
+    MESSAGE("  true of " << cmp.inputs << " inputs: " << true_counts);
+    for (const auto& [name, count] : cmp.mismatch_by_name) MESSAGE("  " << name << ": " << count << " differ");
+    for (const auto& [name, ulps] : cmp.max_ulps_by_name) MESSAGE("  " << name << ": max " << ulps << " ULP");
+    if (!cmp.worst_value.empty()) MESSAGE("  worst: " << cmp.worst_value);
+    CHECK_MESSAGE(cmp.decision_mismatches == 0, cmp.first_mismatch);
+    CHECK(cmp.max_bound_ulps <= kMaxBoundUlps);
+    CHECK(cmp.max_depth_ulps <= kMaxBoundUlps);
+    CHECK(cmp.max_offset_time_ulps == 0);
+    CHECK(cmp.max_lens_ulps <= kMaxLensUlps);
+    // The comparison saw real work: bound values, and every per-sample
+    // decision taken both ways (bbox and hull never cull by sample_passes).
+    CHECK(cmp.values > 100000);
+    for (int bit = 0; bit < 9; ++bit) {
+        CAPTURE(kDecisionNames[bit]);
+        long trues = cmp.host_true[static_cast<std::size_t>(bit)];
+        CHECK(trues > 0);
+        if (bit != 5 && bit != 6) CHECK(trues < cmp.inputs);
+    }
+}
+
+}  // namespace
+
+TEST_CASE("the kernel in GLSL decides like the host kernel<float> on 131072 inputs") {
+    auto context = context_or_skip();
+    if (!context) return;
+    check_parity(*context, kConfigs, 0x9a7e5eedull);
+}
+
+TEST_CASE("both headless context kinds run the kernel's GLSL") {
+    for (gl::ContextKind kind : {gl::ContextKind::egl_surfaceless, gl::ContextKind::osmesa}) {
+        std::string kind_name = gl::context_kind_name(kind);
+        CAPTURE(kind_name);
+        auto context = context_or_skip(kind);
+        if (!context) continue;
+        CHECK(context->kind() == kind);
+        check_parity(*context, 1024, 0x05e5a11ull + static_cast<unsigned>(kind));
+    }
+}
+
+TEST_CASE("shader errors and bad context names are reported") {
+    CHECK_THROWS_AS(gl::parse_context_kind("vulkan"), gl::GlError);
+    auto context = context_or_skip();
+    if (!context) return;
+    const char* broken = "layout(local_size_x = 1) in;\nvoid main() { float x = covers(); }\n";
+    try {
+        gl::Program program(context->gl(), {{GL_COMPUTE_SHADER, {glsl::kernel_source(), broken}}});
+        FAIL("a broken shader compiled");
+    } catch (const gl::GlError& e) {
+        std::string message = e.what();
+        CHECK(message.find("compilation failed") != std::string::npos);
+        CHECK(message.find("covers") != std::string::npos);
+    }
+}
+
+TEST_CASE("the embedded GLSL is the emitted library") {
+    std::string_view text = glsl::kernel_source();
+    CHECK(text.substr(0, 18) == "#version 450 core\n");
+    CHECK(glsl::kernel_source_without_version().size() == text.size() - 18);
+    for (const char* name : {"BC_FN bool covers(", "BC_FN ScreenBound screen_bound(", "BC_FN SampleBounds sample_bounds(",
+                             "BC_FN PixelSample pixel_sample(", "#define real float"})
+        CHECK_MESSAGE(text.find(name) != std::string_view::npos, name);
+}
