@@ -30,6 +30,10 @@ namespace {
 namespace tg = tinygltf;
 
 constexpr std::size_t kMaxNodeDepth = 1000;
+// An accessor without a buffer view is all zeros (plus sparse values) and is
+// bounded by no byte range: cap its element count so a huge count neither
+// overflows count * components nor allocates without limit.
+constexpr std::size_t kMaxElementsWithoutView = std::size_t{1} << 24;
 
 std::string lowercase(std::string text) {
     for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -372,6 +376,9 @@ private:
             }
         } else if (accessor.bufferView != -1) {
             check_view_index(accessor.bufferView, name);
+        } else if (accessor.count > kMaxElementsWithoutView) {
+            fail(name + " has no buffer view and count " + std::to_string(accessor.count) + " (limit " +
+                 std::to_string(kMaxElementsWithoutView) + ")");
         }
         if (accessor.sparse.isSparse) {
             const auto& sparse = accessor.sparse;
