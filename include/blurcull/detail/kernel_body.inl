@@ -236,6 +236,11 @@ BC_FN void bc_build_hull(BC_IN(MovingTriangle) tri, real near, BC_INOUT(ScreenBo
         }
         magnitude = max(magnitude, (abs(tri.p[j].x) + abs(tri.p[j].y) + c.x + c.y) / tri.p[j].z);
     }
+    // Turns of points beyond sqrt(huge) / 4 can overflow to NaN, which pops
+    // nothing and would overrun hull[]: the box alone bounds such triangles.
+    real extent = real(0);
+    for (int j = 0; j < n; ++j) extent = max(extent, max(abs(pts[j].x), abs(pts[j].y)));
+    if (!(extent <= real(0.25) * sqrt(bc_huge()))) return;
     vec2 hull[BC_HULL_MAX + 1];
     int h = 0;
     for (int j = 0; j < n; ++j) {  // lower chain
@@ -419,19 +424,37 @@ BC_FN BcEdgeCrossings bc_edge_crossings(BC_IN(MovingTriangle) tri, int axis, rea
     return x;
 }
 
-// Stage 1, lens bounds. While every c has one strict sign, u_j(t) is a
-// monotone linear fraction of t, so A and B need u <= max_j u_j(s1) and
-// u >= min_j u_j(s0) (c > 0; c < 0 swaps s0 and s1). A vertex on or across
-// the focal plane (mixed signs, or c = 0) leaves the whole lens.
-BC_FN vec2 bc_stage1(BC_IN(MovingTriangle) tri, int axis, BC_IN(BcEdgeCrossings) x) {
+// Whether the triangle's offsets along this axis change over the shutter.
+BC_FN bool bc_axis_moves(BC_IN(MovingTriangle) tri, int axis) {
+    bool moves = false;
+    for (int i = 0; i < 3; ++i) {
+        if (tri.p[i][axis] != tri.p[i + 3][axis] || tri.p[i].z != tri.p[i + 3].z ||
+            tri.c[i][axis] != tri.c[i + 3][axis])
+            moves = true;
+    }
+    return moves;
+}
+
+// Whether every vertex end's CoC along this axis has one strict sign (the
+// triangle stays on one side of the focal plane).
+BC_FN bool bc_one_coc_sign(BC_IN(MovingTriangle) tri, int axis) {
     bool positive = true;
     bool negative = true;
     for (int j = 0; j < 6; ++j) {
         if (!(tri.c[j][axis] > real(0))) positive = false;
         if (!(tri.c[j][axis] < real(0))) negative = false;
     }
+    return positive || negative;
+}
+
+// Stage 1, lens bounds. While every c has one strict sign, u_j(t) is a
+// monotone linear fraction of t, so A and B need u <= max_j u_j(s1) and
+// u >= min_j u_j(s0) (c > 0; c < 0 swaps s0 and s1). A vertex on or across
+// the focal plane (mixed signs, or c = 0) leaves the whole lens.
+BC_FN vec2 bc_stage1(BC_IN(MovingTriangle) tri, int axis, BC_IN(BcEdgeCrossings) x) {
     vec2 r = vec2(real(-1), real(1));
-    if (!positive && !negative) return r;
+    if (!bc_one_coc_sign(tri, axis)) return r;
+    bool positive = tri.c[0][axis] > real(0);
     real lo = bc_huge();
     real hi = -bc_huge();
     for (int j = 0; j < 6; ++j) {
@@ -754,9 +777,18 @@ BC_FN SampleBounds sample_bounds(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi
         } else {
             BcEdgeCrossings crossings = bc_edge_crossings(tri, axis, s_lo[axis], s_hi[axis]);
             lens = bc_stage1(tri, axis, crossings);
-            if (lens.x > lens.y || !bc_stage2(tri, axis, s_lo[axis], s_hi[axis], crossings, lens, lines, lines2)) {
+            if (lens.x > lens.y) {
                 r.empty = true;
                 return r;
+            }
+            // Without motion along this axis, and on one side of the focal
+            // plane, stage 1's range is already where A and B both hold:
+            // stage 2 would find the same range and times [0, 1].
+            if (bc_axis_moves(tri, axis) || !bc_one_coc_sign(tri, axis)) {
+                if (!bc_stage2(tri, axis, s_lo[axis], s_hi[axis], crossings, lens, lines, lines2)) {
+                    r.empty = true;
+                    return r;
+                }
             }
         }
         if (lens.x > lens.y) {
