@@ -420,7 +420,9 @@ int main(int argc, char** argv) {
         const Options o = parse(argc, argv);
         std::vector<Config> configs;
         for (const std::string& method : o.methods)
-            for (int spp : o.spps) configs.push_back({method, spp});
+            for (int spp : o.spps)
+                // N = spp tuples needs tiles of at least 2 x 2 cells.
+                if (method != "interleave" || spp >= 4) configs.push_back({method, spp});
 
         std::vector<Row> rows;
         std::vector<Reference> references;
