@@ -127,10 +127,15 @@ TEST_CASE("bad input: one line naming the problem, non-zero exit, no output file
         {"render --scene '" + data_dir + "/bad_truncated.glb'", "bad_truncated.glb"},
         {"render --scene '" + data_dir + "/bad_camera_yfov.gltf'", "bad_camera_yfov.gltf"},
         {"render --scene '" + data_dir + "/bad_node_cycle.gltf'", "bad_node_cycle.gltf"},
+        // Refused before allocating: 64 GiB for the image alone.
+        {"render --size 65536x65536 --spp 1024", "GiB of memory"},
     };
     for (const Case& c : cases) {
         bool has_output = c.arguments.find(" -o ") != std::string::npos;
-        Run run = run_cli(c.arguments + " --size 32x24 -q" + (has_output ? "" : " -o should_not_exist.png"));
+        // A second --size would be an error of its own and hide the case's.
+        bool has_size = c.arguments.find("--size ") != std::string::npos;
+        Run run = run_cli(c.arguments + (has_size ? "" : " --size 32x24") + " -q" +
+                          (has_output ? "" : " -o should_not_exist.png"));
         INFO(c.arguments, " -> status ", run.status, ", stderr: ", run.err);
         CHECK(run.status != 0);
         CHECK(run.status != -1);  // exited, did not crash

@@ -72,6 +72,40 @@ void parse_shutter(const std::string& text, float& open, float& close) {
     }
 }
 
+// Memory budget: refuse a render whose buffers cannot fit before allocating
+// any. Per pixel: the float RGB image and the 8-bit PNG rows (15 bytes); per
+// sample, for the methods that keep every sample (interleave, interval: a
+// double depth and a uint32 hit) 12 bytes, for accum 4. The limit is
+// MemAvailable from /proc/meminfo (sysconf's available pages without it).
+double available_memory_bytes() {
+    if (FILE* meminfo = std::fopen("/proc/meminfo", "r")) {
+        char line[256];
+        double kib = -1.0;
+        while (std::fgets(line, sizeof line, meminfo)) {
+            if (std::sscanf(line, "MemAvailable: %lf kB", &kib) == 1) break;
+        }
+        std::fclose(meminfo);
+        if (kib >= 0.0) return kib * 1024.0;
+    }
+    return double(sysconf(_SC_AVPHYS_PAGES)) * double(sysconf(_SC_PAGESIZE));
+}
+
+void check_memory_budget(const std::string& size_text, int spp, const std::string& method, int width,
+                         int height) {
+    const double pixels = double(width) * double(height);
+    const double per_sample = method == "interleave" || method == "interval" ? 12.0 : (method == "accum" ? 4.0 : 0.0);
+    const double needed = pixels * (15.0 + per_sample * spp);
+    const double available = available_memory_bytes();
+    if (needed > available) {
+        char message[256];
+        std::snprintf(message, sizeof message,
+                      "--size %s --spp %d: the render needs about %.1f GiB of memory but only %.1f GiB is available "
+                      "(MemAvailable)",
+                      size_text.c_str(), spp, needed / 1073741824.0, available / 1073741824.0);
+        throw std::runtime_error(message);
+    }
+}
+
 // A built-in scene's motion is defined over its nominal shutter [0, 1];
 // another shutter re-samples that linear motion at OPEN and CLOSE.
 void resample_shutter(Scene& scene, float open, float close) {
@@ -134,6 +168,7 @@ void RenderCommand::add_options(CLI::App& app) {
 int RenderCommand::run() const {
     RenderSettings settings;
     parse_size(size, settings.width, settings.height);
+    check_memory_budget(size, spp, method, settings.width, settings.height);
     settings.spp = spp;
     settings.seed = seed;
     settings.cull = parse_cull_method(cull);
