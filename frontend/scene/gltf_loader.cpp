@@ -536,6 +536,12 @@ private:
                 if (!std::isfinite(znear) || znear <= 0.0) {
                     fail(name + " has znear " + std::to_string(znear) + " (must be positive)");
                 }
+                // zfar 0 is tinygltf's "absent" (an infinite projection).
+                const double zfar = camera.perspective.zfar;
+                if (zfar != 0.0 && !(zfar > znear)) {
+                    fail(name + " has zfar " + std::to_string(zfar) + " (must be greater than znear " +
+                         std::to_string(znear) + ")");
+                }
             } else if (camera.type != "orthographic") {
                 fail(name + " has unknown type '" + camera.type + "'");
             }
