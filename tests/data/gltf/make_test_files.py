@@ -180,6 +180,77 @@ def main():
     with open("bad_truncated.glb", "wb") as out:
         out.write(glb(triangle_model())[:200])
 
+    # --- robustness corpus (docs/robustness.md lists each file and its message) ---
+    # +Inf positions: skipped with a warning like NaN; the good primitive loads.
+    model = triangle_model()
+    bad = floats([0.0, 0.0, 0.0, float("inf"), 0.0, 0.0, 0.0, -float("inf"), 0.0])
+    model["buffers"].append({"byteLength": len(bad), "uri": data_uri(bad)})
+    model["bufferViews"].append({"buffer": 1, "byteOffset": 0, "byteLength": len(bad)})
+    model["accessors"].append({"bufferView": 2, "componentType": 5126, "count": 3, "type": "VEC3"})
+    model["meshes"][0]["primitives"].append({"attributes": {"POSITION": 2}})
+    write("inf_position.gltf", model)
+
+    # Only a non-finite primitive: nothing is left to render.
+    model = triangle_model(positions=[(0.0, 0.0, 0.0), (float("inf"), 0.0, 0.0), (0.0, 1.0, 0.0)])
+    del model["accessors"][0]["min"], model["accessors"][0]["max"]
+    write("bad_all_inf.gltf", model)
+
+    # Only lines: skipped with a warning, then nothing to render.
+    model = triangle_model()
+    model["meshes"][0]["primitives"][0]["mode"] = 1
+    write("bad_lines_only.gltf", model)
+
+    model = triangle_model()
+    model["meshes"][0]["primitives"][0]["mode"] = 9
+    write("bad_mode.gltf", model)
+
+    model = triangle_model()
+    model["accessors"][0]["bufferView"] = 9
+    write("bad_buffer_view_index.gltf", model)
+
+    # The index accessor claims more indices than its buffer view holds.
+    model = triangle_model()
+    model["accessors"][1]["count"] = 300
+    write("bad_index_count_past_end.gltf", model)
+
+    # Counts whose byte size overflows 64 bits: count * stride wraps around.
+    model = triangle_model()
+    model["accessors"][0]["count"] = 2 ** 62 + 1
+    write("bad_count_overflow.gltf", model)
+
+    # No buffer view (all zeros in glTF) and an absurd count: must not allocate.
+    model = triangle_model()
+    del model["accessors"][0]["bufferView"]
+    model["accessors"][0]["count"] = 2 ** 60
+    write("bad_count_no_view.gltf", model)
+
+    model = triangle_model()
+    model["bufferViews"][0]["byteStride"] = 4
+    write("bad_stride_small.gltf", model)
+
+    model = triangle_model()
+    model["bufferViews"][0]["byteStride"] = 1000
+    write("bad_stride_huge.gltf", model)
+
+    model = triangle_model()
+    model["bufferViews"][0]["byteStride"] = -12
+    write("bad_stride_negative.gltf", model)
+
+    write("bad_camera_yfov_negative.gltf", add_camera(triangle_model(), -0.5))
+    model = add_camera(triangle_model(), 0.8, znear=1.0)
+    model["cameras"][0]["perspective"]["zfar"] = 0.5
+    write("bad_camera_zfar.gltf", model)
+
+    # A GLB whose JSON chunk claims more bytes than the file has.
+    data = bytearray(glb(triangle_model()))
+    struct.pack_into("<I", data, 12, len(data) * 4)
+    with open("bad_glb_chunk.glb", "wb") as out:
+        out.write(bytes(data))
+
+    model = triangle_model()
+    model["nodes"] = [{"mesh": 0, "children": [0]}]
+    write("bad_node_self_child.gltf", model)
+
 
 if __name__ == "__main__":
     main()
