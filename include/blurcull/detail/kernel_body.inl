@@ -272,6 +272,7 @@ BC_FN void bc_build_hull(BC_IN(MovingTriangle) tri, real near, BC_INOUT(ScreenBo
         // cut off some point: move each edge out until every point is inside.
         for (int j = 0; j < n; ++j) d = max(d, -dot(n2, pts[j]));
         d = d + (abs(n2.x) + abs(n2.y)) * scale;
+        if (!bc_finite(d)) return;  // the margin overflowed: the box alone (hull_count stays 0)
         b.hull_edge[k] = vec3(n2.x, n2.y, d);
     }
     b.hull_count = h;
@@ -809,11 +810,15 @@ BC_FN SampleBounds sample_bounds(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi
 }
 
 BC_FN bool sample_passes(BC_IN(SampleBounds) b, vec2 uv, real t) {
-    if (b.empty) return false;
-    if (uv.x < b.u_range.x || uv.x > b.u_range.y || uv.y < b.v_range.x || uv.y > b.v_range.y) return false;
-    if (t < b.tx.x + b.tx.y * uv.x || t > b.tx.z + b.tx.w * uv.x) return false;
-    if (t < b.ty.x + b.ty.y * uv.y || t > b.ty.z + b.ty.w * uv.y) return false;
-    if (t < b.tx2.x + b.tx2.y * uv.x || t > b.tx2.z + b.tx2.w * uv.x) return false;
-    if (t < b.ty2.x + b.ty2.y * uv.y || t > b.ty2.z + b.ty2.w * uv.y) return false;
-    return true;
+    // Every comparison is made (BC_AND does not short-circuit on the host):
+    // from one sample to the next their outcomes are unpredictable, and a
+    // mispredicted branch costs more than the comparisons. !(a < b) keeps NaN
+    // samples in, like the screen test.
+    bool in_lens = BC_AND(BC_AND(!(uv.x < b.u_range.x), !(uv.x > b.u_range.y)),
+                          BC_AND(!(uv.y < b.v_range.x), !(uv.y > b.v_range.y)));
+    bool in_x = BC_AND(BC_AND(!(t < b.tx.x + b.tx.y * uv.x), !(t > b.tx.z + b.tx.w * uv.x)),
+                       BC_AND(!(t < b.tx2.x + b.tx2.y * uv.x), !(t > b.tx2.z + b.tx2.w * uv.x)));
+    bool in_y = BC_AND(BC_AND(!(t < b.ty.x + b.ty.y * uv.y), !(t > b.ty.z + b.ty.w * uv.y)),
+                       BC_AND(!(t < b.ty2.x + b.ty2.y * uv.y), !(t > b.ty2.z + b.ty2.w * uv.y)));
+    return BC_AND(BC_AND(!b.empty, in_lens), BC_AND(in_x, in_y));
 }
