@@ -810,15 +810,11 @@ BC_FN SampleBounds sample_bounds(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi
 }
 
 BC_FN bool sample_passes(BC_IN(SampleBounds) b, vec2 uv, real t) {
-    // Every comparison is made (BC_AND does not short-circuit on the host):
-    // from one sample to the next their outcomes are unpredictable, and a
-    // mispredicted branch costs more than the comparisons. !(a < b) keeps NaN
-    // samples in, like the screen test.
-    bool in_lens = BC_AND(BC_AND(!(uv.x < b.u_range.x), !(uv.x > b.u_range.y)),
-                          BC_AND(!(uv.y < b.v_range.x), !(uv.y > b.v_range.y)));
-    bool in_x = BC_AND(BC_AND(!(t < b.tx.x + b.tx.y * uv.x), !(t > b.tx.z + b.tx.w * uv.x)),
-                       BC_AND(!(t < b.tx2.x + b.tx2.y * uv.x), !(t > b.tx2.z + b.tx2.w * uv.x)));
-    bool in_y = BC_AND(BC_AND(!(t < b.ty.x + b.ty.y * uv.y), !(t > b.ty.z + b.ty.w * uv.y)),
-                       BC_AND(!(t < b.ty2.x + b.ty2.y * uv.y), !(t > b.ty2.z + b.ty2.w * uv.y)));
-    return BC_AND(BC_AND(!b.empty, in_lens), BC_AND(in_x, in_y));
+    if (b.empty) return false;
+    if (uv.x < b.u_range.x || uv.x > b.u_range.y || uv.y < b.v_range.x || uv.y > b.v_range.y) return false;
+    if (t < b.tx.x + b.tx.y * uv.x || t > b.tx.z + b.tx.w * uv.x) return false;
+    if (t < b.ty.x + b.ty.y * uv.y || t > b.ty.z + b.ty.w * uv.y) return false;
+    if (t < b.tx2.x + b.tx2.y * uv.x || t > b.tx2.z + b.tx2.w * uv.x) return false;
+    if (t < b.ty2.x + b.ty2.y * uv.y || t > b.ty2.z + b.ty2.w * uv.y) return false;
+    return true;
 }
