@@ -20,6 +20,9 @@ packages=(
   libtinygltf-dev libembree-dev libstb-dev
   # the blurcull command: option parsing and JSON output
   libcli11-dev nlohmann-json3-dev
+  # robustness: clang with libFuzzer and its sanitizer runtimes (fuzz/);
+  # gcc's ASan/UBSan runtimes come with build-essential
+  clang libclang-rt-14-dev
   # GL backend (planned) and shader validation
   glslang-tools libosmesa6-dev libegl-dev libgl-dev libgles-dev libgl1-mesa-dri
   libglfw3-dev xvfb xauth
