@@ -59,7 +59,17 @@
     X(PFNGLCLEARCOLORPROC, ClearColor)                             \
     X(PFNGLCLEARPROC, Clear)                                       \
     X(PFNGLREADPIXELSPROC, ReadPixels)                             \
-    X(PFNGLDRAWARRAYSPROC, DrawArrays)
+    X(PFNGLDRAWARRAYSPROC, DrawArrays)                             \
+    X(PFNGLENABLEPROC, Enable)                                     \
+    X(PFNGLDISABLEPROC, Disable)                                   \
+    X(PFNGLDEPTHFUNCPROC, DepthFunc)                               \
+    X(PFNGLCLIPCONTROLPROC, ClipControl)                           \
+    X(PFNGLCLEARBUFFERUIVPROC, ClearBufferuiv)                     \
+    X(PFNGLCLEARBUFFERFVPROC, ClearBufferfv)                       \
+    X(PFNGLTEXSTORAGE2DMULTISAMPLEPROC, TexStorage2DMultisample)   \
+    X(PFNGLMINSAMPLESHADINGPROC, MinSampleShading)                 \
+    X(PFNGLACTIVETEXTUREPROC, ActiveTexture)                       \
+    X(PFNGLUNIFORM2FPROC, Uniform2f)
 
 namespace blurcull::gl {
 

@@ -1,0 +1,374 @@
+#include "render/gl_backend.hpp"
+
+#include "render/camera_model.hpp"
+#include "render/moving_triangle.hpp"
+#include "render/shading.hpp"
+#include "scene/scene_checks.hpp"
+
+#include <gl/gl_context.hpp>
+
+#include <blurcull/glsl/kernel_glsl.hpp>
+#include <blurcull/glsl/render_glsl.hpp>
+#include <blurcull/kernel.hpp>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace blurcull::frontend {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using gl::GlError;
+
+double ms_since(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+int kernel_method(CullMethod method) {
+    switch (method) {
+        case CullMethod::bbox: return BC_CULL_BBOX;
+        case CullMethod::hull: return BC_CULL_HULL;
+        case CullMethod::dualspace: return BC_CULL_DUALSPACE;
+        case CullMethod::clip2: return BC_CULL_CLIP2;
+    }
+    return BC_CULL_BBOX;
+}
+
+// MSAA samples per pass: llvmpipe's maximum; spp / 4 passes reach any spp.
+constexpr int samples_per_pass = 4;
+
+// std430 layouts of the shaders' structs (shaders/glsl/render_common.glsl).
+struct GpuTriangle {           // MovingTriangle: vec3 p[6] (stride 16), vec2 c[6]
+    float p[6][4];
+    float c[6][2];
+};
+static_assert(sizeof(GpuTriangle) == 144, "std430 MovingTriangle");
+constexpr std::size_t triangle_info_bytes = (4 + 4 + 4 + 4 + 4 * BC_HULL_MAX) * 4;
+constexpr std::size_t cell_bounds_bytes = 6 * 4 * 4;  // CellBounds: ivec4 + 5 vec4
+constexpr int cells_max = 16;                         // CELLS_MAX
+
+std::string_view shader_text(std::string_view name) {
+    std::string_view text = glsl::render_shader_source(name);
+    if (text.empty()) throw GlError("gl: shader '" + std::string(name) + "' was not embedded at build time");
+    return text;
+}
+
+// A stage whose main needs the kernel: kernel, shared declarations, main.
+gl::ShaderStage kernel_stage(GLenum type, std::string_view main_name) {
+    return gl::ShaderStage{type, {glsl::kernel_source(), shader_text("render_common.glsl"), shader_text(main_name)}};
+}
+
+class Texture {
+public:
+    Texture(const gl::Functions& functions, GLenum format, int width, int height) : gl_(&functions) {
+        gl_->GenTextures(1, &id_);
+        gl_->BindTexture(GL_TEXTURE_2D_MULTISAMPLE, id_);
+        gl_->TexStorage2DMultisample(GL_TEXTURE_2D_MULTISAMPLE, samples_per_pass, format, width, height, GL_TRUE);
+        gl_->BindTexture(GL_TEXTURE_2D_MULTISAMPLE, 0);
+        gl::check_gl(*gl_, "gl: multisample texture");
+    }
+    Texture(const Texture&) = delete;
+    Texture& operator=(const Texture&) = delete;
+    ~Texture() { gl_->DeleteTextures(1, &id_); }
+    GLuint id() const { return id_; }
+
+private:
+    const gl::Functions* gl_;
+    GLuint id_ = 0;
+};
+
+class Framebuffer {
+public:
+    explicit Framebuffer(const gl::Functions& functions) : gl_(&functions) { gl_->GenFramebuffers(1, &id_); }
+    Framebuffer(const Framebuffer&) = delete;
+    Framebuffer& operator=(const Framebuffer&) = delete;
+    ~Framebuffer() { gl_->DeleteFramebuffers(1, &id_); }
+    GLuint id() const { return id_; }
+
+private:
+    const gl::Functions* gl_;
+    GLuint id_ = 0;
+};
+
+}  // namespace
+
+struct GlRenderer::State {
+    gl::HeadlessContext context;
+    gl::Program setup;
+    gl::Program bounds;
+    gl::Program draw_static;
+    gl::Program draw_moving;
+    gl::Program resolve;
+    GLuint vertex_array = 0;
+
+    explicit State(gl::HeadlessContext&& made)
+        : context(std::move(made)),
+          setup(context.gl(), {kernel_stage(GL_COMPUTE_SHADER, "render_setup.comp")}),
+          bounds(context.gl(), {kernel_stage(GL_COMPUTE_SHADER, "render_bounds.comp")}),
+          draw_static(context.gl(), {kernel_stage(GL_VERTEX_SHADER, "render_static.vert"),
+                                     kernel_stage(GL_FRAGMENT_SHADER, "render_static.frag")}),
+          draw_moving(context.gl(), {kernel_stage(GL_VERTEX_SHADER, "render_moving.vert"),
+                                     kernel_stage(GL_FRAGMENT_SHADER, "render_moving.frag")}),
+          resolve(context.gl(), {kernel_stage(GL_COMPUTE_SHADER, "render_resolve.comp")}) {
+        context.gl().GenVertexArrays(1, &vertex_array);
+    }
+    State(const State&) = delete;
+    State& operator=(const State&) = delete;
+    ~State() { context.gl().DeleteVertexArrays(1, &vertex_array); }
+};
+
+namespace {
+
+void set_int(const gl::Functions& gl, const gl::Program& program, const char* name, int value) {
+    gl.Uniform1i(gl.GetUniformLocation(program.id(), name), value);
+}
+void set_uint(const gl::Functions& gl, const gl::Program& program, const char* name, std::uint32_t value) {
+    gl.Uniform1ui(gl.GetUniformLocation(program.id(), name), value);
+}
+void set_float(const gl::Functions& gl, const gl::Program& program, const char* name, float value) {
+    gl.Uniform1f(gl.GetUniformLocation(program.id(), name), value);
+}
+
+// The uniforms of render_common.glsl.
+void set_common(const gl::Functions& gl, const gl::Program& program, const CameraModel& model,
+                const RenderSettings& settings, std::uint32_t pass_base) {
+    gl.UseProgram(program.id());
+    gl.Uniform2f(gl.GetUniformLocation(program.id(), "image_size"), static_cast<float>(settings.width),
+                 static_cast<float>(settings.height));
+    set_float(gl, program, "near_plane", model.znear);
+    set_uint(gl, program, "spp", static_cast<std::uint32_t>(settings.spp));
+    set_uint(gl, program, "seed", settings.seed);
+    set_uint(gl, program, "pass_base", pass_base);
+}
+
+int get_integer(const gl::Functions& gl, GLenum name) {
+    GLint value = 0;
+    gl.GetIntegerv(name, &value);
+    return value;
+}
+
+}  // namespace
+
+GlRenderer::GlRenderer() : state_(std::make_unique<State>(gl::HeadlessContext::create())) {
+    const gl::Functions& gl = state_->context.gl();
+    for (GLenum limit : {GL_MAX_INTEGER_SAMPLES, GL_MAX_DEPTH_TEXTURE_SAMPLES}) {
+        if (get_integer(gl, limit) < samples_per_pass) {
+            throw GlError("gl: the context has fewer than 4 samples for integer or depth multisample textures");
+        }
+    }
+}
+
+GlRenderer::GlRenderer(GlRenderer&&) noexcept = default;
+GlRenderer& GlRenderer::operator=(GlRenderer&&) noexcept = default;
+GlRenderer::~GlRenderer() = default;
+
+std::string GlRenderer::description() const {
+    return std::string(gl::context_kind_name(state_->context.kind())) + ", " + state_->context.renderer() + ", " +
+           state_->context.version();
+}
+
+RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settings, const GlOptions& options,
+                                std::vector<std::uint32_t>* sample_ids) {
+    const Clock::time_point start = Clock::now();
+    validate_settings(settings);
+    validate_scene(scene);
+    if (options.cell_pixels < 1) throw std::invalid_argument("gl: cell_pixels must be >= 1");
+    state_->context.make_current();
+    const gl::Functions& gl = state_->context.gl();
+    const int width = settings.width, height = settings.height;
+    const int max_size = std::min({get_integer(gl, GL_MAX_TEXTURE_SIZE), get_integer(gl, GL_MAX_FRAMEBUFFER_WIDTH),
+                                   get_integer(gl, GL_MAX_FRAMEBUFFER_HEIGHT)});
+    if (width > max_size || height > max_size) {
+        throw GlError("gl: image size " + std::to_string(width) + "x" + std::to_string(height) +
+                      " exceeds the context's limit of " + std::to_string(max_size) + " pixels per side");
+    }
+    const std::size_t count = scene.triangles.size();
+    // 64 cells per work group, at most 65535 groups (GL's minimum limit).
+    constexpr std::size_t triangle_limit = 65535 * 64 / cells_max;
+    if (count > triangle_limit) {
+        throw GlError("gl: " + std::to_string(count) + " triangles exceed the backend's limit of " +
+                      std::to_string(triangle_limit));
+    }
+    const CameraModel model(scene.camera, width, height);
+    const auto spp = static_cast<std::uint32_t>(settings.spp);
+
+    RenderResult result;
+    RenderStats& stats = result.stats;
+    stats.triangles = count;
+
+    // Setup: float clip-space triangles (make_moving_triangle<float>, as the
+    // kernel's GLSL sees them), colours, buffers, then per triangle on the GPU:
+    // classify, screen bound, path.
+    Clock::time_point phase = Clock::now();
+    std::vector<GpuTriangle> triangles(std::max<std::size_t>(count, 1));
+    for (std::size_t i = 0; i < count; ++i) {
+        const kernelf::MovingTriangle tri = make_moving_triangle<float>(scene, model, i);
+        for (int j = 0; j < 6; ++j) {
+            triangles[i].p[j][0] = tri.p[j].x;
+            triangles[i].p[j][1] = tri.p[j].y;
+            triangles[i].p[j][2] = tri.p[j].z;
+            triangles[i].p[j][3] = 0.0f;
+            triangles[i].c[j][0] = tri.c[j].x;
+            triangles[i].c[j][1] = tri.c[j].y;
+        }
+    }
+    const std::vector<glm::vec3> shaded = shade_all(scene);
+    std::vector<glm::vec4> colours;
+    colours.reserve(count + 1);
+    for (const glm::vec3& colour : shaded) colours.emplace_back(colour, 1.0f);
+    colours.emplace_back(scene.background, 1.0f);
+    const std::size_t pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+
+    gl::Buffer triangle_buffer(gl, GL_SHADER_STORAGE_BUFFER, triangles.size() * sizeof(GpuTriangle), triangles.data());
+    gl::Buffer info_buffer(gl, GL_SHADER_STORAGE_BUFFER, std::max<std::size_t>(count, 1) * triangle_info_bytes);
+    const std::uint32_t zero_counters[2] = {0, 0};
+    gl::Buffer counter_buffer(gl, GL_SHADER_STORAGE_BUFFER, sizeof zero_counters, zero_counters);
+    gl::Buffer colour_buffer(gl, GL_SHADER_STORAGE_BUFFER, colours.size() * sizeof(glm::vec4), colours.data());
+    gl::Buffer sum_buffer(gl, GL_SHADER_STORAGE_BUFFER, pixels * sizeof(glm::vec4));
+    const bool keep_ids = options.keep_sample_ids && sample_ids != nullptr;
+    gl::Buffer id_buffer(gl, GL_SHADER_STORAGE_BUFFER, keep_ids ? pixels * spp * sizeof(std::uint32_t) : 4);
+    triangle_buffer.bind_base(0);
+    info_buffer.bind_base(1);
+    counter_buffer.bind_base(2);
+    colour_buffer.bind_base(3);
+    sum_buffer.bind_base(4);
+    id_buffer.bind_base(5);
+    const int method = kernel_method(settings.cull);
+    const bool bounds_samples = method == BC_CULL_DUALSPACE || method == BC_CULL_CLIP2;
+    const int cells_per_triangle = bounds_samples ? cells_max : 1;
+    const std::size_t cell_count = count * static_cast<std::size_t>(cells_per_triangle);
+    gl::Buffer cell_buffer(gl, GL_SHADER_STORAGE_BUFFER, std::max<std::size_t>(cell_count, 1) * cell_bounds_bytes);
+    cell_buffer.bind_base(6);
+
+    if (count > 0) {
+        set_common(gl, state_->setup, model, settings, 0);
+        set_int(gl, state_->setup, "triangle_count", static_cast<int>(count));
+        set_int(gl, state_->setup, "method", method);
+        set_int(gl, state_->setup, "force_full", options.force_full_path ? 1 : 0);
+        gl.DispatchCompute(static_cast<GLuint>((count + 63) / 64), 1, 1);
+        gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        set_common(gl, state_->bounds, model, settings, 0);
+        set_int(gl, state_->bounds, "triangle_count", static_cast<int>(count));
+        set_int(gl, state_->bounds, "cells_per_triangle", cells_per_triangle);
+        set_int(gl, state_->bounds, "method", method);
+        set_int(gl, state_->bounds, "cell_pixels", options.cell_pixels);
+        gl.DispatchCompute(static_cast<GLuint>((cell_count + 63) / 64), 1, 1);
+        gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+
+    Texture id_texture(gl, GL_R32UI, width, height);
+    Texture depth_texture(gl, GL_DEPTH_COMPONENT32F, width, height);
+    Framebuffer framebuffer(gl);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
+    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D_MULTISAMPLE, id_texture.id(), 0);
+    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D_MULTISAMPLE, depth_texture.id(), 0);
+    if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        throw GlError("gl: the multisample id/depth framebuffer is incomplete");
+    }
+    gl.Viewport(0, 0, width, height);
+    // Depth is near / w: larger is nearer, 0 is empty; no clipping by depth
+    // (the near plane is covers()' business, the static path's quads reach
+    // past their triangle).
+    gl.ClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+    gl.Enable(GL_DEPTH_TEST);
+    gl.DepthFunc(GL_GREATER);
+    gl.Enable(GL_DEPTH_CLAMP);
+    gl.Enable(GL_MULTISAMPLE);
+    gl.BindVertexArray(state_->vertex_array);
+    gl.ActiveTexture(GL_TEXTURE0);
+    gl.BindTexture(GL_TEXTURE_2D_MULTISAMPLE, id_texture.id());
+    gl.Finish();
+    gl::check_gl(gl, "gl: setup");
+    stats.ms_per_phase.emplace_back("setup", ms_since(phase));
+
+    // Passes of four samples: per-sample ids and depths in 4x MSAA targets,
+    // folded into the per-pixel sums after each pass.
+    phase = Clock::now();
+    const std::uint32_t passes = (spp + samples_per_pass - 1) / samples_per_pass;
+    const GLuint clear_id[4] = {no_triangle, 0, 0, 0};
+    const GLfloat clear_depth = 0.0f;
+    for (std::uint32_t pass = 0; pass < passes; ++pass) {
+        const std::uint32_t pass_base = pass * samples_per_pass;
+        gl.ClearBufferuiv(GL_COLOR, 0, clear_id);
+        gl.ClearBufferfv(GL_DEPTH, 0, &clear_depth);
+        if (count > 0) {
+            // Six vertices per quad: per triangle (static), per cell (moving).
+            set_common(gl, state_->draw_static, model, settings, pass_base);
+            gl.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(count * 6));
+            set_common(gl, state_->draw_moving, model, settings, pass_base);
+            set_int(gl, state_->draw_moving, "cells_per_triangle", cells_per_triangle);
+            gl.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(cell_count * 6));
+        }
+        gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+        set_common(gl, state_->resolve, model, settings, pass_base);
+        set_uint(gl, state_->resolve, "background", static_cast<std::uint32_t>(count));
+        set_int(gl, state_->resolve, "keep_ids", keep_ids ? 1 : 0);
+        set_int(gl, state_->resolve, "pass_ids", 0);
+        gl.DispatchCompute(static_cast<GLuint>((width + 7) / 8), static_cast<GLuint>((height + 7) / 8), 1);
+        gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+        // 32-bit counters per pass, summed in 64 bits here.
+        std::uint32_t counters[2] = {0, 0};
+        counter_buffer.read(counters, sizeof counters);
+        stats.samples_tested += counters[0];
+        stats.samples_hit += counters[1];
+        gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, counter_buffer.id());
+        gl.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof zero_counters, zero_counters);
+        gl::check_gl(gl, "gl: raster pass");
+    }
+    gl.Finish();
+    stats.ms_per_phase.emplace_back("raster+resolve", ms_since(phase));
+
+    phase = Clock::now();
+    std::vector<glm::vec4> sums(pixels);
+    sum_buffer.read(sums.data(), pixels * sizeof(glm::vec4));
+    result.image = Image(width, height);
+    for (std::size_t i = 0; i < pixels; ++i) result.image.pixels[i] = resolve_box(glm::vec3(sums[i]), settings.spp);
+    if (keep_ids) {
+        sample_ids->assign(pixels * spp, no_triangle);
+        id_buffer.read(sample_ids->data(), sample_ids->size() * sizeof(std::uint32_t));
+    }
+    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    gl::check_gl(gl, "gl: readback");
+    stats.ms_per_phase.emplace_back("readback", ms_since(phase));
+    stats.ms_total = ms_since(start);
+    return result;
+}
+
+RenderResult render_gl(const Scene& scene, const RenderSettings& settings) {
+    const Clock::time_point start = Clock::now();
+    validate_settings(settings);
+    validate_scene(scene);
+    GlRenderer renderer;
+    // llvmpipe compiles a program's code on its first draw: one 1x1 frame
+    // makes that happen here, so "raster+resolve" is the frame alone.
+    RenderSettings warm_up = settings;
+    warm_up.width = 1;
+    warm_up.height = 1;
+    warm_up.spp = 4;
+    renderer.render(scene, warm_up);
+    const double compile_ms = ms_since(start);
+    RenderResult result = renderer.render(scene, settings);
+    result.stats.ms_per_phase.insert(result.stats.ms_per_phase.begin(), {"compile", compile_ms});
+    result.stats.ms_total = ms_since(start);
+    return result;
+}
+
+bool gl_available(std::string* reason) {
+    try {
+        gl::HeadlessContext::create();
+        return true;
+    } catch (const std::exception& e) {
+        if (reason != nullptr) *reason = e.what();
+        return false;
+    }
+}
+
+}  // namespace blurcull::frontend

@@ -1,0 +1,60 @@
+// Shared by the GL backend's stages (frontend/render/gl_backend.cpp): compiled
+// after the kernel's GLSL and before each stage's main. docs/gl-backend.md.
+
+// What render_setup.comp finds out about triangle i, once per frame.
+struct TriangleInfo {
+    vec4 box;    // screen_bound: lo.xy, hi.xy (NDC)
+    ivec4 rect;  // pixels x0, y0, x1, y1 (inclusive, row 0 at the top) holding every sample in box
+    ivec4 meta;  // x: classify(), y: hull_count, z: path (0 none, 1 static, 2 moving)
+    vec4 plane;  // static path: 1/w = plane.x X + plane.y Y + plane.z over the screen (NDC)
+    vec4 hull[BC_HULL_MAX];  // the hull's edges (xyz)
+};
+
+#define PATH_NONE 0
+#define PATH_STATIC 1
+#define PATH_MOVING 2
+
+// The clip-space triangles, made on the host by make_moving_triangle<float>.
+layout(std430, binding = 0) readonly buffer Triangles { MovingTriangle triangles[]; };
+
+uniform vec2 image_size;   // width, height in pixels
+uniform float near_plane;  // CameraModel::znear
+uniform uint spp;
+uniform uint seed;
+uniform uint pass_base;    // samples pass_base .. pass_base + 3 are drawn in this pass
+
+// CameraModel::sample_ndc: raster (x right, y down) to NDC, rounded as on the host.
+vec2 sample_ndc(uint px, uint py, vec2 offset) {
+    precise float rx = float(px) + offset.x;
+    precise float ry = float(py) + offset.y;
+    precise float x = -1.0 + 2.0 * rx / image_size.x;
+    precise float y = 1.0 - 2.0 * ry / image_size.y;
+    return vec2(x, y);
+}
+
+// NDC of the corner (x, y) of the pixel grid (x right, y down, in pixels).
+vec2 grid_ndc(int x, int y) {
+    precise float gx = -1.0 + 2.0 * float(x) / image_size.x;
+    precise float gy = 1.0 - 2.0 * float(y) / image_size.y;
+    return vec2(gx, gy);
+}
+
+
+// A moving triangle's pixel rectangle is split into at most 4 x 4 cells, each
+// with the method's sample bounds for its pixels (render_bounds.comp).
+#define CELLS_MAX 16
+struct CellBounds {
+    ivec4 rect;  // pixels x0, y0, x1, y1; empty when x0 > x1
+    vec4 lens;   // u_range, v_range
+    vec4 tx;
+    vec4 tx2;
+    vec4 ty;
+    vec4 ty2;
+};
+
+// Corner k (0..5, two triangles) of the quad over pixels rect, in NDC.
+vec2 quad_corner(ivec4 rect, int k) {
+    bool right = k == 1 || k == 4 || k == 5;
+    bool top = k == 2 || k == 3 || k == 5;
+    return grid_ndc(right ? rect.z + 1 : rect.x, top ? rect.y : rect.w + 1);
+}

@@ -1,0 +1,52 @@
+// Moving path, one invocation per sample (gl_SampleID makes it run at sample
+// rate): sample pass_base + gl_SampleID of the pattern, culled by the cell's
+// bounds and the screen bound, then the exact covers(); its depth goes to
+// gl_FragDepth (near / w), so the depth test is per sample.
+layout(std430, binding = 1) readonly buffer Infos { TriangleInfo infos[]; };
+layout(std430, binding = 2) buffer Counters { uint tested; uint hit; };
+
+flat in int g_index;
+flat in vec4 g_lens;
+flat in vec4 g_tx;
+flat in vec4 g_tx2;
+flat in vec4 g_ty;
+flat in vec4 g_ty2;
+layout(location = 0) out uint out_id;
+
+// The pixel (row 0 at the top) of this fragment: GL's window rows grow upwards.
+uvec2 fragment_pixel() {
+    return uvec2(uint(gl_FragCoord.x), uint(image_size.y) - 1u - uint(gl_FragCoord.y));
+}
+
+void main() {
+    uint j = pass_base + uint(gl_SampleID);
+    if (j >= spp) discard;
+    uvec2 pixel = fragment_pixel();
+    PixelSample s = pixel_sample(pixel.x, pixel.y, j, spp, seed);
+    SampleBounds sb;
+    sb.empty = false;
+    sb.u_range = g_lens.xy;
+    sb.v_range = g_lens.zw;
+    sb.tx = g_tx;
+    sb.tx2 = g_tx2;
+    sb.ty = g_ty;
+    sb.ty2 = g_ty2;
+    if (!sample_passes(sb, s.lens, s.time)) discard;
+    vec2 ndc = sample_ndc(pixel.x, pixel.y, s.offset);
+    ScreenBound b;
+    b.empty = false;
+    b.lo = infos[g_index].box.xy;
+    b.hi = infos[g_index].box.zw;
+    b.hull_count = infos[g_index].meta.y;
+    for (int k = 0; k < BC_HULL_MAX; ++k) {
+        b.hull_edge[k] = k < b.hull_count ? infos[g_index].hull[k].xyz : vec3(0.0);
+    }
+    if (!screen_contains(b, ndc)) discard;
+    atomicAdd(tested, 1u);
+    float depth;
+    if (!covers(triangles[g_index], ndc, s.lens, s.time, near_plane, depth)) discard;
+    atomicAdd(hit, 1u);
+    gl_FragDepth = near_plane / depth;
+    gl_SampleMask[0] = 1 << gl_SampleID;
+    out_id = uint(g_index);
+}

@@ -1,0 +1,29 @@
+// Moving or defocused triangles: six vertices per cell (cells_per_triangle
+// cells per triangle, in triangle order), a quad over the cell's pixels
+// carrying its sample bounds; empty cells get a degenerate quad.
+layout(std430, binding = 6) readonly buffer Cells { CellBounds cells[]; };
+
+uniform int cells_per_triangle;
+
+flat out int g_index;
+flat out vec4 g_lens;  // u_range, v_range
+flat out vec4 g_tx;
+flat out vec4 g_tx2;
+flat out vec4 g_ty;
+flat out vec4 g_ty2;
+
+void main() {
+    int cell = gl_VertexID / 6;
+    g_index = cell / cells_per_triangle;
+    CellBounds c = cells[cell];
+    g_lens = c.lens;
+    g_tx = c.tx;
+    g_tx2 = c.tx2;
+    g_ty = c.ty;
+    g_ty2 = c.ty2;
+    if (c.rect.x > c.rect.z) {
+        gl_Position = vec4(-2.0, -2.0, 0.0, 1.0);
+        return;
+    }
+    gl_Position = vec4(quad_corner(c.rect, gl_VertexID % 6), 0.5, 1.0);
+}

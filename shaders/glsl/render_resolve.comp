@@ -1,0 +1,29 @@
+// After each pass: add the pass's samples (in sample order) to each pixel's
+// running sum of colours, as the CPU backend sums them; optionally keep every
+// sample's triangle id.
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(binding = 0) uniform usampler2DMS pass_ids;
+layout(std430, binding = 3) readonly buffer Colours { vec4 colours[]; };  // background last
+layout(std430, binding = 4) buffer Sums { vec4 sums[]; };
+layout(std430, binding = 5) writeonly buffer SampleIds { uint sample_ids[]; };
+
+uniform uint background;  // index of the background colour in colours
+uniform int keep_ids;
+
+void main() {
+    uvec2 pixel = gl_GlobalInvocationID.xy;
+    uint width = uint(image_size.x), height = uint(image_size.y);
+    if (pixel.x >= width || pixel.y >= height) return;
+    uint index = pixel.y * width + pixel.x;
+    vec3 sum = pass_base == 0u ? vec3(0.0) : sums[index].xyz;
+    for (int k = 0; k < 4; ++k) {
+        uint j = pass_base + uint(k);
+        if (j >= spp) break;
+        uint id = texelFetch(pass_ids, ivec2(pixel.x, height - 1u - pixel.y), k).r;
+        precise vec3 next = sum + colours[id == 0xffffffffu ? background : id].xyz;
+        sum = next;
+        if (keep_ids != 0) sample_ids[index * spp + j] = id;
+    }
+    sums[index] = vec4(sum, 0.0);
+}
