@@ -245,3 +245,46 @@ TEST_CASE_TEMPLATE("sample pattern: deterministic, stratified, in range", Real, 
     // Another seed gives other samples.
     CHECK(K::pixel_sample(11u, 5u, 3u, 16u, 3u).time != s.time);
 }
+
+TEST_CASE_TEMPLATE("footprint screen state and time range agree with the per-sample tests", Real, float, double) {
+    using K = kernel<Real>;
+    Rng rng(99);
+    std::size_t inside = 0, outside = 0, checked = 0;
+    for (int n = 0; n < 4000; ++n) {
+        Family family = all_families()[std::size_t(n) % all_families().size()];
+        Config cfg = make_config(rng, family);
+        typename K::MovingTriangle tri = to_real<Real>(cfg.tri);
+        // A footprint near the triangle, sometimes well off it.
+        typename K::vec2 lo(cfg.s_lo), hi(cfg.s_hi);
+        if (n % 3 == 0) {
+            typename K::vec2 shift(Real(rng.signed_unit() * 0.2), Real(rng.signed_unit() * 0.2));
+            lo += shift;
+            hi += shift;
+        }
+        for (int method : all_methods) {
+            typename K::ScreenBound sb = K::screen_bound(tri, Real(cfg.near), method);
+            typename K::SampleBounds b = K::sample_bounds(tri, lo, hi, method);
+            int state = K::screen_footprint(sb, lo, hi);
+            typename K::vec2 range = K::sample_time_range(b);
+            inside += state == BC_FOOTPRINT_INSIDE;
+            outside += state == BC_FOOTPRINT_OUTSIDE;
+            for (int k = 0; k < 16; ++k) {
+                typename K::vec2 s(Real(rng.uniform(double(lo.x), double(hi.x))), Real(rng.uniform(double(lo.y), double(hi.y))));
+                s = glm::clamp(s, lo, hi);
+                typename K::vec2 uv(Real(rng.signed_unit()), Real(rng.signed_unit()));
+                Real t = Real(rng.uniform());
+                bool on_screen = K::screen_contains(sb, s);
+                if (state == BC_FOOTPRINT_OUTSIDE) REQUIRE_FALSE(on_screen);
+                if (state == BC_FOOTPRINT_INSIDE) REQUIRE(on_screen);
+                if (K::sample_passes(b, uv, t)) {
+                    REQUIRE(t >= range.x);
+                    REQUIRE(t <= range.y);
+                }
+                ++checked;
+            }
+        }
+    }
+    MESSAGE(checked, " samples; footprints inside ", inside, ", outside ", outside);
+    CHECK(inside > 100);
+    CHECK(outside > 100);
+}

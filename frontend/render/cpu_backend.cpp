@@ -122,6 +122,8 @@ RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, cons
     // triangle has neither to bound, whatever the method.
     const bool cull_bounds = method == BC_CULL_DUALSPACE || method == BC_CULL_CLIP2;
     const K::SampleBounds no_bounds = K::no_sample_bounds();
+    // Footprints that tile the work tiles get their samples sorted by time.
+    const bool time_sorted = cull_bounds && footprint <= tile_size && tile_size % footprint == 0;
 
     RenderResult result;
     RenderStats& stats = result.stats;
@@ -131,23 +133,63 @@ RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, cons
     Clock::time_point phase = Clock::now();
     const std::vector<glm::vec3> colours = shade_all(scene);
     const std::size_t count = scene.triangles.size();
+    std::size_t invalid = 0;
     std::vector<K::MovingTriangle> triangles(count);
     std::vector<PixelRect> rects(count);
     std::vector<int> classes(count);
+    // Each triangle's screen bound, computed once: its box, and its hull edges
+    // (if any) as a range of `hull_edges`.
+    struct StoredBound {
+        K::vec2 lo, hi;
+        std::size_t hull_offset = 0;
+        int hull_count = 0;
+    };
+    std::vector<StoredBound> bounds(count);
+    std::vector<K::vec3> hull_edges;
+    const int threads =
+        settings.threads > 0 ? settings.threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    {
+        // In parallel over contiguous chunks; each chunk keeps its hull edges
+        // apart, then they are joined in triangle order.
+        const std::size_t chunks = static_cast<std::size_t>(std::max(1, std::min(threads, 64)));
+        std::vector<std::vector<K::vec3>> chunk_edges(chunks);
+        std::vector<std::size_t> chunk_invalid(chunks, 0);
+        auto set_up = [&](std::size_t chunk) {
+            const std::size_t first = count * chunk / chunks, last = count * (chunk + 1) / chunks;
+            for (std::size_t i = first; i < last; ++i) {
+                triangles[i] = make_moving_triangle<double>(scene, model, i);
+                classes[i] = K::classify(triangles[i]);
+                rects[i] = PixelRect{0, 0, -1, -1};
+                if (classes[i] == BC_INVALID) {
+                    ++chunk_invalid[chunk];  // validate_scene checked the input; only overflow gets here
+                    continue;
+                }
+                const K::ScreenBound bound = K::screen_bound(triangles[i], near, method);
+                if (bound.empty) continue;
+                rects[i] = pixel_rect(model, bound.lo, bound.hi);
+                StoredBound& stored = bounds[i];
+                stored.lo = bound.lo;
+                stored.hi = bound.hi;
+                stored.hull_offset = chunk_edges[chunk].size();
+                stored.hull_count = bound.hull_count;
+                for (int e = 0; e < bound.hull_count; ++e) chunk_edges[chunk].push_back(bound.hull_edge[e]);
+            }
+        };
+        std::vector<std::thread> workers;
+        for (std::size_t c = 1; c < chunks; ++c) workers.emplace_back(set_up, c);
+        set_up(0);
+        for (std::thread& worker : workers) worker.join();
+        for (std::size_t c = 0; c < chunks; ++c) {
+            const std::size_t base = hull_edges.size();
+            for (std::size_t i = count * c / chunks; i < count * (c + 1) / chunks; ++i) bounds[i].hull_offset += base;
+            hull_edges.insert(hull_edges.end(), chunk_edges[c].begin(), chunk_edges[c].end());
+            invalid += chunk_invalid[c];
+        }
+    }
     const int tiles_x = (width + tile_size - 1) / tile_size;
     const int tiles_y = (height + tile_size - 1) / tile_size;
     std::vector<std::vector<std::uint32_t>> bins(static_cast<std::size_t>(tiles_x) * tiles_y);
-    std::size_t invalid = 0;
     for (std::size_t i = 0; i < count; ++i) {
-        triangles[i] = make_moving_triangle<double>(scene, model, i);
-        classes[i] = K::classify(triangles[i]);
-        if (classes[i] == BC_INVALID) {
-            ++invalid;  // validate_scene checked the input; only overflow gets here
-            rects[i] = PixelRect{0, 0, -1, -1};
-            continue;
-        }
-        const K::ScreenBound bound = K::screen_bound(triangles[i], near, BC_CULL_BBOX);
-        rects[i] = bound.empty ? PixelRect{0, 0, -1, -1} : pixel_rect(model, bound.lo, bound.hi);
         const PixelRect& r = rects[i];
         if (r.x0 > r.x1 || r.y0 > r.y1) continue;
         for (int ty = r.y0 / tile_size; ty <= r.y1 / tile_size; ++ty) {
@@ -173,6 +215,11 @@ RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, cons
 
     auto work = [&]() {
         std::vector<TileSample> samples(static_cast<std::size_t>(tile_size) * tile_size * spp);
+        // Per footprint of the tile's grid, its sample slots sorted by time, so
+        // that a footprint's bounds visit only their shutter interval.
+        std::vector<std::uint32_t> by_time(samples.size());
+        std::vector<double> by_time_t(samples.size());
+        std::vector<std::size_t> footprint_start;
         std::vector<double> depth(samples.size());
         std::vector<std::uint32_t> hit(samples.size());
         std::uint64_t tested = 0, hits = 0, bounded = 0, bounded_empty = 0;
@@ -198,42 +245,97 @@ RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, cons
                     }
                 }
             }
+            const int footprints_x = (tw + footprint - 1) / footprint;
+            if (time_sorted) {
+                const int th = y1 - y0 + 1;
+                const int footprints_y = (th + footprint - 1) / footprint;
+                footprint_start.assign(static_cast<std::size_t>(footprints_x) * footprints_y + 1, 0);
+                std::size_t next = 0;
+                for (int fy = 0; fy < footprints_y; ++fy) {
+                    for (int fx = 0; fx < footprints_x; ++fx) {
+                        const std::size_t first = next;
+                        footprint_start[static_cast<std::size_t>(fy) * footprints_x + fx] = first;
+                        for (int py = y0 + fy * footprint; py <= std::min(y1, y0 + fy * footprint + footprint - 1); ++py)
+                            for (int px = x0 + fx * footprint; px <= std::min(x1, x0 + fx * footprint + footprint - 1); ++px)
+                                for (std::uint32_t j = 0; j < spp; ++j) by_time[next++] = static_cast<std::uint32_t>(slot(px, py, j));
+                        std::sort(by_time.begin() + static_cast<std::ptrdiff_t>(first),
+                                  by_time.begin() + static_cast<std::ptrdiff_t>(next),
+                                  [&](std::uint32_t a, std::uint32_t b) { return samples[a].time < samples[b].time; });
+                        for (std::size_t q = first; q < next; ++q) by_time_t[q] = samples[by_time[q]].time;
+                    }
+                }
+                footprint_start.back() = next;
+            }
             for (std::uint32_t index : bins[static_cast<std::size_t>(tile)]) {
                 const K::MovingTriangle& tri = triangles[index];
                 const PixelRect& r = rects[index];
-                const K::ScreenBound bound = K::screen_bound(tri, near, method);
+                const StoredBound& stored = bounds[index];
+                K::ScreenBound bound;
+                bound.empty = false;
+                bound.lo = stored.lo;
+                bound.hi = stored.hi;
+                bound.hull_count = stored.hull_count;
+                for (int e = 0; e < stored.hull_count; ++e) bound.hull_edge[e] = hull_edges[stored.hull_offset + e];
                 const int rx0 = std::max(r.x0, x0), rx1 = std::min(r.x1, x1);
                 const int ry0 = std::max(r.y0, y0), ry1 = std::min(r.y1, y1);
                 const bool needs_bounds = cull_bounds && classes[index] != 0;
+                // NDC rectangle of a block of pixels (rows grow downwards).
+                auto footprint_lo = [&](int px0, int py1) {
+                    const glm::vec4 corner = model.pixel_ndc_bounds(px0, py1);
+                    return K::vec2(corner.x, corner.y);
+                };
+                auto footprint_hi = [&](int px1, int py0) {
+                    const glm::vec4 corner = model.pixel_ndc_bounds(px1, py0);
+                    return K::vec2(corner.z, corner.w);
+                };
                 auto bounds_of = [&](int px0, int py0, int px1, int py1) {
-                    const glm::vec4 top_left = model.pixel_ndc_bounds(px0, py0);
-                    const glm::vec4 bottom_right = model.pixel_ndc_bounds(px1, py1);
-                    K::SampleBounds sb = K::sample_bounds(tri, K::vec2(top_left.x, bottom_right.y),
-                                                          K::vec2(bottom_right.z, top_left.w), method);
+                    K::SampleBounds sb =
+                        K::sample_bounds(tri, footprint_lo(px0, py1), footprint_hi(px1, py0), method);
                     ++bounded;
                     if (sb.empty) ++bounded_empty;
                     return sb;
                 };
-                auto test_samples = [&](int px0, int py0, int px1, int py1, const K::SampleBounds& sb) {
-                    for (int py = py0; py <= py1; ++py) {
-                        for (int px = px0; px <= px1; ++px) {
-                            for (std::uint32_t j = 0; j < spp; ++j) {
-                                const std::size_t k = slot(px, py, j);
-                                const TileSample& s = samples[k];
-                                // The lens/time test first: it is cheaper than a hull and culls more.
-                                if (!K::sample_passes(sb, s.lens, s.time) || !K::screen_contains(bound, s.ndc))
-                                    continue;
-                                ++tested;
-                                double z = 0.0;
-                                if (!K::covers(tri, s.ndc, s.lens, s.time, near, z)) continue;
-                                ++hits;
-                                if (z < depth[k]) {
-                                    depth[k] = z;
-                                    hit[k] = index;
-                                }
-                            }
-                        }
+                bool check_screen = true;  // false while the footprint is inside the screen bound
+                auto test_sample = [&](std::size_t k, const K::SampleBounds& sb) {
+                    const TileSample& s = samples[k];
+                    // The lens/time test first: it is cheaper than a hull and culls more.
+                    if (!K::sample_passes(sb, s.lens, s.time) || (check_screen && !K::screen_contains(bound, s.ndc)))
+                        return;
+                    ++tested;
+                    double z = 0.0;
+                    if (!K::covers(tri, s.ndc, s.lens, s.time, near, z)) return;
+                    ++hits;
+                    if (z < depth[k]) {
+                        depth[k] = z;
+                        hit[k] = index;
                     }
+                };
+                auto test_samples = [&](int px0, int py0, int px1, int py1, const K::SampleBounds& sb) {
+                    // The screen bound per footprint first: skip it whole, or
+                    // spare its samples the per-sample screen test.
+                    const int state = K::screen_footprint(bound, footprint_lo(px0, py1), footprint_hi(px1, py0));
+                    if (state == BC_FOOTPRINT_OUTSIDE) return;
+                    check_screen = state != BC_FOOTPRINT_INSIDE;
+                    const K::vec2 range = time_sorted && needs_bounds ? K::sample_time_range(sb) : K::vec2(0.0, 1.0);
+                    // Only the footprint's samples inside the bounds' shutter interval, when
+                    // that skips enough of them to pay for visiting them out of memory order.
+                    if (range.y - range.x < 0.5) {
+                        const std::size_t f = static_cast<std::size_t>((py0 - y0) / footprint) * footprints_x +
+                                              static_cast<std::size_t>((px0 - x0) / footprint);
+                        const auto begin = by_time_t.begin() + static_cast<std::ptrdiff_t>(footprint_start[f]);
+                        const auto end = by_time_t.begin() + static_cast<std::ptrdiff_t>(footprint_start[f + 1]);
+                        for (auto it = std::lower_bound(begin, end, range.x); it != end && *it <= range.y; ++it) {
+                            const std::uint32_t k = by_time[static_cast<std::size_t>(it - by_time_t.begin())];
+                            const int local = static_cast<int>(k / spp);
+                            const int px = x0 + local % tw, py = y0 + local / tw;
+                            if (px < px0 || px > px1 || py < py0 || py > py1) continue;
+                            test_sample(k, sb);
+                        }
+                        return;
+                    }
+                    for (int py = py0; py <= py1; ++py)
+                        for (int px = px0; px <= px1; ++px)
+                            for (std::uint32_t j = 0; j < spp; ++j) test_sample(slot(px, py, j), sb);
                 };
                 // Blocks of the image grid clipped to the triangle's rectangle;
                 // the bounds hold for any footprint. A block whose bounds hold
@@ -279,8 +381,6 @@ RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, cons
         total_bounded_empty.fetch_add(bounded_empty);
     };
 
-    const int threads =
-        settings.threads > 0 ? settings.threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
     std::vector<std::thread> helpers;
     try {
         for (int i = 1; i < std::min(threads, tile_count); ++i) helpers.emplace_back(work);

@@ -28,9 +28,11 @@ void main() {
     bool covered = covers(tri, s, uv, t, near, depth);
     ScreenBound screen = screen_bound(tri, near, method);
     bool on_screen = screen_contains(screen, s);
+    int footprint_state = screen_footprint(screen, s - vec2(0.01), s + vec2(0.01));
     SampleBounds none = no_sample_bounds();
     SampleBounds bounds = sample_bounds(tri, s - vec2(0.01), s + vec2(0.01), method);
     bool passes = sample_passes(bounds, uv, t) || sample_passes(none, uv, t);
+    vec2 time_range = sample_time_range(bounds);
     uint px = uint(values[43]);
     uint py = uint(values[44]);
     PixelSample sample_at = pixel_sample(px, py, 3u, 16u, 7u);
@@ -44,8 +46,8 @@ void main() {
     uint tile = interleaved_corner_colour(px, py, 7u) + interleaved_prototype(px, py, 7u);
     vec2 jitter = interleaved_jitter(px, py, 7u);
 
-    values[0] = coc + vertex.x + float(finite) + float(needs) + float(covered) + depth + float(on_screen) +
-                float(passes) + sample_at.offset.x + sample_at.lens.y + sample_at.time + patterned.time +
+    values[0] = coc + vertex.x + float(finite) + float(needs) + float(covered) + depth + float(on_screen) + float(footprint_state) +
+                float(passes) + time_range.x + sample_at.offset.x + sample_at.lens.y + sample_at.time + patterned.time +
                 tiled.time + from_setup.time + others[0].time + others[1].time + others[2].time + others[3].time + tuple.x +
                 float(tile) + jitter.x;
 }

@@ -298,6 +298,29 @@ BC_FN ScreenBound screen_bound(BC_IN(MovingTriangle) tri, real near, int method)
     return b;
 }
 
+#define BC_FOOTPRINT_OUTSIDE 0
+#define BC_FOOTPRINT_PARTIAL 1
+#define BC_FOOTPRINT_INSIDE 2
+
+// Where a screen rectangle [lo, hi] lies relative to the bound: entirely
+// outside (no sample in it can pass screen_contains), entirely inside (every
+// sample passes; a renderer may skip the per-sample test), or partly.
+BC_FN int screen_footprint(BC_IN(ScreenBound) b, vec2 lo, vec2 hi) {
+    if (b.empty || hi.x < b.lo.x || lo.x > b.hi.x || hi.y < b.lo.y || lo.y > b.hi.y) return BC_FOOTPRINT_OUTSIDE;
+    bool inside = lo.x >= b.lo.x && hi.x <= b.hi.x && lo.y >= b.lo.y && hi.y <= b.hi.y;
+    for (int k = 0; k < b.hull_count; ++k) {
+        vec3 e = b.hull_edge[k];
+        // The rectangle's corner farthest inside and farthest outside this edge.
+        real best = e.z + max(e.x * lo.x, e.x * hi.x) + max(e.y * lo.y, e.y * hi.y);
+        real worst = e.z + min(e.x * lo.x, e.x * hi.x) + min(e.y * lo.y, e.y * hi.y);
+        // Outside only with room for rounding: a sample's own test sums differently.
+        real slack = bc_err(abs(e.x) * max(abs(lo.x), abs(hi.x)) + abs(e.y) * max(abs(lo.y), abs(hi.y)) + abs(e.z));
+        if (best < -slack) return BC_FOOTPRINT_OUTSIDE;
+        if (!(worst >= real(0))) inside = false;
+    }
+    return inside ? BC_FOOTPRINT_INSIDE : BC_FOOTPRINT_PARTIAL;
+}
+
 BC_FN bool screen_contains(BC_IN(ScreenBound) b, vec2 s) {
     if (b.empty) return false;
     if (s.x < b.lo.x || s.x > b.hi.x || s.y < b.lo.y || s.y > b.hi.y) return false;
@@ -807,6 +830,26 @@ BC_FN SampleBounds sample_bounds(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi
         }
     }
     return r;
+}
+
+// The shutter interval that holds every sample sample_passes lets through:
+// each time line, linear in u (v), is extremal at an end of the lens range.
+// (lo > hi when the bounds are empty.) Lets a renderer whose samples are
+// sorted by time visit only that interval.
+BC_FN vec2 sample_time_range(BC_IN(SampleBounds) b) {
+    if (b.empty) return vec2(real(1), real(0));
+    vec4 u = vec4(b.u_range.x, b.u_range.y, b.v_range.x, b.v_range.y);
+    real lo = max(max(min(b.tx.x + b.tx.y * u.x, b.tx.x + b.tx.y * u.y),
+                      min(b.tx2.x + b.tx2.y * u.x, b.tx2.x + b.tx2.y * u.y)),
+                  max(min(b.ty.x + b.ty.y * u.z, b.ty.x + b.ty.y * u.w),
+                      min(b.ty2.x + b.ty2.y * u.z, b.ty2.x + b.ty2.y * u.w)));
+    real hi = min(min(max(b.tx.z + b.tx.w * u.x, b.tx.z + b.tx.w * u.y),
+                      max(b.tx2.z + b.tx2.w * u.x, b.tx2.z + b.tx2.w * u.y)),
+                  min(max(b.ty.z + b.ty.w * u.z, b.ty.z + b.ty.w * u.w),
+                      max(b.ty2.z + b.ty2.w * u.z, b.ty2.z + b.ty2.w * u.w)));
+    // A line's value inside the range can round a hair past its ends' values.
+    real pad = bc_err(real(1) + max(abs(lo), abs(hi)));
+    return vec2(max(lo - pad, real(0)), min(hi + pad, real(1)));
 }
 
 BC_FN bool sample_passes(BC_IN(SampleBounds) b, vec2 uv, real t) {
