@@ -39,6 +39,8 @@ struct kernel {
     // Machine epsilon and the largest finite value of `real` (GLSL prelude: constants).
     static constexpr real bc_epsilon() { return std::numeric_limits<real>::epsilon(); }
     static constexpr real bc_huge() { return std::numeric_limits<real>::max(); }
+    // The smallest normal value: below it, rounding errors are absolute.
+    static constexpr real bc_tiny() { return std::numeric_limits<real>::min(); }
 
 #include "detail/sampling_body.inl"
 #include "detail/kernel_body.inl"

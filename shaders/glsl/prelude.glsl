@@ -17,3 +17,5 @@
 // std::numeric_limits<float>::epsilon() and max(), exactly (0x34000000, 0x7f7fffff).
 float bc_epsilon() { return uintBitsToFloat(0x34000000u); }
 float bc_huge() { return uintBitsToFloat(0x7f7fffffu); }
+// std::numeric_limits<float>::min(), the smallest normal value (0x00800000).
+float bc_tiny() { return uintBitsToFloat(0x00800000u); }

@@ -49,7 +49,9 @@ struct SampleBounds {
 };
 
 BC_FN real bc_err(real magnitude) {
-    return magnitude * (real(BC_MARGIN) * bc_epsilon());
+    // Relative to the magnitude, plus an absolute floor for results in the
+    // subnormal range, where rounding errors stop shrinking with the values.
+    return magnitude * (real(BC_MARGIN) * bc_epsilon()) + real(BC_MARGIN) * bc_tiny();
 }
 
 // Dialect rule (docs/glsl.md): no function call inside a loop condition
