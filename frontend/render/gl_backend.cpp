@@ -104,6 +104,7 @@ struct GlRenderer::State {
     gl::HeadlessContext context;
     gl::Program setup;
     gl::Program bounds;
+    gl::Program samples;
     gl::Program draw_static;
     gl::Program draw_moving;
     gl::Program resolve;
@@ -113,6 +114,7 @@ struct GlRenderer::State {
         : context(std::move(made)),
           setup(context.gl(), {kernel_stage(GL_COMPUTE_SHADER, "render_setup.comp")}),
           bounds(context.gl(), {kernel_stage(GL_COMPUTE_SHADER, "render_bounds.comp")}),
+          samples(context.gl(), {kernel_stage(GL_COMPUTE_SHADER, "render_samples.comp")}),
           draw_static(context.gl(), {kernel_stage(GL_VERTEX_SHADER, "render_static.vert"),
                                      kernel_stage(GL_FRAGMENT_SHADER, "render_static.frag")}),
           draw_moving(context.gl(), {kernel_stage(GL_VERTEX_SHADER, "render_moving.vert"),
@@ -247,6 +249,10 @@ RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settin
     const std::size_t cell_count = count * static_cast<std::size_t>(cells_per_triangle);
     gl::Buffer cell_buffer(gl, GL_SHADER_STORAGE_BUFFER, std::max<std::size_t>(cell_count, 1) * cell_bounds_bytes);
     cell_buffer.bind_base(6);
+    gl::Buffer pass_sample_buffer(gl, GL_SHADER_STORAGE_BUFFER, pixels * samples_per_pass * sizeof(glm::vec4));
+    gl::Buffer pass_time_buffer(gl, GL_SHADER_STORAGE_BUFFER, pixels * samples_per_pass * sizeof(float));
+    pass_sample_buffer.bind_base(7);
+    pass_time_buffer.bind_base(8);
 
     if (count > 0) {
         set_common(gl, state_->setup, model, settings, 0);
@@ -274,9 +280,8 @@ RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settin
         throw GlError("gl: the multisample id/depth framebuffer is incomplete");
     }
     gl.Viewport(0, 0, width, height);
-    // Depth is near / w: larger is nearer, 0 is empty; no clipping by depth
-    // (the near plane is covers()' business, the static path's quads reach
-    // past their triangle).
+    // Depth is near / w, written by the fragment shaders from covers(): larger
+    // is nearer, 0 is empty; depth clamping, so quads are never clipped by depth.
     gl.ClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
     gl.Enable(GL_DEPTH_TEST);
     gl.DepthFunc(GL_GREATER);
@@ -297,6 +302,9 @@ RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settin
     const GLfloat clear_depth = 0.0f;
     for (std::uint32_t pass = 0; pass < passes; ++pass) {
         const std::uint32_t pass_base = pass * samples_per_pass;
+        set_common(gl, state_->samples, model, settings, pass_base);
+        gl.DispatchCompute(static_cast<GLuint>((width + 7) / 8), static_cast<GLuint>((height + 7) / 8), 1);
+        gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         gl.ClearBufferuiv(GL_COLOR, 0, clear_id);
         gl.ClearBufferfv(GL_DEPTH, 0, &clear_depth);
         if (count > 0) {
@@ -364,6 +372,23 @@ RenderResult render_gl(const Scene& scene, const RenderSettings& settings) {
 bool gl_available(std::string* reason) {
     try {
         gl::HeadlessContext::create();
+        return true;
+    } catch (const std::exception& e) {
+        if (reason != nullptr) *reason = e.what();
+        return false;
+    }
+}
+
+bool gl_hardware_available(std::string* reason) {
+    try {
+        const gl::HeadlessContext context = gl::HeadlessContext::create();
+        const std::string renderer = context.renderer();
+        for (const char* software : {"llvmpipe", "softpipe", "swrast"}) {
+            if (renderer.find(software) != std::string::npos) {
+                if (reason != nullptr) *reason = "only a software renderer, " + renderer + ", slower than the cpu backend";
+                return false;
+            }
+        }
         return true;
     } catch (const std::exception& e) {
         if (reason != nullptr) *reason = e.what();

@@ -62,4 +62,9 @@ RenderResult render_gl(const Scene& scene, const RenderSettings& settings);
 // `reason` is given, says why.
 bool gl_available(std::string* reason = nullptr);
 
+// Whether a headless context can be made and runs on hardware (its
+// GL_RENDERER is not Mesa's llvmpipe, softpipe or swrast); when not, and
+// `reason` is given, says why. `blurcull render --backend auto` uses gl then.
+bool gl_hardware_available(std::string* reason = nullptr);
+
 }  // namespace blurcull::frontend

@@ -6,7 +6,7 @@ struct TriangleInfo {
     vec4 box;    // screen_bound: lo.xy, hi.xy (NDC)
     ivec4 rect;  // pixels x0, y0, x1, y1 (inclusive, row 0 at the top) holding every sample in box
     ivec4 meta;  // x: classify(), y: hull_count, z: path (0 none, 1 static, 2 moving)
-    vec4 plane;  // static path: 1/w = plane.x X + plane.y Y + plane.z over the screen (NDC)
+    vec4 unused;
     vec4 hull[BC_HULL_MAX];  // the hull's edges (xyz)
 };
 
@@ -39,6 +39,12 @@ vec2 grid_ndc(int x, int y) {
     return vec2(gx, gy);
 }
 
+
+// The current pass's samples (render_samples.comp): pixel p's sample
+// pass_base + k is at slot 4 p + k.
+#define PASS_SAMPLE_BUFFERS \
+    layout(std430, binding = 7) readonly buffer PassSamples { vec4 pass_ndc_lens[]; }; \
+    layout(std430, binding = 8) readonly buffer PassTimes { float pass_time[]; };
 
 // A moving triangle's pixel rectangle is split into at most 4 x 4 cells, each
 // with the method's sample bounds for its pixels (render_bounds.comp).

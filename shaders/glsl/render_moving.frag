@@ -1,9 +1,10 @@
 // Moving path, one invocation per sample (gl_SampleID makes it run at sample
-// rate): sample pass_base + gl_SampleID of the pattern, culled by the cell's
+// rate): sample pass_base + gl_SampleID of the pattern (render_samples.comp), culled by the cell's
 // bounds and the screen bound, then the exact covers(); its depth goes to
 // gl_FragDepth (near / w), so the depth test is per sample.
 layout(std430, binding = 1) readonly buffer Infos { TriangleInfo infos[]; };
 layout(std430, binding = 2) buffer Counters { uint tested; uint hit; };
+PASS_SAMPLE_BUFFERS
 
 flat in int g_index;
 flat in vec4 g_lens;
@@ -22,7 +23,12 @@ void main() {
     uint j = pass_base + uint(gl_SampleID);
     if (j >= spp) discard;
     uvec2 pixel = fragment_pixel();
-    PixelSample s = pixel_sample(pixel.x, pixel.y, j, spp, seed);
+    uint slot = (pixel.y * uint(image_size.x) + pixel.x) * 4u + uint(gl_SampleID);
+    vec4 ndc_lens = pass_ndc_lens[slot];
+    PixelSample s;
+    s.offset = vec2(0.0);
+    s.lens = ndc_lens.zw;
+    s.time = pass_time[slot];
     SampleBounds sb;
     sb.empty = false;
     sb.u_range = g_lens.xy;
@@ -32,7 +38,7 @@ void main() {
     sb.ty = g_ty;
     sb.ty2 = g_ty2;
     if (!sample_passes(sb, s.lens, s.time)) discard;
-    vec2 ndc = sample_ndc(pixel.x, pixel.y, s.offset);
+    vec2 ndc = ndc_lens.xy;
     ScreenBound b;
     b.empty = false;
     b.lo = infos[g_index].box.xy;

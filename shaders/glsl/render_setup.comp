@@ -21,7 +21,7 @@ void main() {
     TriangleInfo info;
     info.box = vec4(0.0);
     info.rect = ivec4(0, 0, -1, -1);
-    info.plane = vec4(0.0);
+    info.unused = vec4(0.0);
     int needs = classify(tri);
     info.meta = ivec4(needs, 0, PATH_NONE, 0);
     for (int k = 0; k < BC_HULL_MAX; ++k) info.hull[k] = vec4(0.0);
@@ -29,12 +29,8 @@ void main() {
         infos[i] = info;
         return;
     }
-    // Static, in focus, wholly in front of the near plane, not edge-on: the
-    // static path, whose depth is the plane of 1/w over the screen.
-    bool in_front = tri.p[0].z >= near_plane && tri.p[1].z >= near_plane && tri.p[2].z >= near_plane;
-    vec2 q0 = tri.p[0].xy / tri.p[0].z, q1 = tri.p[1].xy / tri.p[1].z, q2 = tri.p[2].xy / tri.p[2].z;
-    float det = (q1.x - q0.x) * (q2.y - q0.y) - (q2.x - q0.x) * (q1.y - q0.y);
-    bool is_static = needs == 0 && force_full == 0 && in_front && abs(det) > 1e-12;
+    // Static and in focus: the static path (no cells, no hull, no lens/time bounds).
+    bool is_static = needs == 0 && force_full == 0;
     ScreenBound b = screen_bound(tri, near_plane, is_static ? BC_CULL_BBOX : method);
     if (b.empty) {
         infos[i] = info;
@@ -59,12 +55,5 @@ void main() {
     }
     info.rect = r;
     info.meta.z = is_static ? PATH_STATIC : PATH_MOVING;
-    if (is_static) {
-        // 1/w is affine over the screen for a plane: solve it from the vertices.
-        float r0 = 1.0 / tri.p[0].z, r1 = 1.0 / tri.p[1].z, r2 = 1.0 / tri.p[2].z;
-        float a = ((r1 - r0) * (q2.y - q0.y) - (r2 - r0) * (q1.y - q0.y)) / det;
-        float c = ((q1.x - q0.x) * (r2 - r0) - (q2.x - q0.x) * (r1 - r0)) / det;
-        info.plane = vec4(a, c, r0 - a * q0.x - c * q0.y, 0.0);
-    }
     infos[i] = info;
 }

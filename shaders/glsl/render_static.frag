@@ -1,8 +1,12 @@
-// Static path, one invocation per pixel: the pass's four samples of the
-// pattern, each tested by covers() (for a static in-focus triangle, three edge
-// functions), coverage written through gl_SampleMask; depth is the rasterizer's.
+// Static path: triangles that neither move nor defocus. One invocation per
+// sample (gl_SampleID; llvmpipe shades a shader that writes gl_SampleMask per
+// sample anyway): sample pass_base + gl_SampleID of the pattern
+// (render_samples.comp), the screen box, then covers(), which for such a
+// triangle is three edge functions. No cells, no hull, no lens/time bounds.
+// The exact depth goes to gl_FragDepth (near / w), as on the moving path.
 layout(std430, binding = 1) readonly buffer Infos { TriangleInfo infos[]; };
 layout(std430, binding = 2) buffer Counters { uint tested; uint hit; };
+PASS_SAMPLE_BUFFERS
 
 flat in int g_index;
 layout(location = 0) out uint out_id;
@@ -13,32 +17,22 @@ uvec2 fragment_pixel() {
 }
 
 void main() {
+    uint j = pass_base + uint(gl_SampleID);
+    if (j >= spp) discard;
     uvec2 pixel = fragment_pixel();
-    MovingTriangle tri = triangles[g_index];
+    uint slot = (pixel.y * uint(image_size.x) + pixel.x) * 4u + uint(gl_SampleID);
+    vec4 ndc_lens = pass_ndc_lens[slot];
     ScreenBound b;
     b.empty = false;
     b.lo = infos[g_index].box.xy;
     b.hi = infos[g_index].box.zw;
     b.hull_count = 0;
-    PixelSampleSetup setup = pixel_sample_setup(pixel.x, pixel.y, spp, seed);
-    int mask = 0;
-    uint tests = 0u, hits = 0u;
-    for (int k = 0; k < 4; ++k) {
-        uint j = pass_base + uint(k);
-        if (j >= spp) break;
-        PixelSample s = pixel_sample_from(setup, j);
-        vec2 ndc = sample_ndc(pixel.x, pixel.y, s.offset);
-        if (!screen_contains(b, ndc)) continue;
-        tests += 1u;
-        float depth;
-        if (covers(tri, ndc, s.lens, s.time, near_plane, depth)) {
-            mask |= 1 << k;
-            hits += 1u;
-        }
-    }
-    if (tests > 0u) atomicAdd(tested, tests);
-    if (mask == 0) discard;
-    atomicAdd(hit, hits);
-    gl_SampleMask[0] = mask;
+    if (!screen_contains(b, ndc_lens.xy)) discard;
+    atomicAdd(tested, 1u);
+    float depth;
+    if (!covers(triangles[g_index], ndc_lens.xy, ndc_lens.zw, pass_time[slot], near_plane, depth)) discard;
+    atomicAdd(hit, 1u);
+    gl_FragDepth = near_plane / depth;
+    gl_SampleMask[0] = 1 << gl_SampleID;
     out_id = uint(g_index);
 }

@@ -1,7 +1,6 @@
-// Static, in-focus triangles: six vertices per triangle (glDrawArrays, GL_TRIANGLES)
-// make a quad over its pixel rectangle, depth from the triangle's plane
-// (z = near / w, affine over the screen), so the fixed-function depth test
-// compares at the MSAA sample positions. Other triangles get a degenerate quad.
+// Static, in-focus triangles: six vertices per triangle (glDrawArrays,
+// GL_TRIANGLES) make a quad over its pixel rectangle, one quad per triangle
+// whatever the method. Other triangles get a degenerate quad.
 layout(std430, binding = 1) readonly buffer Infos { TriangleInfo infos[]; };
 
 flat out int g_index;
@@ -13,7 +12,5 @@ void main() {
         gl_Position = vec4(-2.0, -2.0, 0.0, 1.0);
         return;
     }
-    vec2 ndc = quad_corner(infos[i].rect, gl_VertexID % 6);
-    vec4 plane = infos[i].plane;
-    gl_Position = vec4(ndc, near_plane * (plane.x * ndc.x + plane.y * ndc.y + plane.z), 1.0);
+    gl_Position = vec4(quad_corner(infos[i].rect, gl_VertexID % 6), 0.5, 1.0);
 }
