@@ -120,7 +120,7 @@ TEST_CASE("bad input: one line naming the problem, non-zero exit, no output file
         {"render --scene nowhere", "unknown scene"},
         {"render --scene missing_file.gltf", "missing_file.gltf"},
         {"render -o /nonexistent-folder/x.png", "not writable"},
-        {"render --backend gl", "--backend gl"},
+        {"render --backend gl --method accum", "--method"},
         {"render --bogus", "bogus"},
         {"render --scene '" + data_dir + "/bad_json.gltf'", "bad_json.gltf"},
         {"render --scene '" + data_dir + "/bad_accessor_past_end.gltf'", "bad_accessor_past_end.gltf"},

@@ -2,6 +2,7 @@
 
 #include "render/cpu_backend.hpp"
 #include "render/embree_backend.hpp"
+#include "render/gl_backend.hpp"
 #include "render/image.hpp"
 #include "render/interleaved_backend.hpp"
 #include "render/render_types.hpp"
@@ -213,17 +214,30 @@ int RenderCommand::run() const {
     validate_scene(loaded);
 
     std::string used_backend = backend;
-    if (backend == "gl") {
-        throw std::runtime_error("--backend gl: the OpenGL backend is not built yet (planned); use --backend cpu or embree");
+    if (backend == "auto") {
+        // gl on a hardware OpenGL 4.5 context; cpu otherwise (software GL,
+        // llvmpipe, is far slower than the cpu backend). One line says which.
+        std::string why;
+        if (method != "stochastic") {
+            why = "--method " + method + " is cpu-only";
+        } else if (gl_hardware_available(&why)) {
+            used_backend = "gl";
+        }
+        if (used_backend != "gl") used_backend = "cpu";
+        if (!quiet) {
+            std::fprintf(stderr, "note: --backend auto: using %s (%s)\n", used_backend.c_str(),
+                         used_backend == "gl" ? "hardware OpenGL 4.5 context" : ("gl: " + why).c_str());
+        }
     }
-    if (backend == "auto") used_backend = "cpu";
 
-    if (used_backend == "embree" && method != "stochastic") {
+    if ((used_backend == "embree" || used_backend == "gl") && method != "stochastic") {
         throw std::runtime_error("--method " + method + ": only the cpu backend has it; use --backend cpu");
     }
     RenderResult result;
     if (used_backend == "embree") {
         result = render_embree(loaded, settings);
+    } else if (used_backend == "gl") {
+        result = render_gl(loaded, settings);
     } else if (method != "stochastic") {
         result = render_with_method(loaded, settings);
     } else {
