@@ -13,6 +13,7 @@
 // Errors are deterministic (every renderer is); times are medians over
 // --repeat runs with the methods interleaved within each repeat, so a drifting
 // machine load hits all of them alike.
+#include "doc_section.hpp"
 #include "render/cpu_backend.hpp"
 #include "render/embree_backend.hpp"
 #include "render/image.hpp"
@@ -322,31 +323,6 @@ std::string markdown(const std::vector<Row>& rows, const std::vector<Reference>&
     return md.str();
 }
 
-// Replaces the text between the markers in `path` (or appends the block).
-void write_section(const std::string& path, const std::string& body) {
-    const std::string begin = "<!-- pareto-table:begin -->", end = "<!-- pareto-table:end -->";
-    std::string text;
-    {
-        std::ifstream in(path);
-        if (in) {
-            std::stringstream buffer;
-            buffer << in.rdbuf();
-            text = buffer.str();
-        }
-    }
-    std::string block = begin + "\n" + body + end + "\n";
-    std::size_t b = text.find(begin), e = text.find(end);
-    if (b != std::string::npos && e != std::string::npos && e > b) {
-        text.replace(b, e + end.size() + 1 - b, block);
-    } else {
-        if (text.empty()) text = "# Benchmarks\n\n";
-        text += "\n" + block;
-    }
-    std::ofstream out(path);
-    if (!out) throw std::runtime_error("cannot write '" + path + "'");
-    out << text;
-}
-
 Options parse(int argc, char** argv) {
     Options o;
     for (int i = 1; i < argc; ++i) {
@@ -469,7 +445,7 @@ int main(int argc, char** argv) {
 
         const std::string md = markdown(rows, references, o);
         std::printf("%s", md.c_str());
-        if (!o.markdown_path.empty()) write_section(o.markdown_path, md);
+        if (!o.markdown_path.empty()) blurcull::bench::write_doc_section(o.markdown_path, "pareto-table", md);
         if (!o.csv_path.empty()) {
             std::ofstream csv(o.csv_path);
             if (!csv) throw std::runtime_error("cannot write '" + o.csv_path + "'");

@@ -9,6 +9,7 @@
 // Times are medians over --repeat runs, given as ratios to bbox measured in
 // the same run (same scene, same samples): on a noisy machine only ratios
 // within one run mean something.
+#include "doc_section.hpp"
 #include "render/cpu_backend.hpp"
 #include "scene/builtin_scenes.hpp"
 
@@ -100,31 +101,6 @@ std::string markdown(const std::vector<Row>& rows, int width, int height, int sp
     return md.str();
 }
 
-// Replaces the text between the markers in `path` (or appends the block).
-void write_section(const std::string& path, const std::string& body) {
-    const std::string begin = "<!-- ste-table:begin -->", end = "<!-- ste-table:end -->";
-    std::string text;
-    {
-        std::ifstream in(path);
-        if (in) {
-            std::stringstream buffer;
-            buffer << in.rdbuf();
-            text = buffer.str();
-        }
-    }
-    std::string block = begin + "\n" + body + end + "\n";
-    std::size_t b = text.find(begin), e = text.find(end);
-    if (b != std::string::npos && e != std::string::npos && e > b) {
-        text.replace(b, e + end.size() + 1 - b, block);
-    } else {
-        if (text.empty()) text = "# Benchmarks\n\n";
-        text += "\n" + block;
-    }
-    std::ofstream out(path);
-    if (!out) throw std::runtime_error("cannot write '" + path + "'");
-    out << text;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -196,7 +172,7 @@ int main(int argc, char** argv) {
         }
         std::string md = markdown(rows, width, height, spp, repeat, footprint);
         std::printf("%s", md.c_str());
-        if (!md_path.empty()) write_section(md_path, md);
+        if (!md_path.empty()) blurcull::bench::write_doc_section(md_path, "ste-table", md);
         if (!csv_path.empty()) {
             std::ofstream csv(csv_path);
             if (!csv) throw std::runtime_error("cannot write '" + csv_path + "'");

@@ -32,16 +32,6 @@ double ms_since(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-int kernel_method(CullMethod method) {
-    switch (method) {
-        case CullMethod::bbox: return BC_CULL_BBOX;
-        case CullMethod::hull: return BC_CULL_HULL;
-        case CullMethod::dualspace: return BC_CULL_DUALSPACE;
-        case CullMethod::clip2: return BC_CULL_CLIP2;
-    }
-    return BC_CULL_BBOX;
-}
-
 struct PixelRect {
     int x0, y0, x1, y1;  // inclusive
 };
@@ -111,7 +101,7 @@ RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, cons
     if (options.footprint < 1) throw std::invalid_argument("cpu: footprint must be >= 1 pixel");
     if (options.block < 0) throw std::invalid_argument("cpu: block must be >= 0 pixels");
     const CameraModel model(scene.camera, settings.width, settings.height);
-    const int method = kernel_method(settings.cull);
+    const int method = kernel_cull_method(settings.cull);
     const double near = model.znear;
     const int width = settings.width, height = settings.height;
     const auto spp = static_cast<std::uint32_t>(settings.spp);

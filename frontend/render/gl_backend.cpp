@@ -32,16 +32,6 @@ double ms_since(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-int kernel_method(CullMethod method) {
-    switch (method) {
-        case CullMethod::bbox: return BC_CULL_BBOX;
-        case CullMethod::hull: return BC_CULL_HULL;
-        case CullMethod::dualspace: return BC_CULL_DUALSPACE;
-        case CullMethod::clip2: return BC_CULL_CLIP2;
-    }
-    return BC_CULL_BBOX;
-}
-
 // MSAA samples per pass: llvmpipe's maximum; spp / 4 passes reach any spp.
 constexpr int samples_per_pass = 4;
 
@@ -243,7 +233,7 @@ RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settin
     colour_buffer.bind_base(3);
     sum_buffer.bind_base(4);
     id_buffer.bind_base(5);
-    const int method = kernel_method(settings.cull);
+    const int method = kernel_cull_method(settings.cull);
     const bool bounds_samples = method == BC_CULL_DUALSPACE || method == BC_CULL_CLIP2;
     const int cells_per_triangle = bounds_samples ? cells_max : 1;
     const std::size_t cell_count = count * static_cast<std::size_t>(cells_per_triangle);

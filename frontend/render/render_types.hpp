@@ -4,6 +4,8 @@
 
 #include "render/image.hpp"
 
+#include <blurcull/kernel.hpp>
+
 #include <cstddef>
 #include <cstdint>
 #include <stdexcept>
@@ -24,6 +26,17 @@ inline const char* to_string(CullMethod method) {
         case CullMethod::clip2: return "clip2";
     }
     return "unknown";
+}
+
+// The kernel's BC_CULL_* constant for a method.
+inline int kernel_cull_method(CullMethod method) {
+    switch (method) {
+        case CullMethod::bbox: return BC_CULL_BBOX;
+        case CullMethod::hull: return BC_CULL_HULL;
+        case CullMethod::dualspace: return BC_CULL_DUALSPACE;
+        case CullMethod::clip2: return BC_CULL_CLIP2;
+    }
+    return BC_CULL_BBOX;
 }
 
 // Throws std::invalid_argument naming the valid methods when `name` is none of them.
