@@ -22,12 +22,12 @@ struct Run {
 };
 
 // Runs the command with the given arguments in a scratch folder.
-Run run_cli(const std::string& arguments) {
+Run run_cli(const std::string& arguments, const std::string& environment = "") {
     namespace fs = std::filesystem;
     static const fs::path folder = fs::temp_directory_path() / "blurcull_cli_test";
     fs::create_directories(folder);
     const fs::path err_file = folder / "stderr.txt";
-    std::string command = "cd '" + folder.string() + "' && '" + BLURCULL_CLI + "' " + arguments + " 2>'" +
+    std::string command = "cd '" + folder.string() + "' && " + environment + " '" + BLURCULL_CLI + "' " + arguments + " 2>'" +
                           err_file.string() + "'";
     Run run;
     FILE* pipe = popen(command.c_str(), "r");
@@ -155,4 +155,18 @@ TEST_CASE("blurcull scenes lists the built-in scenes; --version and --help exit 
     Run help = run_cli("render --help");
     CHECK(help.status == 0);
     CHECK(help.out.find("--cull") != std::string::npos);
+}
+
+TEST_CASE("no GL context: --backend gl says so in one line, auto falls back to cpu and says so") {
+    // BLURCULL_GL_CONTEXT names the only context kind to try; a bogus one makes every attempt fail.
+    Run gl = run_cli("render --backend gl --size 32x24 -q -o no_gl.png", "BLURCULL_GL_CONTEXT=bogus");
+    INFO(gl.err);
+    CHECK(gl.status == 1);
+    CHECK(lines(gl.err) == 1);
+    CHECK(gl.err.find("--backend cpu") != std::string::npos);
+    Run automatic = run_cli("render --scene car --size 32x24 --spp 2 --json -o auto.png", "BLURCULL_GL_CONTEXT=bogus");
+    INFO(automatic.err);
+    REQUIRE(automatic.status == 0);
+    CHECK(nlohmann::json::parse(automatic.out)["backend"] == "cpu");
+    CHECK(automatic.err.find("--backend auto: using cpu") != std::string::npos);
 }

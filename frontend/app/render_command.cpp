@@ -233,6 +233,13 @@ int RenderCommand::run() const {
     if ((used_backend == "embree" || used_backend == "gl") && method != "stochastic") {
         throw std::runtime_error("--method " + method + ": only the cpu backend has it; use --backend cpu");
     }
+    if (backend == "gl") {
+        std::string why;
+        if (!gl_available(&why)) {
+            throw std::runtime_error("--backend gl: no OpenGL 4.5 context could be made (" + why +
+                                     "); use --backend cpu");
+        }
+    }
     RenderResult result;
     if (used_backend == "embree") {
         result = render_embree(loaded, settings);
