@@ -11,10 +11,20 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
 namespace blurcull::testing {
+
+// BLURCULL_PROPERTY_SCALE=k multiplies the sample counts of the property and
+// stress tests (long runs; CI's sanitizer run scales them down). Default 1.
+inline double property_scale() {
+    const char* env = std::getenv("BLURCULL_PROPERTY_SCALE");
+    if (!env) return 1.0;
+    double k = std::atof(env);
+    return k > 0.0 ? k : 1.0;
+}
 
 // splitmix64: tiny, seedable, identical on every platform.
 class Rng {

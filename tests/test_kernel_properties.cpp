@@ -14,13 +14,6 @@ using namespace blurcull::testing;
 
 namespace {
 
-double property_scale() {
-    const char* env = std::getenv("BLURCULL_PROPERTY_SCALE");
-    if (!env) return 1.0;
-    double k = std::atof(env);
-    return k > 0.0 ? k : 1.0;
-}
-
 struct MethodTally {
     std::uint64_t passed = 0;       // samples that pass the method's bounds
     std::uint64_t false_culls = 0;  // covered samples the method culled

@@ -26,13 +26,6 @@ using namespace blurcull::testing;
 
 namespace {
 
-double stress_scale() {
-    const char* env = std::getenv("BLURCULL_PROPERTY_SCALE");
-    if (!env) return 1.0;
-    double k = std::atof(env);
-    return k > 0.0 ? k : 1.0;
-}
-
 enum class Stress {
     flt_max,        // whole configuration scaled towards FLT_MAX
     one_huge,       // one vertex end at 1e30..FLT_MAX, the rest ordinary
@@ -323,7 +316,7 @@ Counts run_stress(Stress stress, int config_count, std::uint64_t seed) {
 
 template <class Real>
 void check_stress(const char* precision) {
-    const int configs = std::max(50, int(4000 * stress_scale()));
+    const int configs = std::max(50, int(4000 * property_scale()));
     Counts total;
     std::uint64_t seed = 0x57e55000;
     for (Stress stress : all_stress) {

@@ -13,7 +13,7 @@
 // Errors are deterministic (every renderer is); times are medians over
 // --repeat runs with the methods interleaved within each repeat, so a drifting
 // machine load hits all of them alike.
-#include "doc_section.hpp"
+#include "bench_common.hpp"
 #include "render/cpu_backend.hpp"
 #include "render/embree_backend.hpp"
 #include "render/image.hpp"
@@ -77,18 +77,8 @@ struct Reference {
 
 using Clock = std::chrono::steady_clock;
 
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v.empty() ? 0.0 : v[v.size() / 2];
-}
-
-std::vector<std::string> split(const std::string& text) {
-    std::vector<std::string> out;
-    std::stringstream in(text);
-    for (std::string item; std::getline(in, item, ',');)
-        if (!item.empty()) out.push_back(item);
-    return out;
-}
+using blurcull::bench::median;
+using blurcull::bench::split;
 
 int parse_int(const std::string& option, const std::string& text, int lo, int hi) {
     char* end = nullptr;

@@ -9,7 +9,7 @@
 // Times are medians over --repeat runs, given as ratios to bbox measured in
 // the same run (same scene, same samples): on a noisy machine only ratios
 // within one run mean something.
-#include "doc_section.hpp"
+#include "bench_common.hpp"
 #include "render/cpu_backend.hpp"
 #include "scene/builtin_scenes.hpp"
 
@@ -52,18 +52,8 @@ struct Row {
     double ms[4] = {};  // median
 };
 
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v.empty() ? 0.0 : v[v.size() / 2];
-}
-
-std::vector<std::string> split(const std::string& text) {
-    std::vector<std::string> out;
-    std::stringstream in(text);
-    for (std::string item; std::getline(in, item, ',');)
-        if (!item.empty()) out.push_back(item);
-    return out;
-}
+using blurcull::bench::median;
+using blurcull::bench::split;
 
 std::string markdown(const std::vector<Row>& rows, int width, int height, int spp, int repeat, int footprint) {
     std::ostringstream md;

@@ -200,6 +200,18 @@ void resolve(const Scene& scene, const Frame& frame, const std::vector<std::uint
     }
 }
 
+// The common end of every renderer here: resolve the per-sample hits into the
+// image, record the resolve's time, the counters and the total time.
+void finish_render(RenderResult& result, const Scene& scene, const Frame& frame, const std::vector<std::uint32_t>& hits,
+                   int per_pixel, const Counters& counters, int width, int height, Clock::time_point start) {
+    const Clock::time_point phase = Clock::now();
+    result.image = Image(width, height);
+    resolve(scene, frame, hits, per_pixel, result.image);
+    result.stats.ms_per_phase.emplace_back("resolve", ms_since(phase));
+    store_counters(result.stats, counters);
+    result.stats.ms_total = ms_since(start);
+}
+
 int exact_square_root(int n) {
     int root = static_cast<int>(std::lround(std::sqrt(static_cast<double>(n))));
     while (root * root > n) --root;
@@ -301,12 +313,7 @@ RenderResult render_interleave(const Scene& scene, const RenderSettings& setting
     });
     result.stats.ms_per_phase.emplace_back("raster", ms_since(phase));
 
-    phase = Clock::now();
-    result.image = Image(width, height);
-    resolve(scene, frame, hits, spp, result.image);
-    result.stats.ms_per_phase.emplace_back("resolve", ms_since(phase));
-    store_counters(result.stats, counters);
-    result.stats.ms_total = ms_since(start);
+    finish_render(result, scene, frame, hits, spp, counters, width, height, start);
     return result;
 }
 
@@ -369,12 +376,7 @@ RenderResult render_interval(const Scene& scene, const RenderSettings& settings)
     });
     result.stats.ms_per_phase.emplace_back("raster", ms_since(phase));
 
-    phase = Clock::now();
-    result.image = Image(width, height);
-    resolve(scene, frame, hits, strata, result.image);
-    result.stats.ms_per_phase.emplace_back("resolve", ms_since(phase));
-    store_counters(result.stats, counters);
-    result.stats.ms_total = ms_since(start);
+    finish_render(result, scene, frame, hits, strata, counters, width, height, start);
     return result;
 }
 
@@ -432,12 +434,7 @@ RenderResult render_accum(const Scene& scene, const RenderSettings& settings) {
     });
     result.stats.ms_per_phase.emplace_back("raster", ms_since(phase));
 
-    phase = Clock::now();
-    result.image = Image(width, height);
-    resolve(scene, frame, hits, passes, result.image);
-    result.stats.ms_per_phase.emplace_back("resolve", ms_since(phase));
-    store_counters(result.stats, counters);
-    result.stats.ms_total = ms_since(start);
+    finish_render(result, scene, frame, hits, passes, counters, width, height, start);
     return result;
 }
 

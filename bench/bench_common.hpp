@@ -1,13 +1,31 @@
-// Writing a generated block into a Markdown file between two markers, so the
-// scene benchmarks can refresh their tables in docs/benchmarks.md in place.
+// What the scene benchmarks share: medians, comma lists, and writing a
+// generated block into a Markdown file between two markers, so they can
+// refresh their tables in docs/benchmarks.md in place.
 #pragma once
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace blurcull::bench {
+
+// The median of the values (the upper one of an even count; 0 for none).
+inline double median(std::vector<double> values) {
+    std::sort(values.begin(), values.end());
+    return values.empty() ? 0.0 : values[values.size() / 2];
+}
+
+// "a,b,,c" -> {"a", "b", "c"}.
+inline std::vector<std::string> split(const std::string& text) {
+    std::vector<std::string> out;
+    std::stringstream in(text);
+    for (std::string item; std::getline(in, item, ',');)
+        if (!item.empty()) out.push_back(item);
+    return out;
+}
 
 // Replaces the text between "<!-- NAME:begin -->" and "<!-- NAME:end -->" in
 // `path` with `body`, or appends the marked block when the markers are
