@@ -164,7 +164,10 @@ BC_FN bool covers(BC_IN(MovingTriangle) tri, vec2 s, vec2 uv, real t, real near,
 // with w = near (the thesis's 6 edges and 3 motion paths, plus the lens and
 // the diagonals, which its motion makes necessary). x / w is extremal there.
 // Returns (lo, hi); lo > hi when nothing is in front of the near plane.
-BC_FN vec2 bc_axis_extent(BC_IN(MovingTriangle) tri, int axis, real near) {
+BC_FN vec2 bc_axis_extent(BC_IN(MovingTriangle) tri, int axis, real near_plane) {
+    // The oracle rounds a hit depth just short of the near plane up to it, so
+    // the extent is taken in front of a plane a margin closer to the eye.
+    real near = near_plane - bc_err(near_plane);
     real lo = bc_huge();
     real hi = -bc_huge();
     real magnitude = real(0);
