@@ -468,7 +468,7 @@ int ViewCommand::run() const {
                 scene + "  " + std::to_string(width) + "x" + std::to_string(height) + "  " +
                 std::to_string(view.spp) + " spp  cull " + to_string(view.cull);
             const std::string camera_line =
-                format("lens %.4g  focus %.4g  shutter %.3g..%.3g", view.lens_radius, view.focus, view.shutter_open,
+                format("lens %.4g  focus %.4g  shutter [%.3g, %.3g]", view.lens_radius, view.focus, view.shutter_open,
                        view.shutter_close) +
                 format("  blur x%.3g", view.blur_scale);
             const std::string ste_line =
