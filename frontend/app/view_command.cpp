@@ -398,6 +398,18 @@ int ViewCommand::run() const {
                      view_controls_help);
     }
 
+    {
+        // llvmpipe compiles a program's code on its first draw: a 1x1 frame
+        // first, as render_gl does, so frame times are frames alone.
+        glfwSetWindowTitle(session.window, "blurcull view: compiling shaders...");
+        glfwPollEvents();
+        RenderSettings warm_up;
+        warm_up.width = 1;
+        warm_up.height = 1;
+        warm_up.spp = 4;
+        warm_up.progress = false;
+        renderer.render(base, warm_up);
+    }
     const glm::vec3 centre = scene_centre(base);
     int screenshot_count = 0;
     Image shown;  // the last frame with its overlay
