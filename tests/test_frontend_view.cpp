@@ -80,6 +80,7 @@ bool is_text_colour(glm::vec3 c) {
 
 // Top-left overlay panel (scale 1 at this size): four lines of text; below it only the scene.
 constexpr int panel_bottom = 70;
+const std::string data_dir = std::string(BLURCULL_SOURCE_DIR) + "/tests/data/gltf";
 const std::string view_args = "view --scene hand --size 160x120 --spp 4 --cull clip2 -q";
 
 }  // namespace
@@ -88,7 +89,9 @@ TEST_CASE("blurcull view renders frames under Xvfb and writes the window's conte
     if (!xvfb_or_skip()) return;
     const fs::path shot = scratch() / "view_three.png";
     fs::remove(shot);
-    Run run = run_cli("view --scene hand --size 160x120 --frames 3 --screenshot '" + shot.string() + "'",
+    // One animated triangle: milliseconds a frame on llvmpipe, where the hand takes seconds.
+    Run run = run_cli("view --scene '" + data_dir + "/triangle_animated.gltf' --size 160x120 --frames 3 --screenshot '" +
+                          shot.string() + "'",
                       "xvfb-run -a");
     INFO("stdout: " << run.out << "\nstderr: " << run.err);
     REQUIRE(run.status == 0);
@@ -119,7 +122,7 @@ TEST_CASE("blurcull view renders frames under Xvfb and writes the window's conte
         for (int x = 0; x < image.width; ++x) text_pixels += is_text_colour(image.at(x, y)) ? 1 : 0;
     }
     CHECK(text_pixels > 200);  // the overlay's four lines of text
-    // The scene below the panel: not one colour (the hand over the background).
+    // The scene below the panel: not one colour (the triangle over the background).
     glm::vec3 low(1.0f), high(0.0f);
     for (int y = panel_bottom; y < image.height; ++y) {
         for (int x = 0; x < image.width; ++x) {

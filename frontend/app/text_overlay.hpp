@@ -10,8 +10,8 @@
 namespace blurcull::frontend {
 
 // Draws `text` (lines separated by '\n') with its top-left corner at pixel
-// (x, y), each font unit `scale` pixels, clipped to the image. Returns the
-// number of pixels set to the text colour.
+// (x, y), each font unit `scale` pixels, clipped to the image. Returns how
+// many pixel writes had the text colour (0: no glyph landed in the image).
 std::size_t draw_text_panel(Image& image, int x, int y, const std::string& text, int scale = 1);
 
 }  // namespace blurcull::frontend

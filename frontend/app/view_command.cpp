@@ -410,6 +410,7 @@ int ViewCommand::run() const {
         warm_up.progress = false;
         renderer.render(base, warm_up);
     }
+    const std::string scene_name = stem(scene);  // a glTF path without its folders
     const glm::vec3 centre = scene_centre(base);
     int screenshot_count = 0;
     Image shown;  // the last frame with its overlay
@@ -477,7 +478,7 @@ int ViewCommand::run() const {
             const RenderStats& stats = result.stats;
 
             const std::string settings_line =
-                scene + "  " + std::to_string(width) + "x" + std::to_string(height) + "  " +
+                scene_name + "  " + std::to_string(width) + "x" + std::to_string(height) + "  " +
                 std::to_string(view.spp) + " spp  cull " + to_string(view.cull);
             const std::string camera_line =
                 format("lens %.4g  focus %.4g  shutter [%.3g, %.3g]", view.lens_radius, view.focus, view.shutter_open,
@@ -492,7 +493,7 @@ int ViewCommand::run() const {
             shown = std::move(result.image);
             presenter.show(shown, window_width, window_height);
 
-            const std::string title = "blurcull view: " + scene + " | " + to_string(view.cull) + " " +
+            const std::string title = "blurcull view: " + scene_name + " | " + to_string(view.cull) + " " +
                                       std::to_string(view.spp) + " spp | " + format("STE %.2f%%", 100.0 * stats.ste()) +
                                       " | " + format("%.0f ms", frame_ms) + " " + timing_label;
             glfwSetWindowTitle(session.window, title.c_str());
