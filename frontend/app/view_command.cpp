@@ -13,6 +13,8 @@
 #include <GLFW/glfw3.h>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <dlfcn.h>
+#include <link.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -104,6 +106,21 @@ struct GlfwSession {
         glfwTerminate();
     }
 };
+
+// Keeps every library loaded now (libGL, Mesa's GLX and DRI driver, LLVM)
+// loaded until the process exits, like gl_context does for EGL and OSMesa:
+// glfwTerminate would dlclose them, and Mesa's exit handlers and
+// LeakSanitizer's reports need their code still mapped.
+void pin_loaded_libraries() {
+    dl_iterate_phdr(
+        [](dl_phdr_info* info, std::size_t, void*) {
+            if (info->dlpi_name != nullptr && info->dlpi_name[0] == '/') {
+                dlopen(info->dlpi_name, RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE);
+            }
+            return 0;
+        },
+        nullptr);
+}
 
 // What the user changes; the scene is re-made from it when blur scale or
 // shutter change, the camera is re-posed from it on every frame.
@@ -378,6 +395,7 @@ int ViewCommand::run() const {
     glfwMakeContextCurrent(session.window);
     glfwSwapInterval(0);
     GlRenderer renderer(gl::HeadlessContext::from_current(glfwGetProcAddress, "glfwGetProcAddress"));
+    pin_loaded_libraries();
     // from_current loaded the same table; a second copy is only for the window's own calls.
     gl::HeadlessContext window_context = gl::HeadlessContext::from_current(glfwGetProcAddress, "glfwGetProcAddress");
     const gl::Functions& gl = window_context.gl();
