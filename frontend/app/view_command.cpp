@@ -394,8 +394,8 @@ int ViewCommand::run() const {
     }
     glfwMakeContextCurrent(session.window);
     glfwSwapInterval(0);
+    pin_loaded_libraries();  // the context's creation loaded the DRI driver
     GlRenderer renderer(gl::HeadlessContext::from_current(glfwGetProcAddress, "glfwGetProcAddress"));
-    pin_loaded_libraries();
     // from_current loaded the same table; a second copy is only for the window's own calls.
     gl::HeadlessContext window_context = gl::HeadlessContext::from_current(glfwGetProcAddress, "glfwGetProcAddress");
     const gl::Functions& gl = window_context.gl();
