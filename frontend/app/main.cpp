@@ -1,6 +1,7 @@
 // The `blurcull` command: renders built-in or glTF scenes with motion blur and
 // depth of field on the chosen backend, and reports what the culling cost.
 #include "app/render_command.hpp"
+#include "app/view_command.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -13,15 +14,20 @@ int main(int argc, char** argv) {
     CLI::App app{"blurcull: motion blur and depth of field by stochastic rasterization with sample culling"};
     app.set_version_flag("--version", "blurcull 0.1.0");
     app.require_subcommand(0, 1);
+    CLI::App* view_app = nullptr;
     // One line naming the flag and what it accepts, like every other error.
-    app.failure_message([](const CLI::App*, const CLI::Error& error) {
-        return std::string("blurcull: error: ") + error.what() + " (see blurcull render --help)\n";
+    app.failure_message([&view_app](const CLI::App*, const CLI::Error& error) {
+        const char* command = view_app != nullptr && view_app->parsed() ? "view" : "render";
+        return std::string("blurcull: error: ") + error.what() + " (see blurcull " + command + " --help)\n";
     });
 
     RenderCommand render;
     CLI::App* render_app = app.add_subcommand("render", "render a scene to a PNG (the default command)");
     render.add_options(*render_app);
     CLI::App* scenes_app = app.add_subcommand("scenes", "list the built-in scenes");
+    ViewCommand view;
+    view_app = app.add_subcommand("view", "render a scene interactively in a window (GLFW, OpenGL 4.5)");
+    view.add_options(*view_app);
 
     try {
         app.parse(argc, argv);
@@ -32,6 +38,7 @@ int main(int argc, char** argv) {
     }
     try {
         if (scenes_app->parsed()) return list_scenes();
+        if (view_app->parsed()) return view.run();
         return render.run();  // `blurcull` alone renders the default scene
     } catch (const std::exception& error) {
         std::fprintf(stderr, "blurcull: error: %s\n", error.what());

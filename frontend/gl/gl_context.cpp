@@ -215,6 +215,7 @@ const char* context_kind_name(ContextKind kind) {
     switch (kind) {
         case ContextKind::egl_surfaceless: return "egl";
         case ContextKind::osmesa: return "osmesa";
+        case ContextKind::current: return "current";
     }
     return "?";
 }
@@ -231,8 +232,19 @@ HeadlessContext& HeadlessContext::operator=(HeadlessContext&& other) noexcept = 
 HeadlessContext::~HeadlessContext() = default;
 
 HeadlessContext HeadlessContext::create(ContextKind kind) {
+    if (kind == ContextKind::current) throw GlError("a current context is wrapped with from_current, not created");
     if (kind == ContextKind::egl_surfaceless) return HeadlessContext(create_egl());
     return HeadlessContext(create_osmesa());
+}
+
+HeadlessContext HeadlessContext::from_current(void (*(*loader)(const char*))(), const char* loader_name) {
+    auto state = std::make_unique<State>();
+    state->kind = ContextKind::current;
+    state->fns = load_functions(loader, loader_name);
+    // glGetString answers null without a current context.
+    if (state->fns.GetString(GL_VERSION) == nullptr) throw GlError(std::string(loader_name) + ": no current OpenGL context");
+    require_gl45(state->fns, state->kind);
+    return HeadlessContext(std::move(state));
 }
 
 HeadlessContext HeadlessContext::create() {
@@ -257,6 +269,7 @@ std::string HeadlessContext::version() const { return gl_string(state_->fns, GL_
 
 void HeadlessContext::make_current() const {
     const State& s = *state_;
+    if (s.kind == ContextKind::current) return;  // the caller's to keep current
     if (s.kind == ContextKind::egl_surfaceless) {
         if (!s.egl_make_current(s.display, EGL_NO_SURFACE, EGL_NO_SURFACE, s.egl_context))
             throw GlError("EGL: eglMakeCurrent failed");

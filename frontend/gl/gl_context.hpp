@@ -5,6 +5,8 @@
 // installed; it only fails, with a message, when it asks for a context.
 //
 // A surfaceless context has no usable default framebuffer: render into an FBO.
+// HeadlessContext::from_current wraps instead a context someone else made and
+// made current (`blurcull view`'s GLFW window), so the same renderer draws there.
 #pragma once
 
 #include "gl_functions.hpp"
@@ -24,7 +26,8 @@ public:
     using std::runtime_error::runtime_error;
 };
 
-enum class ContextKind { egl_surfaceless, osmesa };
+// current: made and owned by the caller, see HeadlessContext::from_current.
+enum class ContextKind { egl_surfaceless, osmesa, current };
 
 const char* context_kind_name(ContextKind kind);
 
@@ -39,6 +42,13 @@ public:
     static HeadlessContext create();
     // Exactly this kind; throws GlError when it cannot be created.
     static HeadlessContext create(ContextKind kind);
+    // The context current on the calling thread, made by the caller (e.g. a
+    // GLFW window), with its entry points loaded by `loader` (e.g.
+    // glfwGetProcAddress; `loader_name` names it in errors). The caller keeps
+    // it current and alive while this object is used; make_current() does
+    // nothing and destruction does not destroy it. Throws GlError when no
+    // context is current, an entry point is missing or it is not OpenGL 4.5.
+    static HeadlessContext from_current(void (*(*loader)(const char*))(), const char* loader_name);
 
     HeadlessContext(HeadlessContext&& other) noexcept;
     HeadlessContext& operator=(HeadlessContext&& other) noexcept;

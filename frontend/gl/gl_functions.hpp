@@ -3,7 +3,8 @@
 //
 // No loader library: libepoxy aborts under OSMesa, glad is not packaged as a
 // library on Debian 12, and libOSMesa exports only part of GL directly, so
-// every entry point comes from eglGetProcAddress or OSMesaGetProcAddress.
+// every entry point comes from eglGetProcAddress or OSMesaGetProcAddress (or,
+// for a window's context, glfwGetProcAddress).
 // To use another function, add one X(...) line below.
 #pragma once
 
@@ -51,6 +52,9 @@
     X(PFNGLDELETETEXTURESPROC, DeleteTextures)                     \
     X(PFNGLBINDTEXTUREPROC, BindTexture)                           \
     X(PFNGLTEXSTORAGE2DPROC, TexStorage2D)                         \
+    X(PFNGLTEXSUBIMAGE2DPROC, TexSubImage2D)                       \
+    X(PFNGLTEXPARAMETERIPROC, TexParameteri)                       \
+    X(PFNGLBLITFRAMEBUFFERPROC, BlitFramebuffer)                   \
     X(PFNGLFRAMEBUFFERTEXTURE2DPROC, FramebufferTexture2D)         \
     X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)                   \
     X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)             \

@@ -149,7 +149,9 @@ int get_integer(const gl::Functions& gl, GLenum name) {
 
 }  // namespace
 
-GlRenderer::GlRenderer() : state_(std::make_unique<State>(gl::HeadlessContext::create())) {
+GlRenderer::GlRenderer() : GlRenderer(gl::HeadlessContext::create()) {}
+
+GlRenderer::GlRenderer(gl::HeadlessContext&& context) : state_(std::make_unique<State>(std::move(context))) {
     const gl::Functions& gl = state_->context.gl();
     for (GLenum limit : {GL_MAX_INTEGER_SAMPLES, GL_MAX_DEPTH_TEXTURE_SAMPLES}) {
         if (get_integer(gl, limit) < samples_per_pass) {

@@ -12,6 +12,10 @@
 #include <string>
 #include <vector>
 
+namespace blurcull::gl {
+class HeadlessContext;
+}
+
 namespace blurcull::frontend {
 
 struct GlOptions {
@@ -35,6 +39,11 @@ constexpr std::uint32_t no_triangle = 0xffffffffu;
 class GlRenderer {
 public:
     GlRenderer();
+    // On a given context, e.g. HeadlessContext::from_current for a window's:
+    // render() leaves its program, vertex array and texture bound and the
+    // viewport, depth test, depth clamp and clip control changed (the caller
+    // resets what it needs).
+    explicit GlRenderer(gl::HeadlessContext&& context);
     GlRenderer(GlRenderer&&) noexcept;
     GlRenderer& operator=(GlRenderer&&) noexcept;
     ~GlRenderer();

@@ -1,0 +1,543 @@
+#include "app/view_command.hpp"
+
+#include "app/scene_setup.hpp"
+#include "app/text_overlay.hpp"
+
+#include "render/gl_backend.hpp"
+#include "render/image.hpp"
+#include "render/render_types.hpp"
+
+#include <gl/gl_context.hpp>
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <dlfcn.h>
+#include <link.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <iterator>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace blurcull::frontend {
+
+const char* const view_controls_help =
+    "Controls: left drag orbit | wheel dolly | R reset view\n"
+    "  A / Shift+A  lens radius x1.25 / /1.25     F / Shift+F  focus distance x1.1 / /1.1\n"
+    "  S / Shift+S  shutter length x1.25 / /1.25  B / Shift+B  blur scale x1.25 / /1.25\n"
+    "  N  next spp (4, 8, 16, 32)                 C  next cull method (bbox, hull, dualspace, clip2)\n"
+    "  P  screenshot (--screenshot FILE, else view-N.png)   Esc / Q  quit\n";
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr int spp_steps[] = {4, 8, 16, 32};
+constexpr CullMethod cull_steps[] = {CullMethod::bbox, CullMethod::hull, CullMethod::dualspace, CullMethod::clip2};
+
+int next_spp(int spp) {
+    for (int step : spp_steps) {
+        if (step > spp) return step;
+    }
+    return spp_steps[0];
+}
+
+CullMethod next_cull(CullMethod cull) {
+    for (std::size_t i = 0; i < std::size(cull_steps); ++i) {
+        if (cull_steps[i] == cull) return cull_steps[(i + 1) % std::size(cull_steps)];
+    }
+    return cull_steps[0];
+}
+
+bool ends_with(const std::string& text, const std::string& suffix) {
+    return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+void require_writable_folder(const std::string& path, const char* flag) {
+    std::size_t slash = path.find_last_of('/');
+    std::string folder = slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
+    if (access(folder.c_str(), W_OK) != 0) {
+        throw std::runtime_error(std::string(flag) + ": cannot write '" + path + "': folder '" + folder +
+                                 "' is not writable");
+    }
+}
+
+// GLFW reports errors through a callback; the last one goes into messages.
+std::string& last_glfw_error() {
+    static std::string error;
+    return error;
+}
+
+void record_glfw_error(int code, const char* description) {
+    char text[32];
+    std::snprintf(text, sizeof text, "GLFW error 0x%05x: ", code);
+    last_glfw_error() = text + std::string(description != nullptr ? description : "unknown");
+}
+
+// glfwInit/glfwTerminate and the window, released in order on any exit.
+struct GlfwSession {
+    GLFWwindow* window = nullptr;
+    GlfwSession() {
+        glfwSetErrorCallback(record_glfw_error);
+        const char* display = std::getenv("DISPLAY");
+        const char* wayland = std::getenv("WAYLAND_DISPLAY");
+        if ((display == nullptr || *display == '\0') && (wayland == nullptr || *wayland == '\0')) {
+            throw std::runtime_error("no display: set DISPLAY or run under xvfb-run");
+        }
+        if (glfwInit() != GLFW_TRUE) {
+            throw std::runtime_error("cannot open the display '" + std::string(display != nullptr ? display : "") +
+                                     "' (" + last_glfw_error() + "); set DISPLAY or run under xvfb-run");
+        }
+    }
+    GlfwSession(const GlfwSession&) = delete;
+    GlfwSession& operator=(const GlfwSession&) = delete;
+    ~GlfwSession() {
+        if (window != nullptr) glfwDestroyWindow(window);
+        glfwTerminate();
+    }
+};
+
+// Keeps every library loaded now (libGL, Mesa's GLX and DRI driver, LLVM)
+// loaded until the process exits, like gl_context does for EGL and OSMesa:
+// glfwTerminate would dlclose them, and Mesa's exit handlers and
+// LeakSanitizer's reports need their code still mapped.
+void pin_loaded_libraries() {
+    dl_iterate_phdr(
+        [](dl_phdr_info* info, std::size_t, void*) {
+            if (info->dlpi_name != nullptr && info->dlpi_name[0] == '/') {
+                dlopen(info->dlpi_name, RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE);
+            }
+            return 0;
+        },
+        nullptr);
+}
+
+// What the user changes; the scene is re-made from it when blur scale or
+// shutter change, the camera is re-posed from it on every frame.
+struct ViewState {
+    float yaw = 0.0f;    // radians, about the view's up axis through the scene centre
+    float pitch = 0.0f;  // radians, about the view's right axis
+    float dolly = 0.0f;  // view units moved towards the centre
+    float lens_radius = 0.0f;
+    float focus = 1.0f;
+    float shutter_open = 0.0f;
+    float shutter_close = 1.0f;
+    double blur_scale = 1.0;
+    int spp = 4;
+    CullMethod cull = CullMethod::clip2;
+};
+
+// The orbit: rotates the world about its centre in view space, then moves
+// the camera along its axis; the same for shutter open and close, so camera
+// motion stays what the scene says.
+glm::mat4 orbit_transform(const ViewState& view, glm::vec3 centre_in_view) {
+    glm::mat4 m = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, view.dolly));
+    m = glm::translate(m, centre_in_view);
+    m = glm::rotate(m, view.pitch, glm::vec3(1.0f, 0.0f, 0.0f));
+    m = glm::rotate(m, view.yaw, glm::vec3(0.0f, 1.0f, 0.0f));
+    return glm::translate(m, -centre_in_view);
+}
+
+glm::vec3 scene_centre(const Scene& scene) {
+    if (scene.position_open.empty()) return glm::vec3(0.0f);
+    glm::vec3 low = scene.position_open.front(), high = low;
+    for (const glm::vec3& p : scene.position_open) {
+        low = glm::min(low, p);
+        high = glm::max(high, p);
+    }
+    return 0.5f * (low + high);
+}
+
+std::string format(const char* pattern, double a, double b = 0.0, double c = 0.0, double d = 0.0) {
+    char text[256];
+    std::snprintf(text, sizeof text, pattern, a, b, c, d);
+    return text;
+}
+
+bool is_software(const std::string& renderer) {
+    for (const char* name : {"llvmpipe", "softpipe", "swrast"}) {
+        if (renderer.find(name) != std::string::npos) return true;
+    }
+    return false;
+}
+
+// The window's image: the render plus the overlay, as an RGBA8 texture in an
+// FBO that is blitted (flipped: row 0 of the image is its top) to the window.
+class Presenter {
+public:
+    Presenter(const gl::Functions& functions, int width, int height) : gl_(&functions), width_(width), height_(height) {
+        gl_->GenTextures(1, &texture_);
+        gl_->BindTexture(GL_TEXTURE_2D, texture_);
+        gl_->TexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, width, height);
+        gl_->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        gl_->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        gl_->BindTexture(GL_TEXTURE_2D, 0);
+        gl_->GenFramebuffers(1, &framebuffer_);
+        gl_->BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_);
+        gl_->FramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture_, 0);
+        const GLenum status = gl_->CheckFramebufferStatus(GL_READ_FRAMEBUFFER);
+        gl_->BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+        if (status != GL_FRAMEBUFFER_COMPLETE) throw gl::GlError("view: the display framebuffer is incomplete");
+        gl::check_gl(*gl_, "view: display texture");
+    }
+    Presenter(const Presenter&) = delete;
+    Presenter& operator=(const Presenter&) = delete;
+    ~Presenter() {
+        gl_->DeleteFramebuffers(1, &framebuffer_);
+        gl_->DeleteTextures(1, &texture_);
+    }
+
+    void show(const Image& image, int window_width, int window_height) {
+        std::vector<unsigned char> bytes(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_) * 4);
+        for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+            for (int channel = 0; channel < 3; ++channel) {
+                const float encoded = linear_to_srgb(image.pixels[i][channel]);
+                bytes[4 * i + static_cast<std::size_t>(channel)] =
+                    static_cast<unsigned char>(std::lround(encoded * 255.0f));
+            }
+            bytes[4 * i + 3] = 255;
+        }
+        gl_->BindTexture(GL_TEXTURE_2D, texture_);
+        gl_->TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
+        gl_->BindTexture(GL_TEXTURE_2D, 0);
+        gl_->BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_);
+        gl_->BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+        gl_->Viewport(0, 0, window_width, window_height);
+        const GLfloat black[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+        gl_->ClearBufferfv(GL_COLOR, 0, black);
+        gl_->BlitFramebuffer(0, 0, width_, height_, 0, window_height, window_width, 0, GL_COLOR_BUFFER_BIT,
+                             window_width == width_ && window_height == height_ ? GL_NEAREST : GL_LINEAR);
+        gl_->BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+        gl::check_gl(*gl_, "view: presenting the frame");
+    }
+
+private:
+    const gl::Functions* gl_;
+    int width_, height_;
+    GLuint texture_ = 0;
+    GLuint framebuffer_ = 0;
+};
+
+// The window's back buffer (what the last show() drew) as a PNG.
+void write_window_png(const gl::Functions& gl, int width, int height, const std::string& path) {
+    std::vector<unsigned char> bytes(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4);
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    gl.ReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
+    gl::check_gl(gl, "view: reading the window");
+    Image image(width, height);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            // GL's row 0 is the bottom.
+            const std::size_t at = (static_cast<std::size_t>(height - 1 - y) * static_cast<std::size_t>(width) +
+                                    static_cast<std::size_t>(x)) * 4;
+            image.at(x, y) = glm::vec3(srgb_to_linear(bytes[at] / 255.0f), srgb_to_linear(bytes[at + 1] / 255.0f),
+                                       srgb_to_linear(bytes[at + 2] / 255.0f));
+        }
+    }
+    write_png(path, image);
+}
+
+// Input collected by the GLFW callbacks between frames.
+struct Input {
+    ViewState* view = nullptr;
+    bool dragging = false;
+    double last_x = 0.0, last_y = 0.0;
+    float dolly_step = 1.0f;
+    bool changed = false;         // re-render
+    bool scene_changed = false;   // re-make the scene (blur scale, shutter)
+    bool screenshot = false;
+    bool reset = false;
+};
+
+Input& input_of(GLFWwindow* window) { return *static_cast<Input*>(glfwGetWindowUserPointer(window)); }
+
+void on_key(GLFWwindow* window, int key, int, int action, int mods) {
+    if (action != GLFW_PRESS && action != GLFW_REPEAT) return;
+    Input& input = input_of(window);
+    ViewState& view = *input.view;
+    const bool down = (mods & GLFW_MOD_SHIFT) != 0;
+    const float factor = down ? 0.8f : 1.25f;
+    switch (key) {
+        case GLFW_KEY_ESCAPE:
+        case GLFW_KEY_Q: glfwSetWindowShouldClose(window, GLFW_TRUE); return;
+        case GLFW_KEY_A:
+            // From a pinhole, A opens a small aperture: 1% of the focus distance.
+            view.lens_radius = view.lens_radius > 0.0f ? view.lens_radius * factor : (down ? 0.0f : 0.01f * view.focus);
+            break;
+        case GLFW_KEY_F: view.focus *= down ? 1.0f / 1.1f : 1.1f; break;
+        case GLFW_KEY_S:
+            view.shutter_close = view.shutter_open + (view.shutter_close - view.shutter_open) * factor;
+            input.scene_changed = true;
+            break;
+        case GLFW_KEY_B:
+            view.lens_radius *= factor;
+            view.blur_scale *= static_cast<double>(factor);
+            input.scene_changed = true;
+            break;
+        case GLFW_KEY_N: view.spp = next_spp(view.spp); break;
+        case GLFW_KEY_C: view.cull = next_cull(view.cull); break;
+        case GLFW_KEY_R: input.reset = true; break;
+        case GLFW_KEY_P: input.screenshot = true; return;
+        default: return;
+    }
+    input.changed = true;
+}
+
+void on_mouse_button(GLFWwindow* window, int button, int action, int) {
+    if (button != GLFW_MOUSE_BUTTON_LEFT) return;
+    Input& input = input_of(window);
+    input.dragging = action == GLFW_PRESS;
+    glfwGetCursorPos(window, &input.last_x, &input.last_y);
+}
+
+void on_cursor(GLFWwindow* window, double x, double y) {
+    Input& input = input_of(window);
+    if (!input.dragging) return;
+    // Half a turn across the window's width.
+    int width = 1, height = 1;
+    glfwGetWindowSize(window, &width, &height);
+    const float per_pixel = 3.14159265f / static_cast<float>(std::max(width, 1));
+    input.view->yaw += static_cast<float>(x - input.last_x) * per_pixel;
+    input.view->pitch = std::clamp(input.view->pitch + static_cast<float>(y - input.last_y) * per_pixel, -1.5f, 1.5f);
+    input.last_x = x;
+    input.last_y = y;
+    input.changed = true;
+}
+
+void on_scroll(GLFWwindow* window, double, double y_offset) {
+    Input& input = input_of(window);
+    input.view->dolly += static_cast<float>(y_offset) * input.dolly_step;
+    input.changed = true;
+}
+
+}  // namespace
+
+void ViewCommand::add_options(CLI::App& app) {
+    app.add_option("--scene", scene, "built-in scene name (blurcull scenes) or a .gltf/.glb file")
+        ->capture_default_str();
+    app.add_option("--cull", cull, "initial culling method")
+        ->check(CLI::IsMember({"bbox", "hull", "dualspace", "clip2"}))
+        ->capture_default_str();
+    app.add_option("--spp", spp, "initial samples per pixel")->check(CLI::Range(1, 1024))->capture_default_str();
+    app.add_option("--size", size, "window and image size WxH")->capture_default_str();
+    auto* radius = app.add_option("--lens-radius", lens_radius, "initial thin-lens aperture radius (scene units)")
+                       ->check(CLI::Range(0.0, 1e6));
+    auto* fstop_option =
+        app.add_option("--fstop", fstop, "initial f-number (35 mm equivalent focal length)")->check(CLI::Range(0.1, 1e6));
+    radius->excludes(fstop_option);
+    app.add_option("--focus", focus, "initial focus distance (view depth, scene units)")->check(CLI::Range(1e-6, 1e9));
+    app.add_option("--shutter", shutter,
+                   "initial OPEN,CLOSE: animation seconds for glTF, fractions of the nominal shutter for built-in scenes");
+    app.add_option("--blur-scale", blur_scale, "initial multiplier of motion and lens radius")
+        ->check(CLI::Range(0.0, 1000.0))
+        ->capture_default_str();
+    app.add_option("--seed", seed, "sample pattern seed")->capture_default_str();
+    app.add_option("--frames", frames,
+                   "render this many frames, turning the orbit and cycling the cull method between them, then exit "
+                   "(0: interactive)")
+        ->check(CLI::Range(0, 100000))
+        ->capture_default_str();
+    app.add_option("--screenshot", screenshot, "PNG of the window (render and overlay) after the last frame");
+    app.add_flag("-q,--quiet", quiet, "no controls or per-frame lines");
+    app.footer(view_controls_help);
+}
+
+int ViewCommand::run() const {
+    int width = 0, height = 0;
+    parse_size(size, width, height);
+    if (!screenshot.empty()) require_writable_folder(screenshot, "--screenshot");
+
+    SceneRequest request;
+    request.scene = scene;
+    request.aspect = static_cast<float>(width) / static_cast<float>(height);
+    request.blur_scale = blur_scale;
+    request.has_shutter = true;  // the view changes it, so it is always explicit
+    const bool gltf = ends_with(scene, ".gltf") || ends_with(scene, ".glb");
+    request.shutter_open = 0.0f;
+    request.shutter_close = gltf ? 1.0f / 24.0f : 1.0f;  // the loaders' defaults
+    if (!shutter.empty()) parse_shutter(shutter, request.shutter_open, request.shutter_close);
+    request.lens_radius = lens_radius;
+    request.fstop = fstop;
+    request.focus = focus;
+    Scene base = load_scene(request);
+
+    ViewState view;
+    view.lens_radius = base.camera.lens_radius;
+    view.focus = base.camera.focus_distance;
+    view.shutter_open = request.shutter_open;
+    view.shutter_close = request.shutter_close;
+    view.blur_scale = blur_scale;
+    view.spp = spp;
+    view.cull = parse_cull_method(cull);
+    const ViewState initial = view;
+
+    GlfwSession session;
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
+    glfwWindowHint(GLFW_SAMPLES, 0);
+    session.window = glfwCreateWindow(width, height, "blurcull view", nullptr, nullptr);
+    if (session.window == nullptr) {
+        throw std::runtime_error("cannot open an OpenGL 4.5 core window (" + last_glfw_error() + ")");
+    }
+    glfwMakeContextCurrent(session.window);
+    glfwSwapInterval(0);
+    pin_loaded_libraries();  // the context's creation loaded the DRI driver
+    GlRenderer renderer(gl::HeadlessContext::from_current(glfwGetProcAddress, "glfwGetProcAddress"));
+    // from_current loaded the same table; a second copy is only for the window's own calls.
+    gl::HeadlessContext window_context = gl::HeadlessContext::from_current(glfwGetProcAddress, "glfwGetProcAddress");
+    const gl::Functions& gl = window_context.gl();
+    const std::string gl_renderer = window_context.renderer();
+    const std::string timing_label = is_software(gl_renderer) ? "llvmpipe, software" : "GPU";
+    Presenter presenter(gl, width, height);
+
+    Input input;
+    input.view = &view;
+    glfwSetWindowUserPointer(session.window, &input);
+    glfwSetKeyCallback(session.window, on_key);
+    glfwSetMouseButtonCallback(session.window, on_mouse_button);
+    glfwSetCursorPosCallback(session.window, on_cursor);
+    glfwSetScrollCallback(session.window, on_scroll);
+
+    if (!quiet) {
+        std::fprintf(stderr, "blurcull view: %s on %s\n%s", scene.c_str(), renderer.description().c_str(),
+                     view_controls_help);
+    }
+
+    {
+        // llvmpipe compiles a program's code on its first draw: a 1x1 frame
+        // first, as render_gl does, so frame times are frames alone.
+        glfwSetWindowTitle(session.window, "blurcull view: compiling shaders...");
+        glfwPollEvents();
+        RenderSettings warm_up;
+        warm_up.width = 1;
+        warm_up.height = 1;
+        warm_up.spp = 4;
+        warm_up.progress = false;
+        renderer.render(base, warm_up);
+    }
+    const std::string scene_name = stem(scene);  // a glTF path without its folders
+    const glm::vec3 centre = scene_centre(base);
+    int screenshot_count = 0;
+    Image shown;  // the last frame with its overlay
+    int rendered = 0;
+    bool needs_render = true;
+    while (!glfwWindowShouldClose(session.window)) {
+        if (frames > 0) {
+            if (rendered == frames) break;
+            if (rendered > 0) {
+                // Between frames: a turn of the orbit and the next cull method, so
+                // both the per-triangle (bbox, hull) and per-cell (dualspace, clip2)
+                // bounds run.
+                view.yaw += 0.35f;
+                view.cull = next_cull(view.cull);
+                needs_render = true;
+            }
+        } else {
+            // Sleeps until something happens; then takes every queued event
+            // before rendering once.
+            if (!needs_render) glfwWaitEvents();
+            glfwPollEvents();
+        }
+        if (input.reset) {
+            view = initial;
+            input.reset = false;
+            input.scene_changed = true;
+        }
+        if (input.scene_changed) {
+            request.blur_scale = view.blur_scale;
+            request.shutter_open = view.shutter_open;
+            request.shutter_close = view.shutter_close;
+            request.lens_radius = -1.0;
+            request.fstop = -1.0;
+            base = load_scene(request);
+            input.scene_changed = false;
+        }
+        needs_render = needs_render || input.changed;
+        input.changed = false;
+
+        int window_width = width, window_height = height;
+        glfwGetFramebufferSize(session.window, &window_width, &window_height);
+        if (needs_render) {
+            Scene posed = base;
+            const glm::vec3 centre_in_view = glm::vec3(base.camera.view_open * glm::vec4(centre, 1.0f));
+            input.dolly_step = 0.1f * std::max(glm::length(centre_in_view), 1e-3f);
+            const glm::mat4 orbit = orbit_transform(view, centre_in_view);
+            posed.camera.view_open = orbit * base.camera.view_open;
+            posed.camera.view_close = orbit * base.camera.view_close;
+            posed.camera.lens_radius = view.lens_radius;
+            posed.camera.focus_distance = view.focus;
+
+            RenderSettings settings;
+            settings.width = width;
+            settings.height = height;
+            settings.spp = view.spp;
+            settings.seed = seed;
+            settings.cull = view.cull;
+            settings.progress = false;
+            const std::string busy = "blurcull view: rendering " + std::to_string(view.spp) + " spp...";
+            glfwSetWindowTitle(session.window, busy.c_str());
+            glfwPollEvents();
+            const Clock::time_point start = Clock::now();
+            RenderResult result = renderer.render(posed, settings);
+            const double frame_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+            const RenderStats& stats = result.stats;
+
+            const std::string settings_line =
+                scene_name + "  " + std::to_string(width) + "x" + std::to_string(height) + "  " +
+                std::to_string(view.spp) + " spp  cull " + to_string(view.cull);
+            const std::string camera_line =
+                format("lens %.4g  focus %.4g  shutter [%.3g, %.3g]", view.lens_radius, view.focus, view.shutter_open,
+                       view.shutter_close) +
+                format("  blur x%.3g", view.blur_scale);
+            const std::string ste_line =
+                format("STE %.2f%%  (%.0f hit / %.0f tested)", 100.0 * stats.ste(),
+                       static_cast<double>(stats.samples_hit), static_cast<double>(stats.samples_tested));
+            const std::string time_line = format("frame %.0f ms", frame_ms) + " (" + timing_label + ")";
+            draw_text_panel(result.image, 6, 6, settings_line + "\n" + camera_line + "\n" + ste_line + "\n" + time_line,
+                            width >= 640 ? 2 : 1);
+            shown = std::move(result.image);
+            presenter.show(shown, window_width, window_height);
+
+            const std::string title = "blurcull view: " + scene_name + " | " + to_string(view.cull) + " " +
+                                      std::to_string(view.spp) + " spp | " + format("STE %.2f%%", 100.0 * stats.ste()) +
+                                      " | " + format("%.0f ms", frame_ms) + " " + timing_label;
+            glfwSetWindowTitle(session.window, title.c_str());
+            ++rendered;
+            needs_render = false;
+            if (frames > 0 && !quiet) {
+                std::printf("frame %d: cull %s, %d spp, STE %.4f, %.1f ms (%s)\n", rendered, to_string(view.cull),
+                            view.spp, stats.ste(), frame_ms, timing_label.c_str());
+                std::fflush(stdout);
+            }
+        }
+        if (input.screenshot && rendered > 0) {
+            // The back buffer is undefined after a swap: draw the last frame again.
+            presenter.show(shown, window_width, window_height);
+            const std::string path = screenshot.empty() ? "view-" + std::to_string(++screenshot_count) + ".png" : screenshot;
+            write_window_png(gl, window_width, window_height, path);
+            if (!quiet) std::fprintf(stderr, "wrote %s\n", path.c_str());
+        }
+        input.screenshot = false;
+        if (frames > 0 && rendered == frames && !screenshot.empty()) {
+            // The back buffer still holds the last frame (no swap yet).
+            write_window_png(gl, window_width, window_height, screenshot);
+        }
+        glfwSwapBuffers(session.window);
+    }
+    return 0;
+}
+
+}  // namespace blurcull::frontend
