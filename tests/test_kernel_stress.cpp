@@ -261,7 +261,7 @@ void run_config(const Config& cfg, Rng& rng, Stress stress, int sample_count, Co
     ++counts.configs;
     const bool invalid = K::classify(tri) == BC_INVALID;
     if (invalid) ++counts.invalid;
-    const bool swamped = !invalid && K::bc_shear_swamps_edge(tri);
+    const bool swamped = !invalid && !K::bc_triangle_boundable(tri);
     if (swamped) ++counts.swamped;
 
     typename K::ScreenBound screen[4];
@@ -444,7 +444,7 @@ TEST_CASE("stress: the keep-everything fallback needs two vertices swamped by th
         tri.c[j] = K::vec2(0.05, 0.05);
     }
     const K::vec2 far_lo(0.9), far_hi(0.95);  // a footprint the triangle cannot reach with this lens
-    CHECK_FALSE(K::bc_shear_swamps_edge(tri));
+    CHECK(K::bc_triangle_boundable(tri));
     CHECK(K::sample_bounds(tri, far_lo, far_hi, BC_CULL_CLIP2).empty);
     CHECK(K::screen_bound(tri, 0.1, BC_CULL_BBOX).hi.x < 0.5);
     // Vertices 0 and 1 at w = 1e-30 (positions scaled with w) beside a CoC of
@@ -454,10 +454,10 @@ TEST_CASE("stress: the keep-everything fallback needs two vertices swamped by th
     K::MovingTriangle one = tri;
     one.p[0] *= 0.5e-30;
     one.p[4] *= 0.5e-30;  // vertex 1, but at the other shutter end
-    CHECK_FALSE(K::bc_shear_swamps_edge(one));
+    CHECK(K::bc_triangle_boundable(one));
     K::MovingTriangle two = one;
     two.p[1] *= 0.5e-30;  // vertex 1 at the same end as vertex 0
-    CHECK(K::bc_shear_swamps_edge(two));
+    CHECK_FALSE(K::bc_triangle_boundable(two));
     for (int method : all_methods) {
         CHECK(is_documented_fallback<K>(K::screen_bound(two, 1e-31, method), K::sample_bounds(two, far_lo, far_hi, method)));
     }
@@ -467,10 +467,10 @@ TEST_CASE("stress: the keep-everything fallback needs two vertices swamped by th
         below.p[i] = K::vec3(0.0, 0.0, 0.1 / 0.9e9);  // |c_x| + |c_y| = 0.1
         above.p[i] = K::vec3(0.0, 0.0, 0.1 / 1.1e9);
     }
-    CHECK_FALSE(K::bc_shear_swamps_edge(below));
-    CHECK(K::bc_shear_swamps_edge(above));
+    CHECK(K::bc_triangle_boundable(below));
+    CHECK_FALSE(K::bc_triangle_boundable(above));
     // A lens of radius 1e20 (CoCs ~ 1e20 beside positions ~ 1) swamps them all.
     K::MovingTriangle lens = tri;
     for (int j = 0; j < 6; ++j) lens.c[j] = K::vec2(-0.75e20, -1e20);
-    CHECK(K::bc_shear_swamps_edge(lens));
+    CHECK_FALSE(K::bc_triangle_boundable(lens));
 }
