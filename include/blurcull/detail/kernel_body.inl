@@ -155,6 +155,37 @@ BC_FN bool covers(BC_IN(MovingTriangle) tri, vec2 s, vec2 uv, real t, real near,
     return depth >= near;
 }
 
+// The exact test sees a sheared vertex (x + u c, y + v c, w). Where the
+// shear is more than BC_SWAMP_RATIO times the vertex's own (x, y, w), the
+// double oracle's rounding of x + u c (relative error 2^-53) erases most of
+// the vertex; with two such vertices at one time the edge between them is
+// their cross product, whose true value (~ |c| (|x| + |w|)) is then far below
+// its rounding error (~ 2^-53 c^2), and the oracle's sign tests (its verdict)
+// are decided by rounding anywhere on the screen. No bound can contain such
+// answers: screen_bound and sample_bounds keep every sample (docs/kernel.md,
+// "Where the oracle is decided by rounding"). Vertices are checked at the
+// shutter ends, where the stress families put them; the positions between
+// interpolate away from the ends' magnitudes.
+#define BC_SWAMP_RATIO 1.0e9
+
+// Whether the bounds can say anything: every value finite (else BC_INVALID's
+// fallback), and no two vertices at one shutter end swamped by their lens
+// shear. One pass, sharing the finiteness test's loads and abs().
+BC_FN bool bc_triangle_boundable(BC_IN(MovingTriangle) tri) {
+    int swamped_open = 0;
+    int swamped_close = 0;
+    for (int j = 0; j < 6; ++j) {
+        vec3 p = tri.p[j];
+        vec2 c = tri.c[j];
+        if (!bc_finite(p.x) || !bc_finite(p.y) || !bc_finite(p.z) || !bc_finite(c.x) || !bc_finite(c.y)) return false;
+        if (abs(c.x) + abs(c.y) > real(BC_SWAMP_RATIO) * (abs(p.x) + abs(p.y) + abs(p.z))) {
+            if (j < 3) swamped_open = swamped_open + 1;
+            else swamped_close = swamped_close + 1;
+        }
+    }
+    return swamped_open < 2 && swamped_close < 2;
+}
+
 // ---- screen bounds -------------------------------------------------------------
 
 // Screen extent along one axis of everything the triangle can show in front of
@@ -293,7 +324,7 @@ BC_FN ScreenBound screen_bound(BC_IN(MovingTriangle) tri, real near, int method)
     b.hi = vec2(bc_huge());
     b.hull_count = 0;
     for (int k = 0; k < BC_HULL_MAX; ++k) b.hull_edge[k] = vec3(real(0));
-    if (!triangle_is_finite(tri) || !(near > real(0))) return b;
+    if (!(near > real(0)) || !bc_triangle_boundable(tri)) return b;
     vec2 ex = bc_axis_extent(tri, 0, near);
     vec2 ey = bc_axis_extent(tri, 1, near);
     b.lo = vec2(ex.x, ey.x);
@@ -785,7 +816,7 @@ BC_FN SampleBounds no_sample_bounds() {
 BC_FN SampleBounds sample_bounds(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi, int method) {
     SampleBounds r = no_sample_bounds();
     if (method != BC_CULL_DUALSPACE && method != BC_CULL_CLIP2) return r;
-    if (!triangle_is_finite(tri)) return r;
+    if (!bc_triangle_boundable(tri)) return r;
     // The caller's sample positions were rounded too.
     vec2 pad = vec2(bc_err(max(real(1), max(abs(s_lo.x), abs(s_hi.x)))),
                     bc_err(max(real(1), max(abs(s_lo.y), abs(s_hi.y)))));
