@@ -252,16 +252,30 @@ PassBox method_pass_box(const MethodPlan& plan, int pass, std::size_t triangle) 
     return box;
 }
 
-std::vector<std::uint32_t> interleave_cell_tuples(const MethodPlan& plan, int width, int height) {
-    const int cells_x = width * plan.scale, cells_y = height * plan.scale;
-    std::vector<std::uint32_t> tuples(static_cast<std::size_t>(cells_x) * static_cast<std::size_t>(cells_y));
-    for (int gy = 0; gy < cells_y; ++gy) {
-        for (int gx = 0; gx < cells_x; ++gx) {
-            tuples[static_cast<std::size_t>(gy) * static_cast<std::size_t>(cells_x) + static_cast<std::size_t>(gx)] =
-                static_cast<std::uint32_t>(plan.tiles.tuple_at(static_cast<std::uint32_t>(gx), static_cast<std::uint32_t>(gy)));
+InterleaveTupleCells interleave_tuple_cells(const MethodPlan& plan, int width, int height) {
+    const InterleavedTiles& tiles = plan.tiles;
+    const int cells_x = width * plan.scale, cells_y = height * plan.scale, tile_w = tiles.width;
+    InterleaveTupleCells table;
+    table.tiles_x = (cells_x + tile_w - 1) / tile_w;
+    table.tiles_y = (cells_y + tile_w - 1) / tile_w;
+    const std::size_t tile_count = static_cast<std::size_t>(table.tiles_x) * static_cast<std::size_t>(table.tiles_y);
+    const auto n = static_cast<std::size_t>(tiles.tuple_count);
+    table.cells.assign(n * tile_count, no_hit);
+    for (int ty = 0; ty < table.tiles_y; ++ty) {
+        for (int tx = 0; tx < table.tiles_x; ++tx) {
+            const std::size_t tile = static_cast<std::size_t>(ty) * static_cast<std::size_t>(table.tiles_x) + static_cast<std::size_t>(tx);
+            const std::size_t prototype =
+                tiles.prototype_of_tile(static_cast<std::uint32_t>(tx), static_cast<std::uint32_t>(ty));
+            for (std::size_t k = 0; k < n; ++k) {
+                const int slot = tiles.tuple_slot[prototype * n + k];
+                const int gx = tx * tile_w + slot % tile_w, gy = ty * tile_w + slot / tile_w;
+                if (gx >= cells_x || gy >= cells_y) continue;  // past the image's edge
+                table.cells[k * tile_count + tile] =
+                    static_cast<std::uint32_t>(gy) * static_cast<std::uint32_t>(cells_x) + static_cast<std::uint32_t>(gx);
+            }
         }
     }
-    return tuples;
+    return table;
 }
 
 Image resolve_method_samples(const Scene& scene, const MethodPlan& plan, const std::vector<std::uint32_t>& ids,

@@ -111,8 +111,16 @@ struct PassBox {
 };
 PassBox method_pass_box(const MethodPlan& plan, int pass, std::size_t triangle);
 
-// Interleave: the tuple of every lattice cell (gx, gy) at gy * width * scale + gx.
-std::vector<std::uint32_t> interleave_cell_tuples(const MethodPlan& plan, int width, int height);
+// Interleave: the lattice (width * scale x height * scale cells) is covered by
+// tiles_x x tiles_y tiles of tiles.width^2 cells, each holding every tuple
+// once. Element k * tiles_x * tiles_y + ty * tiles_x + tx is tuple k's cell
+// (gx, gy) in tile (tx, ty) as gy * width * scale + gx, or no_sample_hit when
+// that cell is past the image's edge.
+struct InterleaveTupleCells {
+    int tiles_x = 0, tiles_y = 0;
+    std::vector<std::uint32_t> cells;
+};
+InterleaveTupleCells interleave_tuple_cells(const MethodPlan& plan, int width, int height);
 
 // Pixel (px, py) = mean of the colours of ids[(py W + px) per_pixel + 0 .. per_pixel - 1].
 Image resolve_method_samples(const Scene& scene, const MethodPlan& plan, const std::vector<std::uint32_t>& ids,
