@@ -58,7 +58,8 @@ private:
 
 // One frame, like render_cpu: a context and programs are made for the call
 // (their compile time is the "compile" phase of ms_per_phase, included in
-// ms_total). settings.threads is not used.
+// ms_total). settings.threads is used only by the host side of the
+// interleave / interval / accum methods (their per-pass boxes).
 RenderResult render_gl(const Scene& scene, const RenderSettings& settings);
 
 // Whether a headless OpenGL 4.5 context can be made here; when not, and
