@@ -68,7 +68,7 @@ void RenderCommand::add_options(CLI::App& app) {
         ->check(CLI::IsMember({"bbox", "hull", "dualspace", "clip2"}))
         ->capture_default_str();
     app.add_option("--method", method,
-                   "stochastic (culled stochastic rasterization), interleave, interval or accum (cpu backend)")
+                   "stochastic (culled stochastic rasterization), interleave, interval or accum (cpu and gl backends)")
         ->check(CLI::IsMember({"stochastic", "interleave", "interval", "accum"}))
         ->capture_default_str();
     app.add_option("--spp", spp, "samples per pixel")->check(CLI::Range(1, 1024))->capture_default_str();
@@ -136,11 +136,7 @@ int RenderCommand::run() const {
         // gl on a hardware OpenGL 4.5 context; cpu otherwise (software GL,
         // llvmpipe, is far slower than the cpu backend). One line says which.
         std::string why;
-        if (method != "stochastic") {
-            why = "--method " + method + " is cpu-only";
-        } else if (gl_hardware_available(&why)) {
-            used_backend = "gl";
-        }
+        if (gl_hardware_available(&why)) used_backend = "gl";
         if (used_backend != "gl") used_backend = "cpu";
         if (!quiet) {
             std::fprintf(stderr, "note: --backend auto: using %s (%s)\n", used_backend.c_str(),
@@ -148,8 +144,8 @@ int RenderCommand::run() const {
         }
     }
 
-    if ((used_backend == "embree" || used_backend == "gl") && method != "stochastic") {
-        throw std::runtime_error("--method " + method + ": only the cpu backend has it; use --backend cpu");
+    if (used_backend == "embree" && method != "stochastic") {
+        throw std::runtime_error("--method " + method + ": the embree backend has only stochastic; use --backend cpu or gl");
     }
     if (backend == "gl") {
         std::string why;
@@ -190,6 +186,8 @@ int RenderCommand::run() const {
         summary["samples_tested"] = stats.samples_tested;
         summary["samples_hit"] = stats.samples_hit;
         summary["ste"] = stats.ste();
+        summary["bounds_computed"] = stats.bounds_computed;
+        summary["bounds_empty"] = stats.bounds_empty;
         summary["ms_total"] = stats.ms_total;
         nlohmann::ordered_json phases = nlohmann::ordered_json::object();
         for (const auto& [name, ms] : stats.ms_per_phase) phases[name] = ms;

@@ -2,6 +2,7 @@
 
 #include "render/camera_model.hpp"
 #include "render/moving_triangle.hpp"
+#include "render/progress.hpp"
 #include "render/shading.hpp"
 #include "scene/scene_checks.hpp"
 
@@ -61,35 +62,6 @@ struct TileSample {
     K::vec2 ndc;
     K::vec2 lens;
     double time;
-};
-
-class Progress {
-public:
-    Progress(bool enabled, Clock::time_point start, int total) : enabled_(enabled), start_(start), total_(total) {}
-    void advance() {
-        const int done = done_.fetch_add(1) + 1;
-        if (!enabled_ || ms_since(start_) < 1000.0) return;
-        const int percent = static_cast<int>(100LL * done / total_);
-        std::lock_guard<std::mutex> lock(mutex_);
-        if (percent != last_percent_) {
-            std::fprintf(stderr, "\rcpu: %3d%%", percent);
-            std::fflush(stderr);
-            last_percent_ = percent;
-            shown_ = true;
-        }
-    }
-    void finish() {
-        if (shown_) std::fprintf(stderr, "\rcpu: 100%%\n");
-    }
-
-private:
-    bool enabled_;
-    Clock::time_point start_;
-    int total_;
-    std::atomic<int> done_{0};
-    std::mutex mutex_;
-    int last_percent_ = -1;
-    bool shown_ = false;
 };
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "render/gl_backend.hpp"
 
 #include "render/camera_model.hpp"
+#include "render/gl_methods.hpp"
 #include "render/moving_triangle.hpp"
 #include "render/shading.hpp"
 #include "scene/scene_checks.hpp"
@@ -99,6 +100,9 @@ struct GlRenderer::State {
     gl::Program draw_moving;
     gl::Program resolve;
     GLuint vertex_array = 0;
+    // interleave / interval / accum (gl_methods.cpp), compiled on first use;
+    // declared after the context, so destroyed before it.
+    std::shared_ptr<GlMethodPrograms> methods;
 
     explicit State(gl::HeadlessContext&& made)
         : context(std::move(made)),
@@ -171,6 +175,11 @@ std::string GlRenderer::description() const {
 
 RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settings, const GlOptions& options,
                                 std::vector<std::uint32_t>* sample_ids) {
+    if (settings.method != "stochastic") {
+        state_->context.make_current();
+        return render_gl_method(state_->context, state_->methods, scene, settings,
+                                options.keep_sample_ids ? sample_ids : nullptr);
+    }
     const Clock::time_point start = Clock::now();
     validate_settings(settings);
     validate_scene(scene);
@@ -353,6 +362,7 @@ RenderResult render_gl(const Scene& scene, const RenderSettings& settings) {
     warm_up.width = 1;
     warm_up.height = 1;
     warm_up.spp = 4;
+    warm_up.progress = false;
     renderer.render(scene, warm_up);
     const double compile_ms = ms_since(start);
     RenderResult result = renderer.render(scene, settings);

@@ -48,6 +48,9 @@ public:
     GlRenderer& operator=(GlRenderer&&) noexcept;
     ~GlRenderer();
 
+    // settings.method "stochastic" renders as described above; "interleave",
+    // "interval" and "accum" as the CPU renderers of interleaved_backend.hpp
+    // (gl_methods.hpp; their sample_ids are in that layout, spp per pixel).
     // Throws std::invalid_argument for bad settings, SceneError for a bad
     // scene, gl::GlError when the image does not fit the context's limits.
     RenderResult render(const Scene& scene, const RenderSettings& settings, const GlOptions& options = {},
@@ -64,7 +67,8 @@ private:
 
 // One frame, like render_cpu: a context and programs are made for the call
 // (their compile time is the "compile" phase of ms_per_phase, included in
-// ms_total). settings.threads and settings.method are not used.
+// ms_total). settings.threads is used only by the host side of the
+// interleave / interval / accum methods (their per-pass boxes).
 RenderResult render_gl(const Scene& scene, const RenderSettings& settings);
 
 // Whether a headless OpenGL 4.5 context can be made here; when not, and

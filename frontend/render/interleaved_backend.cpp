@@ -3,6 +3,7 @@
 #include "render/camera_model.hpp"
 #include "render/cpu_backend.hpp"
 #include "render/moving_triangle.hpp"
+#include "render/progress.hpp"
 #include "render/shading.hpp"
 #include "scene/scene_checks.hpp"
 
@@ -19,6 +20,7 @@
 #include <limits>
 #include <stdexcept>
 #include <thread>
+#include <utility>
 #include <vector>
 
 namespace blurcull::frontend {
@@ -29,51 +31,10 @@ namespace {
 using K = blurcull::kernel<double>;
 using Clock = std::chrono::steady_clock;
 
-constexpr std::uint32_t no_hit = std::numeric_limits<std::uint32_t>::max();
+constexpr std::uint32_t no_hit = no_sample_hit;
 
 double ms_since(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
-// What every method shares: checked input, the kernel's triangles and colours.
-struct Frame {
-    CameraModel model;
-    std::vector<glm::vec3> colours;
-    std::vector<K::MovingTriangle> triangles;
-    std::vector<int> classes;
-    std::vector<bool> visible;  // some sample of the screen may see it (its whole-shutter box)
-    bool any_motion = false;
-    bool any_defocus = false;
-};
-
-Frame make_frame(const Scene& scene, const RenderSettings& settings) {
-    validate_settings(settings);
-    validate_scene(scene);
-    Frame frame;
-    frame.model = CameraModel(scene.camera, settings.width, settings.height);
-    frame.colours = shade_all(scene);
-    const std::size_t count = scene.triangles.size();
-    frame.triangles.resize(count);
-    frame.classes.resize(count);
-    frame.visible.resize(count);
-    std::size_t invalid = 0;
-    for (std::size_t i = 0; i < count; ++i) {
-        frame.triangles[i] = make_moving_triangle<double>(scene, frame.model, i);
-        frame.classes[i] = K::classify(frame.triangles[i]);
-        if (frame.classes[i] == BC_INVALID) {
-            ++invalid;  // validate_scene checked the input; only overflow gets here
-            continue;
-        }
-        const K::ScreenBound bound = K::screen_bound(frame.triangles[i], frame.model.znear, BC_CULL_BBOX);
-        frame.visible[i] = !bound.empty && bound.lo.x <= 1.0 && bound.hi.x >= -1.0 && bound.lo.y <= 1.0 &&
-                           bound.hi.y >= -1.0;
-        if ((frame.classes[i] & BC_NEEDS_MOTION) != 0) frame.any_motion = true;
-        if ((frame.classes[i] & BC_NEEDS_DEFOCUS) != 0) frame.any_defocus = true;
-    }
-    if (invalid > 0) {
-        std::fprintf(stderr, "warning: skipped %zu triangles whose clip coordinates overflow\n", invalid);
-    }
-    return frame;
 }
 
 // The triangle frozen at lens position uv and time t: static and sharp.
@@ -105,11 +66,6 @@ K::MovingTriangle restricted(const K::MovingTriangle& tri, double t0, double t1)
 // lattice cells that may hold a sample inside the NDC box, clamped to the
 // lattice, one cell wider on each side so float rounding of sample positions
 // cannot push a sample out of it; empty (x0 > x1) when the box misses the screen.
-struct CellRect {
-    int x0, y0, x1, y1;  // inclusive
-    bool empty() const { return x0 > x1 || y0 > y1; }
-};
-
 CellRect cell_rect(const CameraModel& model, const K::ScreenBound& bound, int scale) {
     CellRect r{0, 0, -1, -1};
     if (bound.empty || bound.lo.x > 1.0 || bound.hi.x < -1.0 || bound.lo.y > 1.0 || bound.hi.y < -1.0) return r;
@@ -184,31 +140,16 @@ inline void depth_test(double z, std::uint32_t triangle, double& depth, std::uin
     }
 }
 
-// Pixel (px, py) = mean of the colours of hits[(py W + px) per + 0 .. per-1].
-void resolve(const Scene& scene, const Frame& frame, const std::vector<std::uint32_t>& hits, int per_pixel,
-             Image& image) {
-    for (int py = 0; py < image.height; ++py) {
-        for (int px = 0; px < image.width; ++px) {
-            const std::size_t base = image.index(px, py) * static_cast<std::size_t>(per_pixel);
-            glm::vec3 sum(0.0f);
-            for (int j = 0; j < per_pixel; ++j) {
-                const std::uint32_t id = hits[base + static_cast<std::size_t>(j)];
-                sum += id == no_hit ? scene.background : frame.colours[id];
-            }
-            image.at(px, py) = resolve_box(sum, per_pixel);
-        }
-    }
-}
-
 // The common end of every renderer here: resolve the per-sample hits into the
 // image, record the resolve's time, the counters and the total time.
-void finish_render(RenderResult& result, const Scene& scene, const Frame& frame, const std::vector<std::uint32_t>& hits,
-                   int per_pixel, const Counters& counters, int width, int height, Clock::time_point start) {
+void finish_render(RenderResult& result, const Scene& scene, const MethodPlan& plan, std::vector<std::uint32_t>& hits,
+                   const Counters& counters, int width, int height, Clock::time_point start,
+                   std::vector<std::uint32_t>* sample_ids) {
     const Clock::time_point phase = Clock::now();
-    result.image = Image(width, height);
-    resolve(scene, frame, hits, per_pixel, result.image);
+    result.image = resolve_method_samples(scene, plan, hits, width, height);
     result.stats.ms_per_phase.emplace_back("resolve", ms_since(phase));
     store_counters(result.stats, counters);
+    if (sample_ids != nullptr) *sample_ids = std::move(hits);
     result.stats.ms_total = ms_since(start);
 }
 
@@ -219,26 +160,152 @@ int exact_square_root(int n) {
     return root;
 }
 
+// Stratum j of `strata`, widened a little: the float sample times of stratum
+// j may round just outside [j, j + 1] / N.
+void stratum_interval(int j, int strata, double& t0, double& t1) {
+    t0 = std::max(0.0, double(j) / strata - 1e-6);
+    t1 = std::min(1.0, double(j + 1) / strata + 1e-6);
+}
+
 }  // namespace
 
-RenderResult render_interleave(const Scene& scene, const RenderSettings& settings, const InterleaveOptions& options) {
-    const Clock::time_point start = Clock::now();
+MethodPlan make_method_plan(const Scene& scene, const RenderSettings& settings, const InterleaveOptions& options) {
     validate_settings(settings);
-    const int side = exact_square_root(settings.spp);
-    if (side * side != settings.spp) {
-        throw std::invalid_argument("interleave: samples per pixel must be a square (1, 4, 9, 16, ...), got " +
-                                    std::to_string(settings.spp));
+    validate_render_method(settings.method);
+    if (settings.method == "stochastic") throw std::invalid_argument("method plan: 'stochastic' has no fixed passes");
+    int side = 1;
+    if (settings.method == "interleave") {
+        side = exact_square_root(settings.spp);
+        if (side * side != settings.spp) {
+            throw std::invalid_argument("interleave: samples per pixel must be a square (1, 4, 9, 16, ...), got " +
+                                        std::to_string(settings.spp));
+        }
     }
+    validate_scene(scene);
+    MethodPlan plan;
+    plan.method = settings.method;
+    plan.model = CameraModel(scene.camera, settings.width, settings.height);
+    plan.colours = shade_all(scene);
+    const std::size_t count = scene.triangles.size();
+    plan.triangles.resize(count);
+    plan.visible.resize(count);
+    std::size_t invalid = 0;
+    for (std::size_t i = 0; i < count; ++i) {
+        plan.triangles[i] = make_moving_triangle<double>(scene, plan.model, i);
+        const int needs = K::classify(plan.triangles[i]);
+        if (needs == BC_INVALID) {
+            ++invalid;  // validate_scene checked the input; only overflow gets here
+            continue;
+        }
+        const K::ScreenBound bound = K::screen_bound(plan.triangles[i], plan.model.znear, BC_CULL_BBOX);
+        plan.visible[i] = !bound.empty && bound.lo.x <= 1.0 && bound.hi.x >= -1.0 && bound.lo.y <= 1.0 &&
+                          bound.hi.y >= -1.0;
+        if ((needs & BC_NEEDS_MOTION) != 0) plan.any_motion = true;
+        if ((needs & BC_NEEDS_DEFOCUS) != 0) plan.any_defocus = true;
+    }
+    if (invalid > 0) {
+        std::fprintf(stderr, "warning: skipped %zu triangles whose clip coordinates overflow\n", invalid);
+    }
+    plan.per_pixel = settings.spp;
+    if (settings.method == "interleave") {
+        plan.scale = side;
+        // Spread tuples in what the scene blurs (Aqsis' q).
+        InterleavedTileOptions tile_options;
+        tile_options.width = options.tile_width;
+        tile_options.radius = options.radius;
+        tile_options.motion_weight =
+            plan.any_motion && !plan.any_defocus ? 1.0 : (plan.any_defocus && !plan.any_motion ? 0.0 : 0.5);
+        tile_options.seed = settings.seed;
+        plan.tiles = make_interleaved_tiles(tile_options);
+        plan.passes = plan.tiles.tuple_count;
+        for (const glm::dvec3& tuple : plan.tiles.tuples) {
+            kernelf::PixelSample s;
+            s.offset = glm::vec2(0.0f);
+            s.lens = glm::vec2(static_cast<float>(tuple.x), static_cast<float>(tuple.y));
+            s.time = static_cast<float>(tuple.z);
+            plan.pass_samples.push_back(s);
+        }
+    } else if (settings.method == "interval") {
+        plan.passes = settings.spp;
+    } else {
+        plan.passes = settings.spp;
+        for (int k = 0; k < plan.passes; ++k) {
+            plan.pass_samples.push_back(patternsf::accum_sample(static_cast<std::uint32_t>(k), settings.seed));
+        }
+    }
+    return plan;
+}
+
+PassBox method_pass_box(const MethodPlan& plan, int pass, std::size_t triangle) {
+    const K::MovingTriangle& tri = plan.triangles[triangle];
+    const double near = plan.model.znear;
+    PassBox box;
+    if (plan.method == "interval") {
+        double t0 = 0.0, t1 = 1.0;
+        stratum_interval(pass, plan.passes, t0, t1);
+        box.bound = K::screen_bound(restricted(tri, t0, t1), near, BC_CULL_BBOX);
+    } else {
+        const kernelf::PixelSample& s = plan.pass_samples[static_cast<std::size_t>(pass)];
+        box.bound = K::screen_bound(placed(tri, K::vec2(s.lens), double(s.time)), near, BC_CULL_BBOX);
+    }
+    box.rect = cell_rect(plan.model, box.bound, plan.scale);
+    return box;
+}
+
+InterleaveTupleCells interleave_tuple_cells(const MethodPlan& plan, int width, int height) {
+    const InterleavedTiles& tiles = plan.tiles;
+    const int cells_x = width * plan.scale, cells_y = height * plan.scale, tile_w = tiles.width;
+    InterleaveTupleCells table;
+    table.tiles_x = (cells_x + tile_w - 1) / tile_w;
+    table.tiles_y = (cells_y + tile_w - 1) / tile_w;
+    const std::size_t tile_count = static_cast<std::size_t>(table.tiles_x) * static_cast<std::size_t>(table.tiles_y);
+    const auto n = static_cast<std::size_t>(tiles.tuple_count);
+    table.cells.assign(n * tile_count, no_hit);
+    for (int ty = 0; ty < table.tiles_y; ++ty) {
+        for (int tx = 0; tx < table.tiles_x; ++tx) {
+            const std::size_t tile = static_cast<std::size_t>(ty) * static_cast<std::size_t>(table.tiles_x) + static_cast<std::size_t>(tx);
+            const std::size_t prototype =
+                tiles.prototype_of_tile(static_cast<std::uint32_t>(tx), static_cast<std::uint32_t>(ty));
+            for (std::size_t k = 0; k < n; ++k) {
+                const int slot = tiles.tuple_slot[prototype * n + k];
+                const int gx = tx * tile_w + slot % tile_w, gy = ty * tile_w + slot / tile_w;
+                if (gx >= cells_x || gy >= cells_y) continue;  // past the image's edge
+                table.cells[k * tile_count + tile] =
+                    static_cast<std::uint32_t>(gy) * static_cast<std::uint32_t>(cells_x) + static_cast<std::uint32_t>(gx);
+            }
+        }
+    }
+    return table;
+}
+
+Image resolve_method_samples(const Scene& scene, const MethodPlan& plan, const std::vector<std::uint32_t>& ids,
+                             int width, int height) {
+    Image image(width, height);
+    const int per_pixel = plan.per_pixel;
+    for (int py = 0; py < image.height; ++py) {
+        for (int px = 0; px < image.width; ++px) {
+            const std::size_t base = image.index(px, py) * static_cast<std::size_t>(per_pixel);
+            glm::vec3 sum(0.0f);
+            for (int j = 0; j < per_pixel; ++j) {
+                const std::uint32_t id = ids[base + static_cast<std::size_t>(j)];
+                sum += id == no_hit ? scene.background : plan.colours[id];
+            }
+            image.at(px, py) = resolve_box(sum, per_pixel);
+        }
+    }
+    return image;
+}
+
+RenderResult render_interleave(const Scene& scene, const RenderSettings& settings, const InterleaveOptions& options,
+                               std::vector<std::uint32_t>* sample_ids) {
+    const Clock::time_point start = Clock::now();
     Clock::time_point phase = Clock::now();
-    const Frame frame = make_frame(scene, settings);
-    const CameraModel& model = frame.model;
-    // Spread tuples in what the scene blurs (Aqsis' q).
-    InterleavedTileOptions tile_options;
-    tile_options.width = options.tile_width;
-    tile_options.radius = options.radius;
-    tile_options.motion_weight = frame.any_motion && !frame.any_defocus ? 1.0 : (frame.any_defocus && !frame.any_motion ? 0.0 : 0.5);
-    tile_options.seed = settings.seed;
-    const InterleavedTiles tiles = make_interleaved_tiles(tile_options);
+    RenderSettings interleave_settings = settings;
+    interleave_settings.method = "interleave";
+    const MethodPlan plan = make_method_plan(scene, interleave_settings, options);
+    const CameraModel& model = plan.model;
+    const InterleavedTiles& tiles = plan.tiles;
+    const int side = plan.scale;
     const int width = settings.width, height = settings.height, spp = settings.spp;
     const int tile_w = tiles.width, n = tiles.tuple_count;
     const int cells_x = width * side, cells_y = height * side;
@@ -260,10 +327,11 @@ RenderResult render_interleave(const Scene& scene, const RenderSettings& setting
     // One work item per tuple: the samples of different tuples are disjoint.
     phase = Clock::now();
     const double near = model.znear;
+    Progress progress(settings.progress, start, n);
     const Counters counters = run_items(settings, n, [&](int k, Counters& local) {
-        const glm::dvec3 tuple = tiles.tuples[static_cast<std::size_t>(k)];
-        const K::vec2 uv(tuple.x, tuple.y);
-        const double t = tuple.z;
+        const kernelf::PixelSample& tuple = plan.pass_samples[static_cast<std::size_t>(k)];
+        const K::vec2 uv(tuple.lens);
+        const double t = tuple.time;
         const std::size_t tuple_base = static_cast<std::size_t>(k);
         // The one sample of tuple k in each tile: lattice cell and NDC, computed once.
         std::vector<glm::ivec2> cells(prototypes.size());
@@ -282,12 +350,12 @@ RenderResult render_interleave(const Scene& scene, const RenderSettings& setting
                 ndcs[tile] = K::vec2(model.sample_ndc(gx / side, gy / side, glm::min(offset, glm::vec2(0.99999994f))));
             }
         }
-        for (std::size_t index = 0; index < frame.triangles.size(); ++index) {
-            if (!frame.visible[index]) continue;
-            const K::MovingTriangle& tri = frame.triangles[index];
-            const K::ScreenBound bound = K::screen_bound(placed(tri, uv, t), near, BC_CULL_BBOX);
+        for (std::size_t index = 0; index < plan.triangles.size(); ++index) {
+            if (!plan.visible[index]) continue;
+            const K::MovingTriangle& tri = plan.triangles[index];
+            const PassBox box = method_pass_box(plan, k, index);
             ++local.bounded;
-            const CellRect r = cell_rect(model, bound, side);
+            const CellRect& r = box.rect;
             if (r.empty()) {
                 ++local.bounded_empty;
                 continue;
@@ -299,7 +367,7 @@ RenderResult render_interleave(const Scene& scene, const RenderSettings& setting
                     if (gx < r.x0 || gx > r.x1 || gy < r.y0 || gy > r.y1) continue;
                     const int px = gx / side, py = gy / side, sx = gx % side, sy = gy % side;
                     const K::vec2 ndc = ndcs[tile];
-                    if (!K::screen_contains(bound, ndc)) continue;
+                    if (!K::screen_contains(box.bound, ndc)) continue;
                     ++local.tested;
                     double z = 0.0;
                     if (!K::covers(tri, ndc, uv, t, near, z)) continue;
@@ -310,18 +378,22 @@ RenderResult render_interleave(const Scene& scene, const RenderSettings& setting
                 }
             }
         }
+        progress.advance();
     });
+    progress.finish();
     result.stats.ms_per_phase.emplace_back("raster", ms_since(phase));
 
-    finish_render(result, scene, frame, hits, spp, counters, width, height, start);
+    finish_render(result, scene, plan, hits, counters, width, height, start, sample_ids);
     return result;
 }
 
-RenderResult render_interval(const Scene& scene, const RenderSettings& settings) {
+RenderResult render_interval(const Scene& scene, const RenderSettings& settings, std::vector<std::uint32_t>* sample_ids) {
     const Clock::time_point start = Clock::now();
     Clock::time_point phase = Clock::now();
-    const Frame frame = make_frame(scene, settings);
-    const CameraModel& model = frame.model;
+    RenderSettings interval_settings = settings;
+    interval_settings.method = "interval";
+    const MethodPlan plan = make_method_plan(scene, interval_settings);
+    const CameraModel& model = plan.model;
     const int width = settings.width, height = settings.height, strata = settings.spp;
     const std::size_t sample_count = static_cast<std::size_t>(width) * height * strata;
     std::vector<double> depth(sample_count, std::numeric_limits<double>::infinity());
@@ -333,11 +405,8 @@ RenderResult render_interval(const Scene& scene, const RenderSettings& settings)
     // One work item per stratum: sample j of every pixel belongs to stratum j.
     phase = Clock::now();
     const double near = model.znear;
+    Progress progress(settings.progress, start, strata);
     const Counters counters = run_items(settings, strata, [&](int j, Counters& local) {
-        // Widened a little: the float sample times of stratum j may round
-        // just outside [j, j + 1] / N.
-        const double t0 = std::max(0.0, double(j) / strata - 1e-6);
-        const double t1 = std::min(1.0, double(j + 1) / strata + 1e-6);
         // Sample j of every pixel, computed once per stratum.
         std::vector<Sample> plane(static_cast<std::size_t>(width) * height);
         for (int py = 0; py < height; ++py) {
@@ -350,12 +419,12 @@ RenderResult render_interval(const Scene& scene, const RenderSettings& settings)
                     Sample{K::vec2(model.sample_ndc(px, py, s.offset)), K::vec2(s.lens), double(s.time)};
             }
         }
-        for (std::size_t index = 0; index < frame.triangles.size(); ++index) {
-            if (!frame.visible[index]) continue;
-            const K::MovingTriangle& tri = frame.triangles[index];
-            const K::ScreenBound bound = K::screen_bound(restricted(tri, t0, t1), near, BC_CULL_BBOX);
+        for (std::size_t index = 0; index < plan.triangles.size(); ++index) {
+            if (!plan.visible[index]) continue;
+            const K::MovingTriangle& tri = plan.triangles[index];
+            const PassBox box = method_pass_box(plan, j, index);
             ++local.bounded;
-            const CellRect r = cell_rect(model, bound, 1);
+            const CellRect& r = box.rect;
             if (r.empty()) {
                 ++local.bounded_empty;
                 continue;
@@ -363,7 +432,7 @@ RenderResult render_interval(const Scene& scene, const RenderSettings& settings)
             for (int py = r.y0; py <= r.y1; ++py) {
                 for (int px = r.x0; px <= r.x1; ++px) {
                     const Sample& s = plane[static_cast<std::size_t>(py) * width + px];
-                    if (!K::screen_contains(bound, s.ndc)) continue;
+                    if (!K::screen_contains(box.bound, s.ndc)) continue;
                     ++local.tested;
                     double z = 0.0;
                     if (!K::covers(tri, s.ndc, s.lens, s.time, near, z)) continue;
@@ -373,18 +442,22 @@ RenderResult render_interval(const Scene& scene, const RenderSettings& settings)
                 }
             }
         }
+        progress.advance();
     });
+    progress.finish();
     result.stats.ms_per_phase.emplace_back("raster", ms_since(phase));
 
-    finish_render(result, scene, frame, hits, strata, counters, width, height, start);
+    finish_render(result, scene, plan, hits, counters, width, height, start, sample_ids);
     return result;
 }
 
-RenderResult render_accum(const Scene& scene, const RenderSettings& settings) {
+RenderResult render_accum(const Scene& scene, const RenderSettings& settings, std::vector<std::uint32_t>* sample_ids) {
     const Clock::time_point start = Clock::now();
     Clock::time_point phase = Clock::now();
-    const Frame frame = make_frame(scene, settings);
-    const CameraModel& model = frame.model;
+    RenderSettings accum_settings = settings;
+    accum_settings.method = "accum";
+    const MethodPlan plan = make_method_plan(scene, accum_settings);
+    const CameraModel& model = plan.model;
     const int width = settings.width, height = settings.height, passes = settings.spp;
     const std::size_t pixel_count = static_cast<std::size_t>(width) * height;
     // hits[pixel * K + k]: what pass k saw, so the passes can run in any
@@ -396,21 +469,20 @@ RenderResult render_accum(const Scene& scene, const RenderSettings& settings) {
 
     phase = Clock::now();
     const double near = model.znear;
+    Progress progress(settings.progress, start, passes);
     const Counters counters = run_items(settings, passes, [&](int k, Counters& local) {
-        const auto key = static_cast<std::uint32_t>(k);
-        const glm::dvec3 tuple(patternsd::interleaved_tuple(key));
-        const K::vec2 uv(tuple.x, tuple.y);
-        const double t = tuple.z;
-        // Halton from index 1: index 0 would put every sample on a pixel corner.
-        const glm::vec2 offset(patternsf::bc_radical_inverse(key + 1u, 7u), patternsf::bc_radical_inverse(key + 1u, 11u));
+        const kernelf::PixelSample& pass_sample = plan.pass_samples[static_cast<std::size_t>(k)];
+        const K::vec2 uv(pass_sample.lens);
+        const double t = pass_sample.time;
+        const glm::vec2 offset = pass_sample.offset;
         std::vector<double> depth(pixel_count, std::numeric_limits<double>::infinity());
         std::vector<std::uint32_t> pass(pixel_count, no_hit);
-        for (std::size_t index = 0; index < frame.triangles.size(); ++index) {
-            if (!frame.visible[index]) continue;
-            const K::MovingTriangle& tri = frame.triangles[index];
-            const K::ScreenBound bound = K::screen_bound(placed(tri, uv, t), near, BC_CULL_BBOX);
+        for (std::size_t index = 0; index < plan.triangles.size(); ++index) {
+            if (!plan.visible[index]) continue;
+            const K::MovingTriangle& tri = plan.triangles[index];
+            const PassBox box = method_pass_box(plan, k, index);
             ++local.bounded;
-            const CellRect r = cell_rect(model, bound, 1);
+            const CellRect& r = box.rect;
             if (r.empty()) {
                 ++local.bounded_empty;
                 continue;
@@ -418,7 +490,7 @@ RenderResult render_accum(const Scene& scene, const RenderSettings& settings) {
             for (int py = r.y0; py <= r.y1; ++py) {
                 for (int px = r.x0; px <= r.x1; ++px) {
                     const K::vec2 ndc(model.sample_ndc(px, py, offset));
-                    if (!K::screen_contains(bound, ndc)) continue;
+                    if (!K::screen_contains(box.bound, ndc)) continue;
                     ++local.tested;
                     double z = 0.0;
                     if (!K::covers(tri, ndc, uv, t, near, z)) continue;
@@ -431,10 +503,12 @@ RenderResult render_accum(const Scene& scene, const RenderSettings& settings) {
         for (std::size_t pixel = 0; pixel < pixel_count; ++pixel) {
             hits[pixel * static_cast<std::size_t>(passes) + static_cast<std::size_t>(k)] = pass[pixel];
         }
+        progress.advance();
     });
+    progress.finish();
     result.stats.ms_per_phase.emplace_back("raster", ms_since(phase));
 
-    finish_render(result, scene, frame, hits, passes, counters, width, height, start);
+    finish_render(result, scene, plan, hits, counters, width, height, start, sample_ids);
     return result;
 }
 

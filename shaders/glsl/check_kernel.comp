@@ -45,9 +45,10 @@ void main() {
     vec3 tuple = interleaved_tuple(px);
     uint tile = interleaved_corner_colour(px, py, 7u) + interleaved_prototype(px, py, 7u);
     vec2 jitter = interleaved_jitter(px, py, 7u);
+    PixelSample accum = accum_sample(px, 7u);
 
     values[0] = coc + vertex.x + float(finite) + float(needs) + float(covered) + depth + float(on_screen) + float(footprint_state) +
                 float(passes) + time_range.x + sample_at.offset.x + sample_at.lens.y + sample_at.time + patterned.time +
                 tiled.time + from_setup.time + others[0].time + others[1].time + others[2].time + others[3].time + tuple.x +
-                float(tile) + jitter.x;
+                float(tile) + jitter.x + accum.time + accum.offset.x + accum.lens.y + bc_rotate_unit(jitter.x, jitter.y);
 }

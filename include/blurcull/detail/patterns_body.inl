@@ -270,3 +270,30 @@ BC_FN vec2 interleaved_jitter(uint gx, uint gy, uint seed) {
     uint h = bc_hash3(gx, gy, seed ^ 0x2127599bu);
     return vec2(bc_unit(bc_hash(h ^ 1u)), bc_unit(bc_hash(h ^ 2u)));
 }
+
+// fract(a + shift) for a, shift in [0, 1), kept below 1 (the sum may round up to 2).
+BC_FN real bc_rotate_unit(real a, real shift) {
+    real v = a + shift;
+    if (v >= real(1)) v = v - real(1);
+    return min(v, real(1) - bc_epsilon());
+}
+
+// Pass k of the accumulation buffer (render_accum): one pinhole pass at lens
+// position and time (u, v, t)_k with every pixel sampled at the same sub-pixel
+// offset. The Halton points of interleaved_tuple (bases 2, 3, 5 for t, r^2,
+// angle) and bases 7, 11 for the offset, all from index k + 1 (index 0 would
+// put every sample on a pixel corner and at t = 0), each Cranley-Patterson
+// rotated by a shift hashed from the seed: any seed gives a low-discrepancy
+// set, and different seeds give different passes.
+BC_FN PixelSample accum_sample(uint k, uint seed) {
+    uint key = bc_hash(seed ^ 0x68e31da4u);
+    uint index = k + 1u;
+    PixelSample s;
+    s.time = bc_rotate_unit(bc_radical_inverse(index, 2u), bc_unit(bc_hash(key ^ 1u)));
+    real r = sqrt(bc_rotate_unit(bc_radical_inverse(index, 3u), bc_unit(bc_hash(key ^ 2u))));
+    real theta = real(6.283185307179586) * bc_rotate_unit(bc_radical_inverse(index, 5u), bc_unit(bc_hash(key ^ 3u)));
+    s.lens = clamp(vec2(r * cos(theta), r * sin(theta)), vec2(real(-1)), vec2(real(1)));
+    s.offset = vec2(bc_rotate_unit(bc_radical_inverse(index, 7u), bc_unit(bc_hash(key ^ 4u))),
+                    bc_rotate_unit(bc_radical_inverse(index, 11u), bc_unit(bc_hash(key ^ 5u))));
+    return s;
+}
