@@ -266,6 +266,7 @@ int RenderCommand::run() const {
         summary["backend"] = used_backend;
         summary["method"] = method;
         summary["cull"] = used_backend == "embree" || method != "stochastic" ? "none" : cull;
+        if (used_backend == "cpu" && method == "stochastic") summary["precision"] = precision;
         summary["spp"] = settings.spp;
         summary["width"] = settings.width;
         summary["height"] = settings.height;
