@@ -11,8 +11,6 @@
 
 #include <blurcull/kernel.hpp>
 
-#include <glm/glm.hpp>
-
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -157,32 +155,6 @@ RenderSettings small_settings(int spp) {
     return settings;
 }
 
-// The scene with the lens closed, the camera still, and every triangle given
-// its own vertices: one in ten (t % 10 == 0) keeps the motion it had on
-// screen (the camera's motion, made the triangle's own, plus its own), the
-// other nine stand still at their shutter-open place. 90% of it takes the
-// static path. (The forest moves only by its camera: keeping position_close
-// alone would have left it all static.)
-Scene mostly_static(const Scene& source) {
-    Scene scene = source;
-    scene.position_open.clear();
-    scene.position_close.clear();
-    scene.camera.lens_radius = 0.0f;
-    scene.camera.view_close = scene.camera.view_open;
-    // The world point that the still camera sees where the moving one saw p at close.
-    const glm::mat4 close_motion = glm::inverse(source.camera.view_open) * source.camera.view_close;
-    for (std::size_t t = 0; t < source.triangles.size(); ++t) {
-        const bool moves = t % 10 == 0;
-        for (int i = 0; i < 3; ++i) {
-            const std::uint32_t v = source.triangles[t][i];
-            scene.position_open.push_back(source.position_open[v]);
-            scene.position_close.push_back(
-                moves ? glm::vec3(close_motion * glm::vec4(source.position_close[v], 1.0f)) : source.position_open[v]);
-            scene.triangles[t][i] = static_cast<std::uint32_t>(3 * t + i);
-        }
-    }
-    return scene;
-}
 
 }  // namespace
 
@@ -267,7 +239,7 @@ TEST_CASE("gl backend: the static path gives the full path's image, faster") {
     GlRenderer* gl = renderer_or_skip();
     if (gl == nullptr) return;
     SceneOptions options;
-    const Scene scene = mostly_static(make_builtin_scene("forest", options));
+    const Scene scene = make_mostly_static(make_builtin_scene("forest", options), 10);
     RenderSettings settings = small_settings(16);
     settings.width = 96;
     settings.height = 72;

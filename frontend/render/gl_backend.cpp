@@ -333,9 +333,9 @@ RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settin
         gl.ClearBufferfv(GL_DEPTH, 0, &clear_depth);
         end_step(step_samples);
         if (count > 0) {
-            // Six vertices per quad: per static triangle, per moving triangle's cell.
+            // Three vertices per static triangle, six (a quad) per moving triangle's cell.
             set_common(gl, state_->draw_static, model, settings, pass_base);
-            gl.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(static_count * 6));
+            gl.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(static_count * 3));
             end_step(step_static);
             set_common(gl, state_->draw_moving, model, settings, pass_base);
             set_int(gl, state_->draw_moving, "cells_per_triangle", cells_per_triangle);

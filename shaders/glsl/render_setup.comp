@@ -104,18 +104,25 @@ void main() {
     }
     info.rect = r;
     info.meta.z = is_static ? PATH_STATIC : PATH_MOVING;
-    // The static path draws the grown triangle rather than the rect when it
-    // is smaller: one primitive instead of two, over fewer of llvmpipe's
-    // 4 x 4 blocks. A thin sliver's grown corners reach far: the rect then.
-    vec2 outline[3];
-    if (is_static && grown_outline(tri, outline)) {
-        float outline_area = 0.5 * abs(cross2(outline[1] - outline[0], outline[2] - outline[0]));
-        float rect_area = float((r.z - r.x + 1) * (r.w - r.y + 1));
-        if (outline_area < rect_area) {
-            info.meta.w = 1;
-            info.outline01 = vec4(outline[0], outline[1]);
-            info.outline2 = vec4(outline[2], 0.0, 0.0);
+    // The static path draws one triangle per static triangle (llvmpipe's
+    // cost here is per primitive, not per fragment): the triangle grown by a
+    // pixel, or, when that is larger (small or thin triangles: a thin
+    // sliver's grown corners reach far), the right triangle whose legs are
+    // twice the rect's sides (plus a quarter pixel), which holds the rect.
+    if (is_static) {
+        float left = float(r.x), bottom = image_size.y - float(r.w + 1);
+        vec2 legs = 2.0 * vec2(float(r.z + 1 - r.x), float(r.w + 1 - r.y)) + 0.25;
+        vec2 outline[3];
+        outline[0] = vec2(left, bottom);
+        outline[1] = vec2(left + legs.x, bottom);
+        outline[2] = vec2(left, bottom + legs.y);
+        vec2 grown[3];
+        if (grown_outline(tri, grown) &&
+            abs(cross2(grown[1] - grown[0], grown[2] - grown[0])) < legs.x * legs.y) {
+            outline = grown;
         }
+        info.outline01 = vec4(outline[0], outline[1]);
+        info.outline2 = vec4(outline[2], 0.0, 0.0);
     }
     infos[i] = info;
 }
