@@ -238,35 +238,47 @@ TEST_CASE("gl backend: every built-in scene agrees with the cpu backend sample b
 TEST_CASE("gl backend: the static path gives the full path's image, faster") {
     GlRenderer* gl = renderer_or_skip();
     if (gl == nullptr) return;
+    // The car made 90% static (make_mostly_static), 64x48: small enough for
+    // CI; docs/gl-backend.md has the forest at 96x72 (bench_gl static).
     SceneOptions options;
-    const Scene scene = make_mostly_static(make_builtin_scene("forest", options), 10);
-    RenderSettings settings = small_settings(16);
-    settings.width = 96;
-    settings.height = 72;
+    options.aspect = 64.0f / 48.0f;
+    const Scene scene = make_mostly_static(make_builtin_scene("car", options), 10);
+    const RenderSettings settings = small_settings(16);
     GlOptions fast, full;
     fast.keep_sample_ids = full.keep_sample_ids = true;
     full.force_full_path = true;
+    // Warm-up at 1x1: llvmpipe compiles a program on its first draw.
+    RenderSettings tiny = settings;
+    tiny.width = tiny.height = 1;
+    gl->render(scene, tiny, fast);
+    gl->render(scene, tiny, full);
     std::vector<std::uint32_t> fast_ids, full_ids;
-    gl->render(scene, settings, fast, &fast_ids);  // warm-up: programs compile on first use
-    gl->render(scene, settings, full, &full_ids);
-    auto best_ms = [&](const GlOptions& gl_options, std::vector<std::uint32_t>& ids) {
-        double best = 1e30;
-        for (int run = 0; run < 1; ++run) {
-            const auto start = std::chrono::steady_clock::now();
-            gl->render(scene, settings, gl_options, &ids);
-            best = std::min(best, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-        }
-        return best;
+    RenderResult fast_result, full_result;
+    std::vector<double> fast_ms, full_ms;
+    auto timed = [&](const GlOptions& gl_options, std::vector<std::uint32_t>& ids, RenderResult& result) {
+        const auto start = std::chrono::steady_clock::now();
+        result = gl->render(scene, settings, gl_options, &ids);
+        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     };
-    const double fast_ms = best_ms(fast, fast_ids);
-    const double full_ms = best_ms(full, full_ids);
-    std::printf("mostly static forest %dx%d %d spp: static path %.1f ms, full path forced %.1f ms, speed-up %.2fx\n",
-                settings.width, settings.height, settings.spp, fast_ms, full_ms, full_ms / fast_ms);
-    // Depth at the static path's MSAA positions can order a sample differently near intersections.
-    CHECK(fraction_equal(fast_ids, full_ids) >= 0.999);
-    // Measured 2.2x at 192x144 (docs/gl-backend.md); a loose bound here, as
-    // other work shares the machine.
-    CHECK(full_ms / fast_ms >= 1.5);
+    // Alternating, so that a change in the machine's load hits both alike.
+    for (int frame = 0; frame < 3; ++frame) {
+        fast_ms.push_back(timed(fast, fast_ids, fast_result));
+        full_ms.push_back(timed(full, full_ids, full_result));
+    }
+    std::sort(fast_ms.begin(), fast_ms.end());
+    std::sort(full_ms.begin(), full_ms.end());
+    const double speed_up = full_ms[1] / fast_ms[1];
+    std::printf("car made 90%% static %dx%d %d spp: static path %.1f ms, full path forced %.1f ms (medians of 3), "
+                "speed-up %.2fx\n",
+                settings.width, settings.height, settings.spp, fast_ms[1], full_ms[1], speed_up);
+    // The same decisions: both paths run covers() on the same samples; only
+    // a depth tie between a static and a moving surface can be ordered
+    // differently (the static path draws first).
+    CHECK(fast_result.stats.samples_hit == full_result.stats.samples_hit);
+    CHECK(fraction_equal(fast_ids, full_ids) >= 0.9999);
+    // Measured 3.1x here and 4x+ on the forest at 96x72 (docs/gl-backend.md);
+    // a margin below, as other work shares a CI machine's two cores.
+    CHECK(speed_up >= 2.0);
 }
 
 TEST_CASE("gl backend: bad settings are refused with the shared messages") {
