@@ -198,7 +198,7 @@ RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settin
 
     // Setup: float clip-space triangles (make_moving_triangle<float>, as the
     // kernel's GLSL sees them), colours, buffers, then per triangle on the GPU:
-    // classify, screen bound, path.
+    // screen bound, path.
     Clock::time_point phase = Clock::now();
     std::vector<GpuTriangle> triangles(std::max<std::size_t>(count, 1));
     // classify() here, on the float triangle the GLSL sees (kernel<float> and
