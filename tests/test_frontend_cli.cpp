@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -79,6 +80,21 @@ TEST_CASE("blurcull render writes a PNG and a JSON summary") {
     CHECK(image.height == 48);
 }
 
+TEST_CASE("blurcull render --precision float: kernel<float>, the same image but for depth order") {
+    Run single = run_cli("render --scene car --size 48x36 --spp 4 --precision float --json -o car_float.png");
+    Run reference = run_cli("render --scene car --size 48x36 --spp 4 --json -o car_double.png");
+    REQUIRE(single.status == 0);
+    REQUIRE(reference.status == 0);
+    const nlohmann::json a = nlohmann::json::parse(single.out), b = nlohmann::json::parse(reference.out);
+    CHECK(a["precision"] == "float");
+    CHECK(b["precision"] == "double");
+    // Coverage is decided alike in float (tests/test_frontend_gl_render.cpp
+    // compares sample by sample); hit counts within 0.01%.
+    const double hits_float = a["samples_hit"].get<double>(), hits_double = b["samples_hit"].get<double>();
+    CHECK(hits_double > 0);
+    CHECK(std::abs(hits_float - hits_double) <= 1e-4 * hits_double);
+}
+
 TEST_CASE("blurcull render: the Embree backend and a glTF scene") {
     Run embree = run_cli("render --scene hand --size 48x36 --spp 2 --backend embree --json -o hand_embree.png");
     INFO(embree.err);
@@ -118,6 +134,7 @@ TEST_CASE("bad input: one line naming the problem, non-zero exit, no output file
         {"render --blur-scale -2", "--blur-scale"},
         {"render --seed -1", "--seed"},
         {"render --threads -3", "--threads"},
+        {"render --precision half", "--precision"},
         {"render --scene nowhere", "unknown scene"},
         {"render --scene missing_file.gltf", "missing_file.gltf"},
         {"render -o /nonexistent-folder/x.png", "not writable"},

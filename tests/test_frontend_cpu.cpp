@@ -70,22 +70,27 @@ Scene near_plane_scene() {
 
 }  // namespace
 
-TEST_CASE("every culling method renders the same image, on every built-in scene") {
+TEST_CASE("every culling method renders the same image, on every built-in scene, in double and in float") {
     const int width = 64, height = 48;
+    CpuOptions single;
+    single.precision = KernelPrecision::float32;
     for (const std::string& name : builtin_scene_names()) {
         for (float blur : {1.0f, 2.0f}) {
-            Scene scene = small_scene(name, blur, width, height);
-            RenderSettings settings = small_settings(width, height, 4);
-            settings.cull = CullMethod::bbox;
-            RenderResult reference = render_cpu(scene, settings);
-            CHECK(reference.stats.samples_hit > 0);
-            for (CullMethod method : {CullMethod::hull, CullMethod::dualspace, CullMethod::clip2}) {
-                settings.cull = method;
-                RenderResult result = render_cpu(scene, settings);
-                INFO(name, " x", blur, " ", to_string(method));
-                CHECK(result.stats.samples_hit == reference.stats.samples_hit);
-                CHECK(result.stats.samples_tested <= reference.stats.samples_tested);
-                CHECK(same_pixels(result.image, reference.image));
+            for (const CpuOptions& options : {CpuOptions{}, single}) {
+                Scene scene = small_scene(name, blur, width, height);
+                RenderSettings settings = small_settings(width, height, 4);
+                settings.cull = CullMethod::bbox;
+                RenderResult reference = render_cpu(scene, settings, options);
+                CHECK(reference.stats.samples_hit > 0);
+                for (CullMethod method : {CullMethod::hull, CullMethod::dualspace, CullMethod::clip2}) {
+                    settings.cull = method;
+                    RenderResult result = render_cpu(scene, settings, options);
+                    INFO(name, " x", blur, " ", to_string(method),
+                         options.precision == KernelPrecision::float32 ? " float" : " double");
+                    CHECK(result.stats.samples_hit == reference.stats.samples_hit);
+                    CHECK(result.stats.samples_tested <= reference.stats.samples_tested);
+                    CHECK(same_pixels(result.image, reference.image));
+                }
             }
         }
     }

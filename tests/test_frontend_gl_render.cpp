@@ -53,18 +53,20 @@ GlRenderer* renderer_or_skip() {
 }
 
 // The CPU backend's decisions, sample by sample, without culling (its image
-// does not depend on the cull): kernel<double>, strict depth test in triangle
-// order. Checked below to resolve to exactly render_cpu's image.
+// does not depend on the cull): kernel<Real>, strict depth test in triangle
+// order. Checked below to resolve to exactly render_cpu's image at the same
+// precision.
+template <class Real>
 std::vector<std::uint32_t> reference_sample_ids(const Scene& scene, const RenderSettings& settings, Image& image) {
-    using K = blurcull::kernel<double>;
+    using K = blurcull::kernel<Real>;
     const CameraModel model(scene.camera, settings.width, settings.height);
     const auto spp = static_cast<std::uint32_t>(settings.spp);
     const std::size_t pixels = static_cast<std::size_t>(settings.width) * static_cast<std::size_t>(settings.height);
     std::vector<std::uint32_t> ids(pixels * spp, no_triangle);
-    std::vector<double> depth(ids.size(), std::numeric_limits<double>::infinity());
+    std::vector<Real> depth(ids.size(), std::numeric_limits<Real>::infinity());
     struct Sample {
-        K::vec2 ndc, lens;
-        double time;
+        typename K::vec2 ndc, lens;
+        Real time;
     };
     std::vector<Sample> samples(ids.size());
     for (int py = 0; py < settings.height; ++py) {
@@ -73,17 +75,19 @@ std::vector<std::uint32_t> reference_sample_ids(const Scene& scene, const Render
                 const blurcull::kernelf::PixelSample s = blurcull::kernelf::pixel_sample(
                     static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py), j, spp, settings.seed);
                 samples[(static_cast<std::size_t>(py) * settings.width + px) * spp + j] =
-                    Sample{K::vec2(model.sample_ndc(px, py, s.offset)), K::vec2(s.lens), s.time};
+                    Sample{typename K::vec2(model.sample_ndc(px, py, s.offset)), typename K::vec2(s.lens),
+                           static_cast<Real>(s.time)};
             }
         }
     }
     for (std::size_t t = 0; t < scene.triangles.size(); ++t) {
-        const K::MovingTriangle tri = make_moving_triangle<double>(scene, model, t);
+        const typename K::MovingTriangle tri = make_moving_triangle<Real>(scene, model, t);
         if (K::classify(tri) == BC_INVALID) continue;
-        const K::ScreenBound bound = K::screen_bound(tri, model.znear, BC_CULL_BBOX);
+        const Real near = static_cast<Real>(model.znear);
+        const typename K::ScreenBound bound = K::screen_bound(tri, near, BC_CULL_BBOX);
         if (bound.empty) continue;
-        const glm::vec2 lo = model.ndc_to_raster(glm::vec2(bound.lo.x, bound.hi.y));
-        const glm::vec2 hi = model.ndc_to_raster(glm::vec2(bound.hi.x, bound.lo.y));
+        const glm::vec2 lo = model.ndc_to_raster(glm::vec2(static_cast<float>(bound.lo.x), static_cast<float>(bound.hi.y)));
+        const glm::vec2 hi = model.ndc_to_raster(glm::vec2(static_cast<float>(bound.hi.x), static_cast<float>(bound.lo.y)));
         const int x0 = std::max(0, static_cast<int>(std::floor(std::max(lo.x, -1.0f))) - 1);
         const int y0 = std::max(0, static_cast<int>(std::floor(std::max(lo.y, -1.0f))) - 1);
         const int x1 = std::min(settings.width - 1, static_cast<int>(std::min(hi.x, 1e6f)) + 1);
@@ -92,9 +96,9 @@ std::vector<std::uint32_t> reference_sample_ids(const Scene& scene, const Render
             for (int px = x0; px <= x1; ++px) {
                 for (std::uint32_t j = 0; j < spp; ++j) {
                     const std::size_t k = (static_cast<std::size_t>(py) * settings.width + px) * spp + j;
-                    double z = 0.0;
+                    Real z = Real(0);
                     if (!K::screen_contains(bound, samples[k].ndc)) continue;
-                    if (!K::covers(tri, samples[k].ndc, samples[k].lens, samples[k].time, model.znear, z)) continue;
+                    if (!K::covers(tri, samples[k].ndc, samples[k].lens, samples[k].time, near, z)) continue;
                     if (z < depth[k]) {
                         depth[k] = z;
                         ids[k] = static_cast<std::uint32_t>(t);
@@ -123,6 +127,14 @@ double fraction_equal(const std::vector<std::uint32_t>& a, const std::vector<std
     return a.empty() ? 1.0 : static_cast<double>(same) / static_cast<double>(a.size());
 }
 
+// Samples that are covered (show some triangle) in both or in neither.
+double fraction_same_coverage(const std::vector<std::uint32_t>& a, const std::vector<std::uint32_t>& b) {
+    REQUIRE(a.size() == b.size());
+    std::size_t same = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) same += (a[i] == no_triangle) == (b[i] == no_triangle) ? 1 : 0;
+    return a.empty() ? 1.0 : static_cast<double>(same) / static_cast<double>(a.size());
+}
+
 // Pixels whose every channel is within 1/255.
 double fraction_close(const Image& a, const Image& b) {
     std::size_t close = 0;
@@ -143,25 +155,6 @@ RenderSettings small_settings(int spp) {
     return settings;
 }
 
-// The scene with 90% of its triangles made static (their own vertices, close
-// = open) and the lens closed: most of it takes the static path.
-Scene mostly_static(const Scene& source) {
-    Scene scene = source;
-    scene.position_open.clear();
-    scene.position_close.clear();
-    scene.camera.lens_radius = 0.0f;
-    scene.camera.view_close = scene.camera.view_open;
-    for (std::size_t t = 0; t < source.triangles.size(); ++t) {
-        const bool moves = t % 10 == 0;
-        for (int i = 0; i < 3; ++i) {
-            const std::uint32_t v = source.triangles[t][i];
-            scene.position_open.push_back(source.position_open[v]);
-            scene.position_close.push_back(moves ? source.position_close[v] : source.position_open[v]);
-            scene.triangles[t][i] = static_cast<std::uint32_t>(3 * t + i);
-        }
-    }
-    return scene;
-}
 
 }  // namespace
 
@@ -180,11 +173,19 @@ TEST_CASE("gl backend: every built-in scene agrees with the cpu backend sample b
                                                    CullMethod::clip2}
                          : std::vector<CullMethod>{CullMethod::clip2};
             const RenderSettings settings = small_settings(spp);
-            Image reference_image;
-            const std::vector<std::uint32_t> reference = reference_sample_ids(scene, settings, reference_image);
+            // The CPU backend's decisions in double (the reference) and in
+            // float (the GL backend's arithmetic, kernel<float> and its GLSL
+            // twin being bit-identical); each checked to resolve to exactly
+            // render_cpu's image at that precision.
+            Image double_image, float_image;
+            const std::vector<std::uint32_t> double_ids = reference_sample_ids<double>(scene, settings, double_image);
+            const std::vector<std::uint32_t> float_ids = reference_sample_ids<float>(scene, settings, float_image);
             const RenderResult cpu = render_cpu(scene, settings);
-            // The reference decides exactly as the CPU backend: bit-identical images.
-            REQUIRE(rmse(reference_image, cpu.image) == 0.0);
+            CpuOptions float_options;
+            float_options.precision = KernelPrecision::float32;
+            const RenderResult cpu_float = render_cpu(scene, settings, float_options);
+            REQUIRE(rmse(double_image, cpu.image) == 0.0);
+            REQUIRE(rmse(float_image, cpu_float.image) == 0.0);
             for (CullMethod cull : culls) {
                 RenderSettings gl_settings = settings;
                 gl_settings.cull = cull;
@@ -192,25 +193,41 @@ TEST_CASE("gl backend: every built-in scene agrees with the cpu backend sample b
                 gl_options.keep_sample_ids = true;
                 std::vector<std::uint32_t> ids;
                 const RenderResult result = gl->render(scene, gl_settings, gl_options, &ids);
-                const double same = fraction_equal(ids, reference);
+                const double same_float = fraction_equal(ids, float_ids);
+                const double same_double = fraction_equal(ids, double_ids);
+                const double covered_float = fraction_same_coverage(ids, float_ids);
+                const double covered_double = fraction_same_coverage(ids, double_ids);
                 const double error = rmse(result.image, cpu.image);
                 const double close = fraction_close(result.image, cpu.image);
+                const double error_float = rmse(result.image, cpu_float.image);
                 const double hits_cpu = static_cast<double>(cpu.stats.samples_hit);
+                const double hits_cpu_float = static_cast<double>(cpu_float.stats.samples_hit);
                 const double hits_gl = static_cast<double>(result.stats.samples_hit);
-                INFO(name, " spp ", spp, " cull ", to_string(cull), ": samples identical ", same, ", rmse ", error,
-                     ", pixels within 1/255 ", close, ", hits gl ", hits_gl, " cpu ", hits_cpu);
-                std::printf("%-9s spp %2d %-9s samples identical %.6f  rmse %.6f  pixels within 1/255 %.5f  "
-                            "hits gl %.0f cpu %.0f  tested gl %llu cpu %llu\n",
-                            name.c_str(), spp, to_string(cull), same, error, close, hits_gl, hits_cpu,
-                            static_cast<unsigned long long>(result.stats.samples_tested),
-                            static_cast<unsigned long long>(cpu.stats.samples_tested));
-                // Every covers() decision agrees (the hit counts below); what
-                // differs is which of two near-coincident surfaces is in front,
-                // decided on float depths here and double ones on the CPU.
-                CHECK(same >= 0.998);
+                INFO(name, " spp ", spp, " cull ", to_string(cull), ": same triangle as cpu float ", same_float,
+                     ", double ", same_double, "; same coverage as float ", covered_float, ", double ", covered_double,
+                     "; rmse ", error, " (float ", error_float, "), pixels within 1/255 ", close, "; hits gl ", hits_gl,
+                     " cpu float ",
+                     hits_cpu_float, " double ", hits_cpu);
+                std::printf("%-9s spp %2d %-9s same triangle: float %.6f double %.6f  same coverage: float %.6f "
+                            "double %.6f  rmse %.6f (float %.6f)  within 1/255 %.5f  hits gl %.0f cpu float %.0f double %.0f\n",
+                            name.c_str(), spp, to_string(cull), same_float, same_double, covered_float,
+                            covered_double, error, error_float, close, hits_gl, hits_cpu_float, hits_cpu);
+                // Against the CPU in float, the same arithmetic: the same
+                // decisions but for depth ties between surfaces drawn by
+                // different paths (static before moving, not index order).
+                CHECK(same_float >= 0.999);
+                CHECK(covered_float >= 0.9999);
+                CHECK(hits_gl == hits_cpu_float);
+                CHECK(error_float < 0.001);
+                // Against the double reference: coverage agrees as closely;
+                // which of two near-coincident surfaces is in front can differ
+                // (float depth here), the dragonfly's stacked wings the most.
+                CHECK(same_double >= 0.998);
+                CHECK(covered_double >= 0.9999);
+                CHECK(std::abs(hits_gl - hits_cpu) <= 0.0001 * hits_cpu + 1.0);
+                // The resolved images, against the double reference.
                 CHECK(error < 0.005);
                 CHECK(close >= 0.995);
-                CHECK(std::abs(hits_gl - hits_cpu) <= 0.0001 * hits_cpu + 1.0);
                 CHECK(result.stats.samples_tested >= result.stats.samples_hit);
                 CHECK(result.stats.triangles == scene.triangles.size());
             }
@@ -221,35 +238,47 @@ TEST_CASE("gl backend: every built-in scene agrees with the cpu backend sample b
 TEST_CASE("gl backend: the static path gives the full path's image, faster") {
     GlRenderer* gl = renderer_or_skip();
     if (gl == nullptr) return;
+    // The car made 90% static (make_mostly_static), 64x48: small enough for
+    // CI; docs/gl-backend.md has the forest at 96x72 (bench_gl static).
     SceneOptions options;
-    const Scene scene = mostly_static(make_builtin_scene("forest", options));
-    RenderSettings settings = small_settings(16);
-    settings.width = 96;
-    settings.height = 72;
+    options.aspect = 64.0f / 48.0f;
+    const Scene scene = make_mostly_static(make_builtin_scene("car", options), 10);
+    const RenderSettings settings = small_settings(16);
     GlOptions fast, full;
     fast.keep_sample_ids = full.keep_sample_ids = true;
     full.force_full_path = true;
+    // Warm-up at 1x1: llvmpipe compiles a program on its first draw.
+    RenderSettings tiny = settings;
+    tiny.width = tiny.height = 1;
+    gl->render(scene, tiny, fast);
+    gl->render(scene, tiny, full);
     std::vector<std::uint32_t> fast_ids, full_ids;
-    gl->render(scene, settings, fast, &fast_ids);  // warm-up: programs compile on first use
-    gl->render(scene, settings, full, &full_ids);
-    auto best_ms = [&](const GlOptions& gl_options, std::vector<std::uint32_t>& ids) {
-        double best = 1e30;
-        for (int run = 0; run < 1; ++run) {
-            const auto start = std::chrono::steady_clock::now();
-            gl->render(scene, settings, gl_options, &ids);
-            best = std::min(best, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-        }
-        return best;
+    RenderResult fast_result, full_result;
+    std::vector<double> fast_ms, full_ms;
+    auto timed = [&](const GlOptions& gl_options, std::vector<std::uint32_t>& ids, RenderResult& result) {
+        const auto start = std::chrono::steady_clock::now();
+        result = gl->render(scene, settings, gl_options, &ids);
+        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     };
-    const double fast_ms = best_ms(fast, fast_ids);
-    const double full_ms = best_ms(full, full_ids);
-    std::printf("mostly static forest %dx%d %d spp: static path %.1f ms, full path forced %.1f ms, speed-up %.2fx\n",
-                settings.width, settings.height, settings.spp, fast_ms, full_ms, full_ms / fast_ms);
-    // Depth at the static path's MSAA positions can order a sample differently near intersections.
-    CHECK(fraction_equal(fast_ids, full_ids) >= 0.999);
-    // Measured 2.2x at 192x144 (docs/gl-backend.md); a loose bound here, as
-    // other work shares the machine.
-    CHECK(full_ms / fast_ms >= 1.5);
+    // Alternating, so that a change in the machine's load hits both alike.
+    for (int frame = 0; frame < 3; ++frame) {
+        fast_ms.push_back(timed(fast, fast_ids, fast_result));
+        full_ms.push_back(timed(full, full_ids, full_result));
+    }
+    std::sort(fast_ms.begin(), fast_ms.end());
+    std::sort(full_ms.begin(), full_ms.end());
+    const double speed_up = full_ms[1] / fast_ms[1];
+    std::printf("car made 90%% static %dx%d %d spp: static path %.1f ms, full path forced %.1f ms (medians of 3), "
+                "speed-up %.2fx\n",
+                settings.width, settings.height, settings.spp, fast_ms[1], full_ms[1], speed_up);
+    // The same decisions: both paths run covers() on the same samples; only
+    // a depth tie between a static and a moving surface can be ordered
+    // differently (the static path draws first).
+    CHECK(fast_result.stats.samples_hit == full_result.stats.samples_hit);
+    CHECK(fraction_equal(fast_ids, full_ids) >= 0.9999);
+    // Measured 3.1x here and 4x+ on the forest at 96x72 (docs/gl-backend.md);
+    // a margin below, as other work shares a CI machine's two cores.
+    CHECK(speed_up >= 2.0);
 }
 
 TEST_CASE("gl backend: bad settings are refused with the shared messages") {

@@ -151,6 +151,43 @@ TEST_CASE("built-in scenes: each has its thesis blur class") {
     CHECK(forest.lens_radius > 0.0f);
 }
 
+TEST_CASE("make_mostly_static: lens closed, camera still, one triangle in ten moving") {
+    for (const std::string& name : {std::string("forest"), std::string("car"), std::string("hand")}) {
+        const Scene source = make_builtin_scene(name, SceneOptions{});
+        const Scene scene = make_mostly_static(source, 10);
+        INFO(name);
+        validate_scene(scene);
+        CHECK(scene.camera.lens_radius == 0.0f);
+        CHECK(scene.camera.view_close == scene.camera.view_open);
+        REQUIRE(scene.triangles.size() == source.triangles.size());
+        std::size_t moving = 0, moving_slots = 0;
+        bool still_ones_still = true, open_kept = true;
+        for (std::size_t t = 0; t < scene.triangles.size(); ++t) {
+            bool moves = false;
+            for (int i = 0; i < 3; ++i) {
+                const std::uint32_t v = scene.triangles[t][i];
+                open_kept = open_kept && scene.position_open[v] == source.position_open[source.triangles[t][i]];
+                moves = moves || scene.position_open[v] != scene.position_close[v];
+            }
+            if (t % 10 == 0) {
+                ++moving_slots;
+                moving += moves ? 1 : 0;
+            } else if (moves) {
+                still_ones_still = false;
+            }
+        }
+        CHECK(still_ones_still);
+        CHECK(open_kept);
+        // The forest moves by its camera, the car by its own motion, the hand not at all.
+        if (name == "hand") {
+            CHECK(moving == 0);
+        } else {
+            CHECK(moving >= moving_slots * 9 / 10);
+        }
+    }
+    CHECK_THROWS_AS(make_mostly_static(make_builtin_scene("car", SceneOptions{}), 0), SceneError);
+}
+
 TEST_CASE("built-in scenes: blur_scale 2 doubles motion and lens, 0 removes all blur") {
     for (const std::string& name : builtin_scene_names()) {
         CAPTURE(name);

@@ -91,6 +91,10 @@ void RenderCommand::add_options(CLI::App& app) {
     app.add_option("--footprint", footprint, "cpu: pixels per side of a culling footprint")
         ->check(CLI::Range(1, 64))
         ->capture_default_str();
+    app.add_option("--precision", precision,
+                   "cpu: the kernel's arithmetic, double (reference) or float (the gl backend's)")
+        ->check(CLI::IsMember({"double", "float"}))
+        ->capture_default_str();
     app.add_flag("-q,--quiet", quiet, "no progress on stderr");
 }
 
@@ -164,6 +168,7 @@ int RenderCommand::run() const {
     } else {
         CpuOptions options;
         options.footprint = footprint;
+        options.precision = parse_kernel_precision(precision);
         result = render_cpu(loaded, settings, options);
     }
     write_png(out_path, result.image);
@@ -175,6 +180,7 @@ int RenderCommand::run() const {
         summary["backend"] = used_backend;
         summary["method"] = method;
         summary["cull"] = used_backend == "embree" || method != "stochastic" ? "none" : cull;
+        if (used_backend == "cpu" && method == "stochastic") summary["precision"] = precision;
         summary["spp"] = settings.spp;
         summary["width"] = settings.width;
         summary["height"] = settings.height;

@@ -25,6 +25,7 @@ struct RenderCommand {
     bool json = false;
     int threads = 0;
     int footprint = 4;  // CpuOptions::footprint
+    std::string precision = "double";  // CpuOptions::precision
     bool quiet = false;
 
     void add_options(CLI::App& app);

@@ -21,10 +21,11 @@
 namespace blurcull::frontend {
 namespace {
 
-// The CPU path runs the kernel in double: its bounds are then conservative
-// against the very oracle that decides coverage (the property tests prove it
-// for double against double), so every culling method gives the same image.
-using K = blurcull::kernel<double>;
+// The CPU path runs the kernel in double by default: its bounds are then
+// conservative against the very oracle that decides coverage (the property
+// tests prove it for double against double), so every culling method gives
+// the same image. CpuOptions::precision float runs kernel<float>, the GL
+// backend's arithmetic, to compare decisions with it.
 using Clock = std::chrono::steady_clock;
 
 constexpr int tile_size = 16;  // pixels per side of a binning and work tile
@@ -39,7 +40,8 @@ struct PixelRect {
 
 // Pixels whose footprint meets the NDC box [lo, hi], clamped to the image;
 // empty (x0 > x1) when they miss it.
-PixelRect pixel_rect(const CameraModel& model, K::vec2 lo, K::vec2 hi) {
+template <class Vec2>
+PixelRect pixel_rect(const CameraModel& model, Vec2 lo, Vec2 hi) {
     const double w = model.width, h = model.height;
     // raster x = (X + 1) w / 2, raster y = (1 - Y) h / 2 (rows grow downwards)
     auto clamp_floor = [](double v, int limit) {
@@ -48,33 +50,31 @@ PixelRect pixel_rect(const CameraModel& model, K::vec2 lo, K::vec2 hi) {
         return static_cast<int>(std::floor(v));
     };
     PixelRect r;
-    r.x0 = clamp_floor((lo.x + 1.0) * 0.5 * w, model.width);
-    r.x1 = clamp_floor((hi.x + 1.0) * 0.5 * w, model.width);
-    r.y0 = clamp_floor((1.0 - hi.y) * 0.5 * h, model.height);
-    r.y1 = clamp_floor((1.0 - lo.y) * 0.5 * h, model.height);
+    r.x0 = clamp_floor((double(lo.x) + 1.0) * 0.5 * w, model.width);
+    r.x1 = clamp_floor((double(hi.x) + 1.0) * 0.5 * w, model.width);
+    r.y0 = clamp_floor((1.0 - double(hi.y)) * 0.5 * h, model.height);
+    r.y1 = clamp_floor((1.0 - double(lo.y)) * 0.5 * h, model.height);
     r.x1 = std::min(r.x1, model.width - 1);
     r.y1 = std::min(r.y1, model.height - 1);
-    if (lo.x > 1.0 || hi.x < -1.0 || lo.y > 1.0 || hi.y < -1.0) r.x0 = r.x1 + 1;
+    if (double(lo.x) > 1.0 || double(hi.x) < -1.0 || double(lo.y) > 1.0 || double(hi.y) < -1.0) r.x0 = r.x1 + 1;
     return r;
 }
 
+template <class K>
 struct TileSample {
-    K::vec2 ndc;
-    K::vec2 lens;
-    double time;
+    typename K::vec2 ndc;
+    typename K::vec2 lens;
+    typename K::real time;
 };
 
-}  // namespace
-
-RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, const CpuOptions& options) {
+template <class Real>
+RenderResult render_cpu_in(const Scene& scene, const RenderSettings& settings, const CpuOptions& options) {
+    using K = blurcull::kernel<Real>;
+    using Sample = TileSample<K>;
     const Clock::time_point start = Clock::now();
-    validate_settings(settings);
-    validate_scene(scene);
-    if (options.footprint < 1) throw std::invalid_argument("cpu: footprint must be >= 1 pixel");
-    if (options.block < 0) throw std::invalid_argument("cpu: block must be >= 0 pixels");
     const CameraModel model(scene.camera, settings.width, settings.height);
     const int method = kernel_cull_method(settings.cull);
-    const double near = model.znear;
+    const Real near = static_cast<Real>(model.znear);
     const int width = settings.width, height = settings.height;
     const auto spp = static_cast<std::uint32_t>(settings.spp);
     const int footprint = options.footprint;
@@ -83,7 +83,7 @@ RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, cons
     // Only the per-footprint methods bound lens and time; a static, in-focus
     // triangle has neither to bound, whatever the method.
     const bool cull_bounds = method == BC_CULL_DUALSPACE || method == BC_CULL_CLIP2;
-    const K::SampleBounds no_bounds = K::no_sample_bounds();
+    const typename K::SampleBounds no_bounds = K::no_sample_bounds();
     // Footprints that tile the work tiles get their samples sorted by time.
     const bool time_sorted = cull_bounds && footprint <= tile_size && tile_size % footprint == 0;
 
@@ -96,37 +96,37 @@ RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, cons
     const std::vector<glm::vec3> colours = shade_all(scene);
     const std::size_t count = scene.triangles.size();
     std::size_t invalid = 0;
-    std::vector<K::MovingTriangle> triangles(count);
+    std::vector<typename K::MovingTriangle> triangles(count);
     std::vector<PixelRect> rects(count);
     std::vector<int> classes(count);
     // Each triangle's screen bound, computed once: its box, and its hull edges
     // (if any) as a range of `hull_edges`.
     struct StoredBound {
-        K::vec2 lo, hi;
+        typename K::vec2 lo, hi;
         std::size_t hull_offset = 0;
         int hull_count = 0;
     };
     std::vector<StoredBound> bounds(count);
-    std::vector<K::vec3> hull_edges;
+    std::vector<typename K::vec3> hull_edges;
     const int threads =
         settings.threads > 0 ? settings.threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
     {
         // In parallel over contiguous chunks; each chunk keeps its hull edges
         // apart, then they are joined in triangle order.
         const std::size_t chunks = static_cast<std::size_t>(std::max(1, std::min(threads, 64)));
-        std::vector<std::vector<K::vec3>> chunk_edges(chunks);
+        std::vector<std::vector<typename K::vec3>> chunk_edges(chunks);
         std::vector<std::size_t> chunk_invalid(chunks, 0);
         auto set_up = [&](std::size_t chunk) {
             const std::size_t first = count * chunk / chunks, last = count * (chunk + 1) / chunks;
             for (std::size_t i = first; i < last; ++i) {
-                triangles[i] = make_moving_triangle<double>(scene, model, i);
+                triangles[i] = make_moving_triangle<Real>(scene, model, i);
                 classes[i] = K::classify(triangles[i]);
                 rects[i] = PixelRect{0, 0, -1, -1};
                 if (classes[i] == BC_INVALID) {
                     ++chunk_invalid[chunk];  // validate_scene checked the input; only overflow gets here
                     continue;
                 }
-                const K::ScreenBound bound = K::screen_bound(triangles[i], near, method);
+                const typename K::ScreenBound bound = K::screen_bound(triangles[i], near, method);
                 if (bound.empty) continue;
                 rects[i] = pixel_rect(model, bound.lo, bound.hi);
                 StoredBound& stored = bounds[i];
@@ -176,13 +176,13 @@ RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, cons
     Progress progress(settings.progress, start, tile_count);
 
     auto work = [&]() {
-        std::vector<TileSample> samples(static_cast<std::size_t>(tile_size) * tile_size * spp);
+        std::vector<Sample> samples(static_cast<std::size_t>(tile_size) * tile_size * spp);
         // Per footprint of the tile's grid, its sample slots sorted by time, so
         // that a footprint's bounds visit only their shutter interval.
         std::vector<std::uint32_t> by_time(samples.size());
-        std::vector<double> by_time_t(samples.size());
+        std::vector<Real> by_time_t(samples.size());
         std::vector<std::size_t> footprint_start;
-        std::vector<double> depth(samples.size());
+        std::vector<Real> depth(samples.size());
         std::vector<std::uint32_t> hit(samples.size());
         std::uint64_t tested = 0, hits = 0, bounded = 0, bounded_empty = 0;
         constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
@@ -201,8 +201,9 @@ RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, cons
                     for (std::uint32_t j = 0; j < spp; ++j) {
                         const kernelf::PixelSample s = kernelf::pixel_sample_from(pattern, j);
                         const std::size_t k = slot(px, py, j);
-                        samples[k] = TileSample{K::vec2(model.sample_ndc(px, py, s.offset)), K::vec2(s.lens), s.time};
-                        depth[k] = std::numeric_limits<double>::infinity();
+                        samples[k] = Sample{typename K::vec2(model.sample_ndc(px, py, s.offset)),
+                                            typename K::vec2(s.lens), static_cast<Real>(s.time)};
+                        depth[k] = std::numeric_limits<Real>::infinity();
                         hit[k] = none;
                     }
                 }
@@ -229,10 +230,10 @@ RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, cons
                 footprint_start.back() = next;
             }
             for (std::uint32_t index : bins[static_cast<std::size_t>(tile)]) {
-                const K::MovingTriangle& tri = triangles[index];
+                const typename K::MovingTriangle& tri = triangles[index];
                 const PixelRect& r = rects[index];
                 const StoredBound& stored = bounds[index];
-                K::ScreenBound bound;
+                typename K::ScreenBound bound;
                 bound.empty = false;
                 bound.lo = stored.lo;
                 bound.hi = stored.hi;
@@ -244,27 +245,27 @@ RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, cons
                 // NDC rectangle of a block of pixels (rows grow downwards).
                 auto footprint_lo = [&](int px0, int py1) {
                     const glm::vec4 corner = model.pixel_ndc_bounds(px0, py1);
-                    return K::vec2(corner.x, corner.y);
+                    return typename K::vec2(corner.x, corner.y);
                 };
                 auto footprint_hi = [&](int px1, int py0) {
                     const glm::vec4 corner = model.pixel_ndc_bounds(px1, py0);
-                    return K::vec2(corner.z, corner.w);
+                    return typename K::vec2(corner.z, corner.w);
                 };
                 auto bounds_of = [&](int px0, int py0, int px1, int py1) {
-                    K::SampleBounds sb =
+                    typename K::SampleBounds sb =
                         K::sample_bounds(tri, footprint_lo(px0, py1), footprint_hi(px1, py0), method);
                     ++bounded;
                     if (sb.empty) ++bounded_empty;
                     return sb;
                 };
                 bool check_screen = true;  // false while the footprint is inside the screen bound
-                auto test_sample = [&](std::size_t k, const K::SampleBounds& sb) {
-                    const TileSample& s = samples[k];
+                auto test_sample = [&](std::size_t k, const typename K::SampleBounds& sb) {
+                    const Sample& s = samples[k];
                     // The lens/time test first: it is cheaper than a hull and culls more.
                     if (!K::sample_passes(sb, s.lens, s.time) || (check_screen && !K::screen_contains(bound, s.ndc)))
                         return;
                     ++tested;
-                    double z = 0.0;
+                    Real z = Real(0);
                     if (!K::covers(tri, s.ndc, s.lens, s.time, near, z)) return;
                     ++hits;
                     if (z < depth[k]) {
@@ -272,16 +273,17 @@ RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, cons
                         hit[k] = index;
                     }
                 };
-                auto test_samples = [&](int px0, int py0, int px1, int py1, const K::SampleBounds& sb) {
+                auto test_samples = [&](int px0, int py0, int px1, int py1, const typename K::SampleBounds& sb) {
                     // The screen bound per footprint first: skip it whole, or
                     // spare its samples the per-sample screen test.
                     const int state = K::screen_footprint(bound, footprint_lo(px0, py1), footprint_hi(px1, py0));
                     if (state == BC_FOOTPRINT_OUTSIDE) return;
                     check_screen = state != BC_FOOTPRINT_INSIDE;
-                    const K::vec2 range = time_sorted && needs_bounds ? K::sample_time_range(sb) : K::vec2(0.0, 1.0);
+                    const typename K::vec2 range =
+                        time_sorted && needs_bounds ? K::sample_time_range(sb) : typename K::vec2(Real(0), Real(1));
                     // Only the footprint's samples inside the bounds' shutter interval, when
                     // that skips enough of them to pay for visiting them out of memory order.
-                    if (range.y - range.x < 0.5) {
+                    if (range.y - range.x < Real(0.5)) {
                         const std::size_t f = static_cast<std::size_t>((py0 - y0) / footprint) * footprints_x +
                                               static_cast<std::size_t>((px0 - x0) / footprint);
                         const auto begin = by_time_t.begin() + static_cast<std::ptrdiff_t>(footprint_start[f]);
@@ -318,7 +320,7 @@ RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, cons
                             for (int fx = bx0 - (bx0 % footprint); fx <= bx1; fx += footprint) {
                                 const int px0 = std::max(fx, bx0), px1 = std::min(fx + footprint - 1, bx1);
                                 const int py0 = std::max(fy, by0), py1 = std::min(fy + footprint - 1, by1);
-                                const K::SampleBounds sb = bounds_of(px0, py0, px1, py1);
+                                const typename K::SampleBounds sb = bounds_of(px0, py0, px1, py1);
                                 if (!sb.empty) test_samples(px0, py0, px1, py1, sb);
                             }
                         }
@@ -362,6 +364,28 @@ RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, cons
     stats.bounds_empty = total_bounded_empty.load();
     stats.ms_total = ms_since(start);
     return result;
+}
+
+}  // namespace
+
+RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, const CpuOptions& options) {
+    validate_settings(settings);
+    validate_scene(scene);
+    if (options.footprint < 1) throw std::invalid_argument("cpu: footprint must be >= 1 pixel");
+    if (options.block < 0) throw std::invalid_argument("cpu: block must be >= 0 pixels");
+    switch (options.precision) {
+    case KernelPrecision::float32:
+        return render_cpu_in<float>(scene, settings, options);
+    case KernelPrecision::float64:
+        return render_cpu_in<double>(scene, settings, options);
+    }
+    throw std::invalid_argument("cpu: unknown kernel precision");
+}
+
+KernelPrecision parse_kernel_precision(const std::string& name) {
+    if (name == "double") return KernelPrecision::float64;
+    if (name == "float") return KernelPrecision::float32;
+    throw std::invalid_argument("--precision: '" + name + "' is not float or double");
 }
 
 }  // namespace blurcull::frontend

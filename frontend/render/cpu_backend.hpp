@@ -5,7 +5,16 @@
 #include "render/render_types.hpp"
 #include "scene/scene.hpp"
 
+#include <string>
+
 namespace blurcull::frontend {
+
+// The kernel's arithmetic: kernel<double> (the reference) or kernel<float>,
+// the arithmetic of the kernel's GLSL and so of the GL backend.
+enum class KernelPrecision { float64, float32 };
+
+// "double" or "float"; throws std::invalid_argument naming the value otherwise.
+KernelPrecision parse_kernel_precision(const std::string& name);
 
 struct CpuOptions {
     // Side, in pixels, of the screen footprint the per-footprint sample bounds
@@ -15,6 +24,10 @@ struct CpuOptions {
     // Side, in pixels, of the blocks bounded first: a block whose bounds hold
     // nothing is skipped without bounding its footprints. <= footprint: off.
     int block = 16;
+    // kernel<double> (default) or kernel<float>. In float every culling
+    // method is still conservative against the double oracle (property
+    // tests), and the decisions are those the GL backend makes.
+    KernelPrecision precision = KernelPrecision::float64;
 };
 
 // Renders with settings.spp samples per pixel, sample j of pixel (px, py)

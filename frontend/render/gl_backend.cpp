@@ -42,7 +42,7 @@ struct GpuTriangle {           // MovingTriangle: vec3 p[6] (stride 16), vec2 c[
     float c[6][2];
 };
 static_assert(sizeof(GpuTriangle) == 144, "std430 MovingTriangle");
-constexpr std::size_t triangle_info_bytes = (4 + 4 + 4 + 4 + 4 * BC_HULL_MAX) * 4;
+constexpr std::size_t triangle_info_bytes = (4 + 4 + 4 + 4 + 4 + 4 * BC_HULL_MAX) * 4;
 constexpr std::size_t cell_bounds_bytes = 6 * 4 * 4;  // CellBounds: ivec4 + 5 vec4
 constexpr int cells_max = 16;                         // CELLS_MAX
 
@@ -209,11 +209,23 @@ RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settin
 
     // Setup: float clip-space triangles (make_moving_triangle<float>, as the
     // kernel's GLSL sees them), colours, buffers, then per triangle on the GPU:
-    // classify, screen bound, path.
+    // screen bound, path.
     Clock::time_point phase = Clock::now();
     std::vector<GpuTriangle> triangles(std::max<std::size_t>(count, 1));
+    // classify() here, on the float triangle the GLSL sees (kernel<float> and
+    // its GLSL twin are bit-identical), so each path draws a list of only its
+    // own triangles, in index order: no vertex, cell or bounds work for the
+    // other path's triangles.
+    std::vector<std::int32_t> classes(std::max<std::size_t>(count, 1), BC_INVALID);
+    std::vector<std::uint32_t> static_list, moving_list;
     for (std::size_t i = 0; i < count; ++i) {
         const kernelf::MovingTriangle tri = make_moving_triangle<float>(scene, model, i);
+        classes[i] = kernelf::classify(tri);
+        if (classes[i] == 0 && !options.force_full_path) {
+            static_list.push_back(static_cast<std::uint32_t>(i));
+        } else if (classes[i] != BC_INVALID) {
+            moving_list.push_back(static_cast<std::uint32_t>(i));
+        }
         for (int j = 0; j < 6; ++j) {
             triangles[i].p[j][0] = tri.p[j].x;
             triangles[i].p[j][1] = tri.p[j].y;
@@ -247,13 +259,24 @@ RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settin
     const int method = kernel_cull_method(settings.cull);
     const bool bounds_samples = method == BC_CULL_DUALSPACE || method == BC_CULL_CLIP2;
     const int cells_per_triangle = bounds_samples ? cells_max : 1;
-    const std::size_t cell_count = count * static_cast<std::size_t>(cells_per_triangle);
+    const std::size_t cell_count = moving_list.size() * static_cast<std::size_t>(cells_per_triangle);
     gl::Buffer cell_buffer(gl, GL_SHADER_STORAGE_BUFFER, std::max<std::size_t>(cell_count, 1) * cell_bounds_bytes);
     cell_buffer.bind_base(6);
     gl::Buffer pass_sample_buffer(gl, GL_SHADER_STORAGE_BUFFER, pixels * samples_per_pass * sizeof(glm::vec4));
     gl::Buffer pass_time_buffer(gl, GL_SHADER_STORAGE_BUFFER, pixels * samples_per_pass * sizeof(float));
     pass_sample_buffer.bind_base(7);
     pass_time_buffer.bind_base(8);
+    gl::Buffer class_buffer(gl, GL_SHADER_STORAGE_BUFFER, classes.size() * sizeof(std::int32_t), classes.data());
+    class_buffer.bind_base(9);
+    const std::size_t static_count = static_list.size(), moving_count = moving_list.size();
+    if (static_list.empty()) static_list.push_back(0);  // GL refuses empty buffers; drawn with count 0
+    if (moving_list.empty()) moving_list.push_back(0);
+    gl::Buffer static_list_buffer(gl, GL_SHADER_STORAGE_BUFFER, static_list.size() * sizeof(std::uint32_t),
+                                  static_list.data());
+    gl::Buffer moving_list_buffer(gl, GL_SHADER_STORAGE_BUFFER, moving_list.size() * sizeof(std::uint32_t),
+                                  moving_list.data());
+    static_list_buffer.bind_base(10);
+    moving_list_buffer.bind_base(11);
 
     if (count > 0) {
         set_common(gl, state_->setup, model, settings, 0);
@@ -263,7 +286,7 @@ RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settin
         gl.DispatchCompute(static_cast<GLuint>((count + 63) / 64), 1, 1);
         gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         set_common(gl, state_->bounds, model, settings, 0);
-        set_int(gl, state_->bounds, "triangle_count", static_cast<int>(count));
+        set_int(gl, state_->bounds, "moving_count", static_cast<int>(moving_count));
         set_int(gl, state_->bounds, "cells_per_triangle", cells_per_triangle);
         set_int(gl, state_->bounds, "method", method);
         set_int(gl, state_->bounds, "cell_pixels", options.cell_pixels);
@@ -301,6 +324,17 @@ RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settin
     const std::uint32_t passes = (spp + samples_per_pass - 1) / samples_per_pass;
     const GLuint clear_id[4] = {no_triangle, 0, 0, 0};
     const GLfloat clear_depth = 0.0f;
+    // options.time_steps: milliseconds per step, summed over the passes.
+    enum Step { step_samples, step_static, step_moving, step_resolve, step_count };
+    std::array<double, step_count> step_ms{};
+    Clock::time_point step_start = Clock::now();
+    auto end_step = [&](Step step) {
+        if (!options.time_steps) return;
+        gl.Finish();
+        const Clock::time_point now = Clock::now();
+        step_ms[step] += std::chrono::duration<double, std::milli>(now - step_start).count();
+        step_start = now;
+    };
     for (std::uint32_t pass = 0; pass < passes; ++pass) {
         const std::uint32_t pass_base = pass * samples_per_pass;
         set_common(gl, state_->samples, model, settings, pass_base);
@@ -308,13 +342,16 @@ RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settin
         gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         gl.ClearBufferuiv(GL_COLOR, 0, clear_id);
         gl.ClearBufferfv(GL_DEPTH, 0, &clear_depth);
+        end_step(step_samples);
         if (count > 0) {
-            // Six vertices per quad: per triangle (static), per cell (moving).
+            // Three vertices per static triangle, six (a quad) per moving triangle's cell.
             set_common(gl, state_->draw_static, model, settings, pass_base);
-            gl.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(count * 6));
+            gl.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(static_count * 3));
+            end_step(step_static);
             set_common(gl, state_->draw_moving, model, settings, pass_base);
             set_int(gl, state_->draw_moving, "cells_per_triangle", cells_per_triangle);
             gl.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(cell_count * 6));
+            end_step(step_moving);
         }
         gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
         set_common(gl, state_->resolve, model, settings, pass_base);
@@ -331,9 +368,16 @@ RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settin
         gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, counter_buffer.id());
         gl.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof zero_counters, zero_counters);
         gl::check_gl(gl, "gl: raster pass");
+        end_step(step_resolve);
     }
     gl.Finish();
     stats.ms_per_phase.emplace_back("raster+resolve", ms_since(phase));
+    if (options.time_steps) {
+        stats.ms_per_phase.emplace_back("samples", step_ms[step_samples]);
+        stats.ms_per_phase.emplace_back("static", step_ms[step_static]);
+        stats.ms_per_phase.emplace_back("moving", step_ms[step_moving]);
+        stats.ms_per_phase.emplace_back("resolve", step_ms[step_resolve]);
+    }
 
     phase = Clock::now();
     std::vector<glm::vec4> sums(pixels);

@@ -27,6 +27,10 @@ struct GlOptions {
     // Smallest side, in pixels, of the cells a moving triangle's sample bounds
     // are computed for (each triangle gets at most 4 x 4 cells).
     int cell_pixels = 8;
+    // Time each step of the passes (samples, static, moving, resolve; summed
+    // over passes, added to ms_per_phase) with a glFinish after each: the
+    // frame gets slightly slower, since the steps no longer overlap.
+    bool time_steps = false;
 };
 
 // Sample j of pixel (px, py) is at sample_ids[(py * width + px) * spp + j]:

@@ -2,6 +2,7 @@
 
 #include "scene/scene_checks.hpp"
 
+#include <glm/glm.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
@@ -720,6 +721,33 @@ Scene make_builtin_scene(const std::string& name, const SceneOptions& options) {
         throw SceneError("unknown scene '" + name + "' (known: " + known + ")");
     }
     validate_scene(scene);
+    return scene;
+}
+
+Scene make_mostly_static(const Scene& source, int moving_every) {
+    if (moving_every < 1) throw SceneError("mostly static scene: moving_every must be >= 1");
+    Scene scene = source;
+    scene.position_open.clear();
+    scene.position_close.clear();
+    scene.camera.lens_radius = 0.0f;
+    scene.camera.view_close = scene.camera.view_open;
+    // The world point the still camera sees where the moving one saw p at
+    // close; none when the camera does not move (an inverse times the same
+    // matrix would move every point by its rounding).
+    const bool camera_moves = source.camera.view_open != source.camera.view_close;
+    const glm::mat4 close_motion =
+        camera_moves ? glm::inverse(source.camera.view_open) * source.camera.view_close : glm::mat4(1.0f);
+    for (std::size_t t = 0; t < source.triangles.size(); ++t) {
+        const bool moves = t % static_cast<std::size_t>(moving_every) == 0;
+        for (int i = 0; i < 3; ++i) {
+            const std::uint32_t v = source.triangles[t][i];
+            scene.position_open.push_back(source.position_open[v]);
+            const glm::vec3 close =
+                camera_moves ? glm::vec3(close_motion * glm::vec4(source.position_close[v], 1.0f)) : source.position_close[v];
+            scene.position_close.push_back(moves ? close : source.position_open[v]);
+            scene.triangles[t][i] = static_cast<std::uint32_t>(3 * t + static_cast<std::size_t>(i));
+        }
+    }
     return scene;
 }
 

@@ -26,4 +26,13 @@ Scene make_builtin_scene(const std::string& name, const SceneOptions& options);
 
 std::vector<std::string> builtin_scene_names();
 
+// `source` with the lens closed, the camera still, and every triangle given
+// its own vertices: triangle t with t % moving_every == 0 keeps the motion it
+// had on screen (the camera's motion made its own, plus its own), the others
+// stand still at their shutter-open place. With moving_every = 10, 90% of the
+// triangles are static and in focus: the GL backend's static-path workload
+// (docs/gl-backend.md). A scene with no motion (the hand) comes out all
+// static. Throws SceneError when moving_every < 1.
+Scene make_mostly_static(const Scene& source, int moving_every);
+
 }  // namespace blurcull::frontend

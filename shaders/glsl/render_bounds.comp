@@ -1,20 +1,21 @@
-// Per cell of each moving triangle, once per frame: its pixels and the chosen
+// Per cell of each moving triangle (the moving path's list), once per frame: its pixels and the chosen
 // method's sample bounds for them (the footprint), in parallel. A cell whose
 // bounds hold no sample is marked empty and never rasterized.
 layout(local_size_x = 64) in;
 
 layout(std430, binding = 1) readonly buffer Infos { TriangleInfo infos[]; };
 layout(std430, binding = 6) writeonly buffer Cells { CellBounds cells[]; };
+layout(std430, binding = 11) readonly buffer MovingList { uint moving_list[]; };  // index order
 
-uniform int triangle_count;
+uniform int moving_count;
 uniform int cells_per_triangle;  // 1, or CELLS_MAX when the method bounds lens and time
 uniform int method;
 uniform int cell_pixels;         // the smallest cell side, in pixels
 
 void main() {
     int slot = int(gl_GlobalInvocationID.x);
-    if (slot >= triangle_count * cells_per_triangle) return;
-    int i = slot / cells_per_triangle, cell = slot % cells_per_triangle;
+    if (slot >= moving_count * cells_per_triangle) return;
+    int i = int(moving_list[slot / cells_per_triangle]), cell = slot % cells_per_triangle;
     CellBounds out_cell;
     SampleBounds sb = no_sample_bounds();
     out_cell.rect = ivec4(0, 0, -1, -1);

@@ -6,7 +6,8 @@ struct TriangleInfo {
     vec4 box;    // screen_bound: lo.xy, hi.xy (NDC)
     ivec4 rect;  // pixels x0, y0, x1, y1 (inclusive, row 0 at the top) holding every sample in box
     ivec4 meta;  // x: classify(), y: hull_count, z: path (0 none, 1 static, 2 moving)
-    vec4 unused;
+    vec4 outline01;  // static path: the one triangle it draws (window pixels,
+    vec4 outline2;   // y up), vertices 0, 1 in outline01 and 2 in outline2.xy
     vec4 hull[BC_HULL_MAX];  // the hull's edges (xyz)
 };
 

@@ -1,7 +1,8 @@
 // Moving or defocused triangles: six vertices per cell (cells_per_triangle
-// cells per triangle, in triangle order), a quad over the cell's pixels
+// cells per triangle of the moving list, in triangle order), a quad over the cell's pixels
 // carrying its sample bounds; empty cells get a degenerate quad.
 layout(std430, binding = 6) readonly buffer Cells { CellBounds cells[]; };
+layout(std430, binding = 11) readonly buffer MovingList { uint moving_list[]; };
 
 uniform int cells_per_triangle;
 
@@ -14,7 +15,7 @@ flat out vec4 g_ty2;
 
 void main() {
     int cell = gl_VertexID / 6;
-    g_index = cell / cells_per_triangle;
+    g_index = int(moving_list[cell / cells_per_triangle]);
     CellBounds c = cells[cell];
     g_lens = c.lens;
     g_tx = c.tx;
