@@ -175,16 +175,11 @@ bool is_software(const std::string& renderer) {
 // FBO that is blitted (flipped: row 0 of the image is its top) to the window.
 class Presenter {
 public:
-    Presenter(const gl::Functions& functions, int width, int height) : gl_(&functions), width_(width), height_(height) {
-        gl_->GenTextures(1, &texture_);
-        gl_->BindTexture(GL_TEXTURE_2D, texture_);
-        gl_->TexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, width, height);
-        gl_->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        gl_->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        gl_->BindTexture(GL_TEXTURE_2D, 0);
-        gl_->GenFramebuffers(1, &framebuffer_);
-        gl_->BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_);
-        gl_->FramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture_, 0);
+    Presenter(const gl::Functions& functions, int width, int height)
+        : gl_(&functions), width_(width), height_(height), texture_(functions, GL_TEXTURE_2D, GL_RGBA8, width, height),
+          framebuffer_(functions) {
+        gl_->BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_.id());
+        gl_->FramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture_.id(), 0);
         const GLenum status = gl_->CheckFramebufferStatus(GL_READ_FRAMEBUFFER);
         gl_->BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
         if (status != GL_FRAMEBUFFER_COMPLETE) throw gl::GlError("view: the display framebuffer is incomplete");
@@ -192,10 +187,6 @@ public:
     }
     Presenter(const Presenter&) = delete;
     Presenter& operator=(const Presenter&) = delete;
-    ~Presenter() {
-        gl_->DeleteFramebuffers(1, &framebuffer_);
-        gl_->DeleteTextures(1, &texture_);
-    }
 
     void show(const Image& image, int window_width, int window_height) {
         std::vector<unsigned char> bytes(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_) * 4);
@@ -207,10 +198,10 @@ public:
             }
             bytes[4 * i + 3] = 255;
         }
-        gl_->BindTexture(GL_TEXTURE_2D, texture_);
+        gl_->BindTexture(GL_TEXTURE_2D, texture_.id());
         gl_->TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
         gl_->BindTexture(GL_TEXTURE_2D, 0);
-        gl_->BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_);
+        gl_->BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_.id());
         gl_->BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
         gl_->Viewport(0, 0, window_width, window_height);
         const GLfloat black[4] = {0.0f, 0.0f, 0.0f, 1.0f};
@@ -224,8 +215,8 @@ public:
 private:
     const gl::Functions* gl_;
     int width_, height_;
-    GLuint texture_ = 0;
-    GLuint framebuffer_ = 0;
+    gl::Texture texture_;
+    gl::Framebuffer framebuffer_;
 };
 
 // The window's back buffer (what the last show() drew) as a PNG.

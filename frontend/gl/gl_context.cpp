@@ -353,6 +353,25 @@ Program::~Program() {
     if (id_ != 0) gl_->DeleteProgram(id_);
 }
 
+Texture::Texture(const Functions& gl, GLenum target, GLenum format, int width, int height, int samples)
+    : gl_(&gl), target_(target) {
+    gl.GenTextures(1, &id_);
+    gl.BindTexture(target, id_);
+    if (target == GL_TEXTURE_2D_MULTISAMPLE) {
+        gl.TexStorage2DMultisample(target, samples, format, width, height, GL_TRUE);
+    } else {
+        gl.TexStorage2D(target, 1, format, width, height);
+    }
+    gl.BindTexture(target, 0);
+    check_gl(gl, "texture storage");
+}
+
+Texture::~Texture() { gl_->DeleteTextures(1, &id_); }
+
+Framebuffer::Framebuffer(const Functions& gl) : gl_(&gl) { gl.GenFramebuffers(1, &id_); }
+
+Framebuffer::~Framebuffer() { gl_->DeleteFramebuffers(1, &id_); }
+
 Buffer::Buffer(const Functions& gl, GLenum target, std::size_t bytes, const void* data, GLenum usage)
     : gl_(&gl), target_(target), id_(0), bytes_(bytes) {
     gl.GenBuffers(1, &id_);

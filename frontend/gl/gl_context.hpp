@@ -98,6 +98,37 @@ private:
     GLuint id_;
 };
 
+// An immutable-storage 2D texture: GL_TEXTURE_2D, or GL_TEXTURE_2D_MULTISAMPLE
+// with `samples` samples at fixed locations; deleted with this object.
+class Texture {
+public:
+    Texture(const Functions& gl, GLenum target, GLenum format, int width, int height, int samples = 0);
+    Texture(const Texture&) = delete;
+    Texture& operator=(const Texture&) = delete;
+    ~Texture();
+    GLuint id() const { return id_; }
+    GLenum target() const { return target_; }
+
+private:
+    const Functions* gl_;
+    GLenum target_;
+    GLuint id_ = 0;
+};
+
+// A framebuffer object; deleted with this object.
+class Framebuffer {
+public:
+    explicit Framebuffer(const Functions& gl);
+    Framebuffer(const Framebuffer&) = delete;
+    Framebuffer& operator=(const Framebuffer&) = delete;
+    ~Framebuffer();
+    GLuint id() const { return id_; }
+
+private:
+    const Functions* gl_;
+    GLuint id_ = 0;
+};
+
 // A buffer object (e.g. an SSBO) holding `bytes` bytes, copied from `data`
 // when it is not null; deleted with this object.
 class Buffer {

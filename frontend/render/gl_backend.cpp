@@ -57,38 +57,6 @@ gl::ShaderStage kernel_stage(GLenum type, std::string_view main_name) {
     return gl::ShaderStage{type, {glsl::kernel_source(), shader_text("render_common.glsl"), shader_text(main_name)}};
 }
 
-class Texture {
-public:
-    Texture(const gl::Functions& functions, GLenum format, int width, int height) : gl_(&functions) {
-        gl_->GenTextures(1, &id_);
-        gl_->BindTexture(GL_TEXTURE_2D_MULTISAMPLE, id_);
-        gl_->TexStorage2DMultisample(GL_TEXTURE_2D_MULTISAMPLE, samples_per_pass, format, width, height, GL_TRUE);
-        gl_->BindTexture(GL_TEXTURE_2D_MULTISAMPLE, 0);
-        gl::check_gl(*gl_, "gl: multisample texture");
-    }
-    Texture(const Texture&) = delete;
-    Texture& operator=(const Texture&) = delete;
-    ~Texture() { gl_->DeleteTextures(1, &id_); }
-    GLuint id() const { return id_; }
-
-private:
-    const gl::Functions* gl_;
-    GLuint id_ = 0;
-};
-
-class Framebuffer {
-public:
-    explicit Framebuffer(const gl::Functions& functions) : gl_(&functions) { gl_->GenFramebuffers(1, &id_); }
-    Framebuffer(const Framebuffer&) = delete;
-    Framebuffer& operator=(const Framebuffer&) = delete;
-    ~Framebuffer() { gl_->DeleteFramebuffers(1, &id_); }
-    GLuint id() const { return id_; }
-
-private:
-    const gl::Functions* gl_;
-    GLuint id_ = 0;
-};
-
 }  // namespace
 
 struct GlRenderer::State {
@@ -294,9 +262,9 @@ RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settin
         gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
 
-    Texture id_texture(gl, GL_R32UI, width, height);
-    Texture depth_texture(gl, GL_DEPTH_COMPONENT32F, width, height);
-    Framebuffer framebuffer(gl);
+    gl::Texture id_texture(gl, GL_TEXTURE_2D_MULTISAMPLE, GL_R32UI, width, height, samples_per_pass);
+    gl::Texture depth_texture(gl, GL_TEXTURE_2D_MULTISAMPLE, GL_DEPTH_COMPONENT32F, width, height, samples_per_pass);
+    gl::Framebuffer framebuffer(gl);
     gl.BindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
     gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D_MULTISAMPLE, id_texture.id(), 0);
     gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D_MULTISAMPLE, depth_texture.id(), 0);

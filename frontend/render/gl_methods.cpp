@@ -70,38 +70,6 @@ float round_down(double v) {
     return f;
 }
 
-class Texture2D {
-public:
-    Texture2D(const gl::Functions& functions, GLenum format, int width, int height) : gl_(&functions) {
-        gl_->GenTextures(1, &id_);
-        gl_->BindTexture(GL_TEXTURE_2D, id_);
-        gl_->TexStorage2D(GL_TEXTURE_2D, 1, format, width, height);
-        gl_->BindTexture(GL_TEXTURE_2D, 0);
-        gl::check_gl(*gl_, "gl: method texture");
-    }
-    Texture2D(const Texture2D&) = delete;
-    Texture2D& operator=(const Texture2D&) = delete;
-    ~Texture2D() { gl_->DeleteTextures(1, &id_); }
-    GLuint id() const { return id_; }
-
-private:
-    const gl::Functions* gl_;
-    GLuint id_ = 0;
-};
-
-class Framebuffer {
-public:
-    explicit Framebuffer(const gl::Functions& functions) : gl_(&functions) { gl_->GenFramebuffers(1, &id_); }
-    Framebuffer(const Framebuffer&) = delete;
-    Framebuffer& operator=(const Framebuffer&) = delete;
-    ~Framebuffer() { gl_->DeleteFramebuffers(1, &id_); }
-    GLuint id() const { return id_; }
-
-private:
-    const gl::Functions* gl_;
-    GLuint id_ = 0;
-};
-
 int get_integer(const gl::Functions& gl, GLenum name) {
     GLint value = 0;
     gl.GetIntegerv(name, &value);
@@ -286,9 +254,9 @@ RenderResult render_gl_method(const gl::HeadlessContext& context, std::shared_pt
     box_buffer.bind_base(9);
     tuple_buffer.bind_base(10);
 
-    Texture2D id_texture(gl, GL_R32UI, target_w, target_h);
-    Texture2D depth_texture(gl, GL_DEPTH_COMPONENT32F, target_w, target_h);
-    Framebuffer framebuffer(gl);
+    gl::Texture id_texture(gl, GL_TEXTURE_2D, GL_R32UI, target_w, target_h);
+    gl::Texture depth_texture(gl, GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, target_w, target_h);
+    gl::Framebuffer framebuffer(gl);
     gl.BindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
     gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, id_texture.id(), 0);
     gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depth_texture.id(), 0);
