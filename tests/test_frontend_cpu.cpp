@@ -1,6 +1,7 @@
 // The CPU rasterizer: the same image for every culling method (culling may
 // only skip samples that miss), independent of the thread count, and in
 // agreement with the Embree reference on every built-in scene.
+#include "frontend_test_helpers.hpp"
 #include "render/cpu_backend.hpp"
 #include "render/embree_backend.hpp"
 #include "render/image.hpp"
@@ -13,6 +14,7 @@
 #include <string>
 
 using namespace blurcull::frontend;
+using namespace blurcull::frontend::test;
 
 namespace {
 
@@ -32,33 +34,14 @@ RenderSettings small_settings(int width, int height, int spp) {
     return settings;
 }
 
-bool same_pixels(const Image& a, const Image& b) {
-    if (a.width != b.width || a.height != b.height) return false;
-    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
-        if (a.pixels[i] != b.pixels[i]) return false;
-    }
-    return true;
-}
-
 // A ground plane that runs from behind the camera to the horizon, a wall
 // crossing the near plane, camera motion and defocus: the near-plane paths.
 Scene near_plane_scene() {
     Scene scene;
     scene.name = "near-plane";
     scene.materials = {Material{{0.6f, 0.5f, 0.3f}, "ground"}, Material{{0.2f, 0.4f, 0.8f}, "wall"}};
-    auto quad = [&](glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, glm::vec3 motion, std::uint32_t material) {
-        auto base = static_cast<std::uint32_t>(scene.position_open.size());
-        for (glm::vec3 p : {a, b, c, d}) {
-            scene.position_open.push_back(p);
-            scene.position_close.push_back(p + motion);
-        }
-        scene.triangles.push_back({base, base + 1, base + 2});
-        scene.triangles.push_back({base, base + 2, base + 3});
-        scene.triangle_material.push_back(material);
-        scene.triangle_material.push_back(material);
-    };
-    quad({-20, -1, 5}, {20, -1, 5}, {20, -1, -60}, {-20, -1, -60}, {0, 0, 0}, 0);
-    quad({-0.5f, -1, 0.5f}, {0.3f, -1, -3}, {0.3f, 1.5f, -3}, {-0.5f, 1.5f, 0.5f}, {0.4f, 0, 0}, 1);
+    add_quad(scene, {-20, -1, 5}, {20, -1, 5}, {20, -1, -60}, {-20, -1, -60}, {0, 0, 0}, 0);
+    add_quad(scene, {-0.5f, -1, 0.5f}, {0.3f, -1, -3}, {0.3f, 1.5f, -3}, {-0.5f, 1.5f, 0.5f}, {0.4f, 0, 0}, 1);
     scene.camera.view_open = glm::mat4(1.0f);
     scene.camera.view_close = glm::translate(glm::mat4(1.0f), glm::vec3(-0.3f, 0.05f, 0.2f));
     scene.camera.yfov = 1.0f;

@@ -3,6 +3,7 @@
 // (interleaved_backend.hpp): the same samples decided the same way, the same
 // resolved image, the same box statistics. No GL context: SKIPPED, or a
 // failure when CI=true.
+#include "frontend_test_helpers.hpp"
 #include "render/gl_backend.hpp"
 #include "render/interleaved_backend.hpp"
 #include "scene/builtin_scenes.hpp"
@@ -20,39 +21,9 @@
 #include <vector>
 
 using namespace blurcull::frontend;
+using namespace blurcull::frontend::test;
 
 namespace {
-
-bool is_ci() {
-    const char* ci = std::getenv("CI");
-    return ci != nullptr && (std::string(ci) == "true" || std::string(ci) == "1");
-}
-
-// One renderer for the whole file (compiling the programs is the slow part).
-GlRenderer* renderer_or_skip() {
-    static std::unique_ptr<GlRenderer> renderer;
-    static std::string failure;
-    if (!renderer && failure.empty()) {
-        try {
-            renderer = std::make_unique<GlRenderer>();
-            MESSAGE("GL: " << renderer->description());
-        } catch (const std::exception& e) {
-            failure = e.what();
-        }
-    }
-    if (!renderer) {
-        if (is_ci()) FAIL("no headless OpenGL 4.5 context in CI: " << failure);
-        MESSAGE("SKIPPED: no headless OpenGL 4.5 context (" << failure << "); CI=true makes this a failure");
-    }
-    return renderer.get();
-}
-
-double fraction_equal(const std::vector<std::uint32_t>& a, const std::vector<std::uint32_t>& b) {
-    REQUIRE(a.size() == b.size());
-    std::size_t same = 0;
-    for (std::size_t i = 0; i < a.size(); ++i) same += a[i] == b[i] ? 1 : 0;
-    return a.empty() ? 1.0 : static_cast<double>(same) / static_cast<double>(a.size());
-}
 
 // Pixels whose every channel is within 1/255.
 double fraction_close(const Image& a, const Image& b) {

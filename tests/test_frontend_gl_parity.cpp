@@ -17,6 +17,7 @@
 #pragma GCC optimize("fp-contract=off")
 #endif
 
+#include "frontend_test_helpers.hpp"
 #include "kernel_generators.hpp"
 
 #include <blurcull/glsl/kernel_glsl.hpp>
@@ -39,6 +40,7 @@
 
 using namespace blurcull;
 using namespace blurcull::testing;
+using blurcull::frontend::test::is_ci;
 using Kf = kernel<float>;
 
 namespace {
@@ -181,11 +183,6 @@ std::int64_t ulp_distance(float a, float b) {
     };
     std::int64_t d = ordered(a) - ordered(b);
     return d < 0 ? -d : d;
-}
-
-bool is_ci() {
-    const char* ci = std::getenv("CI");
-    return ci != nullptr && (std::string(ci) == "true" || std::string(ci) == "1");
 }
 
 // A context, or nothing after saying why (and failing in CI).

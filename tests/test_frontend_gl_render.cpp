@@ -2,6 +2,7 @@
 // same samples decided the same way, the same resolved image, the same
 // statistics; the static path's speed-up. No GL context: SKIPPED, or a failure
 // when CI=true.
+#include "frontend_test_helpers.hpp"
 #include "render/cpu_backend.hpp"
 #include "render/gl_backend.hpp"
 #include "render/camera_model.hpp"
@@ -25,32 +26,9 @@
 #include <vector>
 
 using namespace blurcull::frontend;
+using namespace blurcull::frontend::test;
 
 namespace {
-
-bool is_ci() {
-    const char* ci = std::getenv("CI");
-    return ci != nullptr && (std::string(ci) == "true" || std::string(ci) == "1");
-}
-
-// One renderer for the whole file (compiling the programs is the slow part).
-GlRenderer* renderer_or_skip() {
-    static std::unique_ptr<GlRenderer> renderer;
-    static std::string failure;
-    if (!renderer && failure.empty()) {
-        try {
-            renderer = std::make_unique<GlRenderer>();
-            MESSAGE("GL: " << renderer->description());
-        } catch (const std::exception& e) {
-            failure = e.what();
-        }
-    }
-    if (!renderer) {
-        if (is_ci()) FAIL("no headless OpenGL 4.5 context in CI: " << failure);
-        MESSAGE("SKIPPED: no headless OpenGL 4.5 context (" << failure << "); CI=true makes this a failure");
-    }
-    return renderer.get();
-}
 
 // The CPU backend's decisions, sample by sample, without culling (its image
 // does not depend on the cull): kernel<Real>, strict depth test in triangle
@@ -118,13 +96,6 @@ std::vector<std::uint32_t> reference_sample_ids(const Scene& scene, const Render
         image.pixels[p] = resolve_box(sum, settings.spp);
     }
     return ids;
-}
-
-double fraction_equal(const std::vector<std::uint32_t>& a, const std::vector<std::uint32_t>& b) {
-    REQUIRE(a.size() == b.size());
-    std::size_t same = 0;
-    for (std::size_t i = 0; i < a.size(); ++i) same += a[i] == b[i] ? 1 : 0;
-    return a.empty() ? 1.0 : static_cast<double>(same) / static_cast<double>(a.size());
 }
 
 // Samples that are covered (show some triangle) in both or in neither.

@@ -2,6 +2,7 @@
 // static in-focus quad, identical to a brute-force render of the very samples
 // they document (so their boxes never lose a hit), converging to the
 // stochastic reference as N (K) grows, deterministic whatever the threads.
+#include "frontend_test_helpers.hpp"
 #include "render/camera_model.hpp"
 #include "render/cpu_backend.hpp"
 #include "render/image.hpp"
@@ -25,6 +26,7 @@
 #include <vector>
 
 using namespace blurcull::frontend;
+using namespace blurcull::frontend::test;
 using K = blurcull::kernel<double>;
 
 namespace {
@@ -40,18 +42,6 @@ RenderSettings settings_for(int spp, const std::string& method) {
     settings.method = method;
     settings.seed = 3;
     return settings;
-}
-
-void add_quad(Scene& scene, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, glm::vec3 motion, std::uint32_t material) {
-    const auto base = static_cast<std::uint32_t>(scene.position_open.size());
-    for (glm::vec3 p : {a, b, c, d}) {
-        scene.position_open.push_back(p);
-        scene.position_close.push_back(p + motion);
-    }
-    scene.triangles.push_back({base, base + 1, base + 2});
-    scene.triangles.push_back({base, base + 2, base + 3});
-    scene.triangle_material.push_back(material);
-    scene.triangle_material.push_back(material);
 }
 
 // A static quad at depth 5 whose edges fall on pixel boundaries: columns
@@ -97,14 +87,6 @@ RenderResult render(const Scene& scene, const RenderSettings& settings, int tile
         return render_interleave(scene, settings, options);
     }
     return render_with_method(scene, settings);
-}
-
-bool same_pixels(const Image& a, const Image& b) {
-    if (a.width != b.width || a.height != b.height) return false;
-    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
-        if (a.pixels[i] != b.pixels[i]) return false;
-    }
-    return true;
 }
 
 // A sample as the renderers document it: NDC position, lens, time.

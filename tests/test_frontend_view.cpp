@@ -2,6 +2,7 @@
 // and the window's contents with --screenshot; and its one-line refusal when
 // there is no display. BLURCULL_CLI is the path of the built executable.
 // Without xvfb-run the window tests are skipped, unless CI=true (then they fail).
+#include "frontend_test_helpers.hpp"
 #include "render/image.hpp"
 
 #include <doctest/doctest.h>
@@ -18,6 +19,7 @@
 #include <vector>
 
 using blurcull::frontend::Image;
+using blurcull::frontend::test::is_ci;
 
 namespace {
 
@@ -55,11 +57,6 @@ Run run_cli(const std::string& arguments, const std::string& prefix = "") {
         std::fclose(f);
     }
     return run;
-}
-
-bool is_ci() {
-    const char* ci = std::getenv("CI");
-    return ci != nullptr && (std::string(ci) == "true" || std::string(ci) == "1");
 }
 
 bool xvfb_or_skip() {

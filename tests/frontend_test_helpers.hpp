@@ -1,0 +1,78 @@
+// Helpers the frontend tests share: CI detection, scene building, image and
+// sample-id comparison, and the one GL renderer a test file reuses.
+#pragma once
+
+#include "render/gl_backend.hpp"
+#include "render/image.hpp"
+#include "scene/scene.hpp"
+
+#include <doctest/doctest.h>
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <cstdlib>
+#include <exception>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace blurcull::frontend::test {
+
+// CI=true (or 1): a missing context or display is a failure, not a skip.
+inline bool is_ci() {
+    const char* ci = std::getenv("CI");
+    return ci != nullptr && (std::string(ci) == "true" || std::string(ci) == "1");
+}
+
+// Two triangles a, b, c and a, c, d moving by `motion` over the shutter.
+inline void add_quad(Scene& scene, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, glm::vec3 motion,
+                     std::uint32_t material) {
+    const auto base = static_cast<std::uint32_t>(scene.position_open.size());
+    for (glm::vec3 p : {a, b, c, d}) {
+        scene.position_open.push_back(p);
+        scene.position_close.push_back(p + motion);
+    }
+    scene.triangles.push_back({base, base + 1, base + 2});
+    scene.triangles.push_back({base, base + 2, base + 3});
+    scene.triangle_material.push_back(material);
+    scene.triangle_material.push_back(material);
+}
+
+// Bit-identical images.
+inline bool same_pixels(const Image& a, const Image& b) {
+    if (a.width != b.width || a.height != b.height) return false;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+        if (a.pixels[i] != b.pixels[i]) return false;
+    }
+    return true;
+}
+
+// The fraction of samples showing the same triangle.
+inline double fraction_equal(const std::vector<std::uint32_t>& a, const std::vector<std::uint32_t>& b) {
+    REQUIRE(a.size() == b.size());
+    std::size_t same = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) same += a[i] == b[i] ? 1 : 0;
+    return a.empty() ? 1.0 : static_cast<double>(same) / static_cast<double>(a.size());
+}
+
+// One renderer for the whole test file (compiling the programs is the slow
+// part); null after saying why when no context can be made (a failure in CI).
+inline GlRenderer* renderer_or_skip() {
+    static std::unique_ptr<GlRenderer> renderer;
+    static std::string failure;
+    if (!renderer && failure.empty()) {
+        try {
+            renderer = std::make_unique<GlRenderer>();
+            MESSAGE("GL: " << renderer->description());
+        } catch (const std::exception& e) {
+            failure = e.what();
+        }
+    }
+    if (!renderer) {
+        if (is_ci()) FAIL("no headless OpenGL 4.5 context in CI: " << failure);
+        MESSAGE("SKIPPED: no headless OpenGL 4.5 context (" << failure << "); CI=true makes this a failure");
+    }
+    return renderer.get();
+}
+
+}  // namespace blurcull::frontend::test
