@@ -194,7 +194,7 @@ TEST_CASE("blurcull render --backend gl --method interval: a JSON summary naming
     // driver after any draw (Mesa's, not ours; .ci/run), which LeakSanitizer
     // would turn into a failing exit status.
     Run run = run_cli("render --backend gl --method interval --scene hand --size 32x24 --spp 4 --json -o gl_interval.png",
-                      "ASAN_OPTIONS=detect_leaks=0");
+                      "ASAN_OPTIONS=\"${ASAN_OPTIONS:-}:detect_leaks=0\"");
     const char* ci = std::getenv("CI");
     const bool in_ci = ci != nullptr && (std::string(ci) == "true" || std::string(ci) == "1");
     if (run.status != 0 && run.err.find("no OpenGL 4.5 context") != std::string::npos && !in_ci) {
