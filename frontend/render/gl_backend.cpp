@@ -358,7 +358,9 @@ RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settin
     gl::Buffer group_id_buffer(gl, GL_SHADER_STORAGE_BUFFER, group_entries * sizeof(std::uint32_t));
     group_sample_buffer.bind_base(12);
     group_time_buffer.bind_base(13);
+    gl::Buffer group_depth_buffer(gl, GL_SHADER_STORAGE_BUFFER, group_entries * sizeof(std::uint32_t));
     group_id_buffer.bind_base(14);
+    group_depth_buffer.bind_base(15);
     std::uint32_t group_base = 0;
     auto read_counters = [&] {
         // 32-bit counters per pass (or group), summed in 64 bits here.
@@ -388,6 +390,8 @@ RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settin
             const GLuint no_id = no_triangle;
             gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, group_id_buffer.id());
             gl.ClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &no_id);
+            gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, group_depth_buffer.id());
+            gl.ClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
             gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
             end_step(step_samples);
             // One fragment per pixel at its centre (inside the grown outline

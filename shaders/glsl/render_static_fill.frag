@@ -1,10 +1,11 @@
 // Start of each pass when static triangles were drawn per group
 // (render_static_group.frag): one invocation per sample writes the static
-// winner's id and its exact depth (the same key), so the moving triangles
+// winner's id and its depth key (the largest, kept in group_depths), so the moving triangles
 // are then drawn on top with the GREATER depth test, as after a per-pass
 // static draw.
 GROUP_SAMPLE_BUFFERS
 layout(std430, binding = 14) readonly buffer GroupIds { uint group_ids[]; };
+layout(std430, binding = 15) readonly buffer GroupDepths { uint group_depths[]; };
 
 uniform uint group_base;  // the group's first sample
 layout(location = 0) out uint out_id;
@@ -16,7 +17,7 @@ void main() {
     uint slot = (pixel.y * uint(image_size.x) + pixel.x) * group_samples + (j - group_base);
     uint id = group_ids[slot];
     if (id == 0xffffffffu) discard;
-    gl_FragDepth = static_depth_key(int(id), slot);
+    gl_FragDepth = uintBitsToFloat(group_depths[slot]);
     gl_SampleMask[0] = 1 << gl_SampleID;
     out_id = id;
 }
