@@ -276,9 +276,10 @@ TEST_CASE("gl backend: the static path gives the full path's image, faster") {
     // differently (the static path draws first).
     CHECK(fast_result.stats.samples_hit == full_result.stats.samples_hit);
     CHECK(fraction_equal(fast_ids, full_ids) >= 0.9999);
-    // Measured 3.1x here and 4x+ on the forest at 96x72 (docs/gl-backend.md);
-    // a margin below, as other work shares a CI machine's two cores.
-    CHECK(speed_up >= 2.0);
+    // Measured 3.3x-3.8x here with static triangles drawn once per frame
+    // (docs/gl-backend.md); a margin below, as other work shares a CI
+    // machine's two cores.
+    CHECK(speed_up >= 2.5);
 }
 
 TEST_CASE("gl backend: bad settings are refused with the shared messages") {
