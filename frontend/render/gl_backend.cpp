@@ -190,6 +190,9 @@ RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settin
     validate_settings(settings);
     validate_scene(scene);
     if (options.cell_pixels < 1) throw std::invalid_argument("gl: cell_pixels must be >= 1");
+    if (options.static_group_samples < 0 || options.static_group_samples % samples_per_pass != 0) {
+        throw std::invalid_argument("gl: static_group_samples must be 0 or a positive multiple of 4");
+    }
     state_->context.make_current();
     const gl::Functions& gl = state_->context.gl();
     const int width = settings.width, height = settings.height;
@@ -348,9 +351,12 @@ RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settin
     // With one pass per group, the static draw per pass is cheaper.
     constexpr std::size_t group_entries_max = std::size_t{1} << 22;
     constexpr std::uint32_t pass_samples = samples_per_pass;
-    const std::uint32_t group_limit = static_cast<std::uint32_t>(
-        std::min<std::size_t>(passes * pass_samples, group_entries_max / pixels / pass_samples * pass_samples));
-    const std::uint32_t group_samples = std::max(group_limit, pass_samples);
+    std::size_t group_limit = std::min<std::size_t>(passes * pass_samples,
+                                                    group_entries_max / pixels / pass_samples * pass_samples);
+    if (options.static_group_samples > 0) {
+        group_limit = std::min(group_limit, static_cast<std::size_t>(options.static_group_samples));
+    }
+    const std::uint32_t group_samples = std::max(static_cast<std::uint32_t>(group_limit), pass_samples);
     const bool static_groups = static_count > 0 && group_samples > pass_samples;
     const std::size_t group_entries = static_groups ? pixels * group_samples : 1;
     gl::Buffer group_sample_buffer(gl, GL_SHADER_STORAGE_BUFFER, group_entries * sizeof(glm::vec4));
