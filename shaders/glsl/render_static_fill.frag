@@ -1,8 +1,8 @@
 // Start of each pass when static triangles were drawn per group
 // (render_static_group.frag): one invocation per sample writes the static
-// winner's id and its depth key (the largest, kept in group_depths), so the moving triangles
-// are then drawn on top with the GREATER depth test, as after a per-pass
-// static draw.
+// winner's id and its depth key (the largest, kept in group_depths), so the
+// moving triangles are then drawn on top with the GREATER depth test, as
+// after a per-pass static draw.
 GROUP_SAMPLE_BUFFERS
 layout(std430, binding = 14) readonly buffer GroupIds { uint group_ids[]; };
 layout(std430, binding = 15) readonly buffer GroupDepths { uint group_depths[]; };
