@@ -73,7 +73,10 @@
     X(PFNGLTEXSTORAGE2DMULTISAMPLEPROC, TexStorage2DMultisample)   \
     X(PFNGLMINSAMPLESHADINGPROC, MinSampleShading)                 \
     X(PFNGLACTIVETEXTUREPROC, ActiveTexture)                       \
-    X(PFNGLUNIFORM2FPROC, Uniform2f)
+    X(PFNGLUNIFORM2FPROC, Uniform2f)                               \
+    X(PFNGLCOLORMASKPROC, ColorMask)                               \
+    X(PFNGLDEPTHMASKPROC, DepthMask)                               \
+    X(PFNGLCLEARBUFFERDATAPROC, ClearBufferData)
 
 namespace blurcull::gl {
 

@@ -65,6 +65,8 @@ struct GlRenderer::State {
     gl::Program bounds;
     gl::Program samples;
     gl::Program draw_static;
+    gl::Program draw_static_group;
+    gl::Program static_fill;
     gl::Program draw_moving;
     gl::Program resolve;
     GLuint vertex_array = 0;
@@ -79,6 +81,10 @@ struct GlRenderer::State {
           samples(context.gl(), {kernel_stage(GL_COMPUTE_SHADER, "render_samples.comp")}),
           draw_static(context.gl(), {kernel_stage(GL_VERTEX_SHADER, "render_static.vert"),
                                      kernel_stage(GL_FRAGMENT_SHADER, "render_static.frag")}),
+          draw_static_group(context.gl(), {kernel_stage(GL_VERTEX_SHADER, "render_static.vert"),
+                                           kernel_stage(GL_FRAGMENT_SHADER, "render_static_group.frag")}),
+          static_fill(context.gl(), {kernel_stage(GL_VERTEX_SHADER, "render_static_fill.vert"),
+                                     kernel_stage(GL_FRAGMENT_SHADER, "render_static_fill.frag")}),
           draw_moving(context.gl(), {kernel_stage(GL_VERTEX_SHADER, "render_moving.vert"),
                                      kernel_stage(GL_FRAGMENT_SHADER, "render_moving.frag")}),
           resolve(context.gl(), {kernel_stage(GL_COMPUTE_SHADER, "render_resolve.comp")}) {
@@ -152,6 +158,9 @@ RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settin
     validate_settings(settings);
     validate_scene(scene);
     if (options.cell_pixels < 1) throw std::invalid_argument("gl: cell_pixels must be >= 1");
+    if (options.static_group_samples < 0 || options.static_group_samples % samples_per_pass != 0) {
+        throw std::invalid_argument("gl: static_group_samples must be 0 or a positive multiple of 4");
+    }
     state_->context.make_current();
     const gl::Functions& gl = state_->context.gl();
     const int width = settings.width, height = settings.height;
@@ -303,18 +312,95 @@ RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settin
         step_ms[step] += std::chrono::duration<double, std::milli>(now - step_start).count();
         step_start = now;
     };
-    for (std::uint32_t pass = 0; pass < passes; ++pass) {
-        const std::uint32_t pass_base = pass * samples_per_pass;
-        set_common(gl, state_->samples, model, settings, pass_base);
+    // Static triangles are drawn once per group of passes (the whole frame
+    // unless its samples would exceed group_entries_max): llvmpipe's cost is
+    // per primitive (docs/gl-backend.md). Each group's winners (per sample)
+    // go to group_ids and start each of its passes (render_static_fill.frag).
+    // With one pass per group, the static draw per pass is cheaper.
+    constexpr std::size_t group_entries_max = std::size_t{1} << 22;
+    constexpr std::uint32_t pass_samples = samples_per_pass;
+    std::size_t group_limit = std::min<std::size_t>(passes * pass_samples,
+                                                    group_entries_max / pixels / pass_samples * pass_samples);
+    if (options.static_group_samples > 0) {
+        group_limit = std::min(group_limit, static_cast<std::size_t>(options.static_group_samples));
+    }
+    const std::uint32_t group_samples = std::max(static_cast<std::uint32_t>(group_limit), pass_samples);
+    const bool static_groups = static_count > 0 && group_samples > pass_samples;
+    const std::size_t group_entries = static_groups ? pixels * group_samples : 1;
+    gl::Buffer group_sample_buffer(gl, GL_SHADER_STORAGE_BUFFER, group_entries * sizeof(glm::vec4));
+    gl::Buffer group_time_buffer(gl, GL_SHADER_STORAGE_BUFFER, group_entries * sizeof(float));
+    gl::Buffer group_id_buffer(gl, GL_SHADER_STORAGE_BUFFER, group_entries * sizeof(std::uint32_t));
+    group_sample_buffer.bind_base(12);
+    group_time_buffer.bind_base(13);
+    gl::Buffer group_depth_buffer(gl, GL_SHADER_STORAGE_BUFFER, group_entries * sizeof(std::uint32_t));
+    group_id_buffer.bind_base(14);
+    group_depth_buffer.bind_base(15);
+    std::uint32_t group_base = 0;
+    auto read_counters = [&] {
+        // 32-bit counters per pass (or group), summed in 64 bits here.
+        gl.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        std::uint32_t counters[2] = {0, 0};
+        counter_buffer.read(counters, sizeof counters);
+        stats.samples_tested += counters[0];
+        stats.samples_hit += counters[1];
+        gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, counter_buffer.id());
+        gl.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof zero_counters, zero_counters);
+    };
+    auto compute_samples = [&](std::uint32_t base, std::uint32_t stride) {
+        set_common(gl, state_->samples, model, settings, base);
+        set_uint(gl, state_->samples, "stride", stride);
         gl.DispatchCompute(static_cast<GLuint>((width + 7) / 8), static_cast<GLuint>((height + 7) / 8), 1);
         gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    };
+    for (std::uint32_t pass = 0; pass < passes; ++pass) {
+        const std::uint32_t pass_base = pass * samples_per_pass;
+        if (static_groups && pass_base % group_samples == 0) {
+            group_base = pass_base;
+            group_sample_buffer.bind_base(7);
+            group_time_buffer.bind_base(8);
+            compute_samples(group_base, group_samples);
+            pass_sample_buffer.bind_base(7);
+            pass_time_buffer.bind_base(8);
+            const GLuint no_id = no_triangle;
+            gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, group_id_buffer.id());
+            gl.ClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &no_id);
+            gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, group_depth_buffer.id());
+            gl.ClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+            gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+            end_step(step_samples);
+            // One fragment per pixel at its centre (inside the grown outline
+            // wherever a sample can be covered); nothing is written to the
+            // framebuffer.
+            gl.Disable(GL_DEPTH_TEST);
+            gl.Disable(GL_MULTISAMPLE);
+            gl.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+            gl.DepthMask(GL_FALSE);
+            set_common(gl, state_->draw_static_group, model, settings, group_base);
+            set_uint(gl, state_->draw_static_group, "group_samples", group_samples);
+            gl.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(static_count * 3));
+            gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+            gl.Enable(GL_DEPTH_TEST);
+            gl.Enable(GL_MULTISAMPLE);
+            gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+            gl.DepthMask(GL_TRUE);
+            read_counters();
+            end_step(step_static);
+        }
+        compute_samples(pass_base, pass_samples);
         gl.ClearBufferuiv(GL_COLOR, 0, clear_id);
         gl.ClearBufferfv(GL_DEPTH, 0, &clear_depth);
         end_step(step_samples);
         if (count > 0) {
             // Three vertices per static triangle, six (a quad) per moving triangle's cell.
-            set_common(gl, state_->draw_static, model, settings, pass_base);
-            gl.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(static_count * 3));
+            if (static_groups) {
+                set_common(gl, state_->static_fill, model, settings, pass_base);
+                set_uint(gl, state_->static_fill, "group_samples", group_samples);
+                set_uint(gl, state_->static_fill, "group_base", group_base);
+                gl.DrawArrays(GL_TRIANGLES, 0, 3);
+            } else {
+                set_common(gl, state_->draw_static, model, settings, pass_base);
+                gl.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(static_count * 3));
+            }
             end_step(step_static);
             set_common(gl, state_->draw_moving, model, settings, pass_base);
             set_int(gl, state_->draw_moving, "cells_per_triangle", cells_per_triangle);
@@ -328,13 +414,7 @@ RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settin
         set_int(gl, state_->resolve, "pass_ids", 0);
         gl.DispatchCompute(static_cast<GLuint>((width + 7) / 8), static_cast<GLuint>((height + 7) / 8), 1);
         gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-        // 32-bit counters per pass, summed in 64 bits here.
-        std::uint32_t counters[2] = {0, 0};
-        counter_buffer.read(counters, sizeof counters);
-        stats.samples_tested += counters[0];
-        stats.samples_hit += counters[1];
-        gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, counter_buffer.id());
-        gl.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof zero_counters, zero_counters);
+        read_counters();
         gl::check_gl(gl, "gl: raster pass");
         end_step(step_resolve);
     }

@@ -31,6 +31,10 @@ struct GlOptions {
     // over passes, added to ms_per_phase) with a glFinish after each: the
     // frame gets slightly slower, since the steps no longer overlap.
     bool time_steps = false;
+    // Samples per pixel each static draw covers (a multiple of 4): 0 for as
+    // many as fit (the whole frame unless pixels x spp exceeds 4M), 4 for a
+    // draw per pass of four samples. The image is the same either way.
+    int static_group_samples = 0;
 };
 
 // Sample j of pixel (px, py) is at sample_ids[(py * width + px) * spp + j]:

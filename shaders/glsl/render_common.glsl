@@ -47,6 +47,22 @@ vec2 grid_ndc(int x, int y) {
     layout(std430, binding = 7) readonly buffer PassSamples { vec4 pass_ndc_lens[]; }; \
     layout(std430, binding = 8) readonly buffer PassTimes { float pass_time[]; };
 
+// A group of passes' samples (render_samples.comp with stride group_samples):
+// pixel p's sample pass_base + k at slot group_samples p + k; and a static
+// triangle's depth key at one of them, as the per-pass static draw writes it
+// to gl_FragDepth (clamped to the depth range as the depth buffer clamps it),
+// or -1 where it does not cover the sample.
+#define GROUP_SAMPLE_BUFFERS \
+    layout(std430, binding = 12) readonly buffer GroupSamples { vec4 group_ndc_lens[]; }; \
+    layout(std430, binding = 13) readonly buffer GroupTimes { float group_time[]; }; \
+    uniform uint group_samples; \
+    float static_depth_key(int i, uint slot) { \
+        vec4 ndc_lens = group_ndc_lens[slot]; \
+        float depth; \
+        if (!covers(triangles[i], ndc_lens.xy, ndc_lens.zw, group_time[slot], near_plane, depth)) return -1.0; \
+        return clamp(near_plane / depth, 0.0, 1.0); \
+    }
+
 // A moving triangle's pixel rectangle is split into at most 4 x 4 cells, each
 // with the method's sample bounds for its pixels (render_bounds.comp).
 #define CELLS_MAX 16
