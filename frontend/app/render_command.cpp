@@ -201,9 +201,12 @@ int RenderCommand::run() const {
         summary["output"] = out_path;
         std::printf("%s\n", summary.dump().c_str());
     } else {
-        std::printf("%s: %zu triangles, %dx%d, %d spp, backend %s, cull %s\n", scene.c_str(), stats.triangles,
-                    settings.width, settings.height, settings.spp, used_backend.c_str(),
-                    used_backend == "embree" ? "none" : cull.c_str());
+        // Only the stochastic method culls; the others bound each pass by a box.
+        const std::string sampling = settings.method != "stochastic" ? "method " + settings.method
+                                     : used_backend == "embree"      ? std::string("cull none")
+                                                                     : "cull " + cull;
+        std::printf("%s: %zu triangles, %dx%d, %d spp, backend %s, %s\n", scene.c_str(), stats.triangles,
+                    settings.width, settings.height, settings.spp, used_backend.c_str(), sampling.c_str());
         std::printf("  %llu samples tested, %llu hit, STE %.1f%%, %.0f ms\n",
                     static_cast<unsigned long long>(stats.samples_tested),
                     static_cast<unsigned long long>(stats.samples_hit), 100.0 * stats.ste(), stats.ms_total);
