@@ -59,32 +59,14 @@ void check_memory_budget(const std::string& size_text, int spp, const std::strin
 }  // namespace
 
 void RenderCommand::add_options(CLI::App& app) {
-    app.add_option("--scene", scene, "built-in scene name (blurcull scenes) or a .gltf/.glb file")
-        ->capture_default_str();
+    SceneFlags::add_options(app, false);
     app.add_option("--backend", backend, "cpu, embree, gl or auto (auto: the best available)")
         ->check(CLI::IsMember({"auto", "cpu", "embree", "gl"}))
-        ->capture_default_str();
-    app.add_option("--cull", cull, "culling method")
-        ->check(CLI::IsMember({"bbox", "hull", "dualspace", "clip2"}))
         ->capture_default_str();
     app.add_option("--method", method,
                    "stochastic (culled stochastic rasterization), interleave, interval or accum (cpu and gl backends)")
         ->check(CLI::IsMember({"stochastic", "interleave", "interval", "accum"}))
         ->capture_default_str();
-    app.add_option("--spp", spp, "samples per pixel")->check(CLI::Range(1, 1024))->capture_default_str();
-    app.add_option("--size", size, "image size WxH")->capture_default_str();
-    auto* radius = app.add_option("--lens-radius", lens_radius, "thin-lens aperture radius (scene units)")
-                       ->check(CLI::Range(0.0, 1e6));
-    auto* fstop_option =
-        app.add_option("--fstop", fstop, "f-number (35 mm equivalent focal length)")->check(CLI::Range(0.1, 1e6));
-    radius->excludes(fstop_option);
-    app.add_option("--focus", focus, "focus distance (view depth, scene units)")->check(CLI::Range(1e-6, 1e9));
-    app.add_option("--shutter", shutter,
-                   "OPEN,CLOSE: animation seconds for glTF, fractions of the nominal shutter for built-in scenes");
-    app.add_option("--blur-scale", blur_scale, "multiplies motion and lens radius (thesis x2 rows: 2)")
-        ->check(CLI::Range(0.0, 1000.0))
-        ->capture_default_str();
-    app.add_option("--seed", seed, "sample pattern seed")->capture_default_str();
     app.add_option("-o,--output", output, "PNG to write (default: <scene>.png in the current folder)");
     app.add_flag("--json", json, "print one JSON object with the render's statistics on stdout");
     app.add_option("--threads", threads, "worker threads (0: all cores)")->check(CLI::Range(0, 1024));

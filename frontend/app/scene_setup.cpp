@@ -116,4 +116,27 @@ Scene load_scene(const SceneRequest& request) {
     return loaded;
 }
 
+void SceneFlags::add_options(CLI::App& app, bool initial) {
+    const std::string start = initial ? "initial " : "";
+    app.add_option("--scene", scene, "built-in scene name (blurcull scenes) or a .gltf/.glb file")
+        ->capture_default_str();
+    app.add_option("--cull", cull, start + "culling method")
+        ->check(CLI::IsMember({"bbox", "hull", "dualspace", "clip2"}))
+        ->capture_default_str();
+    app.add_option("--spp", spp, start + "samples per pixel")->check(CLI::Range(1, 1024))->capture_default_str();
+    app.add_option("--size", size, "image size WxH")->capture_default_str();
+    auto* radius = app.add_option("--lens-radius", lens_radius, start + "thin-lens aperture radius (scene units)")
+                       ->check(CLI::Range(0.0, 1e6));
+    auto* fstop_option = app.add_option("--fstop", fstop, start + "f-number (35 mm equivalent focal length)")
+                             ->check(CLI::Range(0.1, 1e6));
+    radius->excludes(fstop_option);
+    app.add_option("--focus", focus, start + "focus distance (view depth, scene units)")->check(CLI::Range(1e-6, 1e9));
+    app.add_option("--shutter", shutter,
+                   start + "OPEN,CLOSE: animation seconds for glTF, fractions of the nominal shutter for built-in scenes");
+    app.add_option("--blur-scale", blur_scale, start + "multiplier of motion and lens radius (thesis x2 rows: 2)")
+        ->check(CLI::Range(0.0, 1000.0))
+        ->capture_default_str();
+    app.add_option("--seed", seed, "sample pattern seed")->capture_default_str();
+}
+
 }  // namespace blurcull::frontend

@@ -5,7 +5,11 @@
 
 #include "scene/scene.hpp"
 
+#include <CLI/CLI.hpp>
+
+#include <cstdint>
 #include <string>
+#include <utility>
 
 namespace blurcull::frontend {
 
@@ -28,6 +32,29 @@ struct SceneRequest {
     double lens_radius = -1.0;     // < 0: the scene's own (multiplied by blur_scale when set)
     double fstop = -1.0;           // > 0: the lens radius for this f-number
     double focus = -1.0;           // > 0: the focus distance
+};
+
+// The flags `blurcull render` and `blurcull view` share: the scene, its lens,
+// focus, shutter and blur scale, the cull method, spp, size and seed.
+struct SceneFlags {
+    SceneFlags(std::string default_scene, int default_spp, std::string default_size)
+        : scene(std::move(default_scene)), spp(default_spp), size(std::move(default_size)) {}
+
+    std::string scene;
+    std::string cull = "clip2";
+    int spp;
+    std::string size;
+    double lens_radius = -1.0;  // < 0: the scene's own
+    double fstop = -1.0;
+    double focus = -1.0;
+    std::string shutter;        // "OPEN,CLOSE"; empty: the scene's own
+    double blur_scale = 1.0;
+    std::uint32_t seed = 1;
+
+    // Adds --scene, --cull, --spp, --size, --lens-radius | --fstop, --focus,
+    // --shutter, --blur-scale and --seed, with their ranges. `initial`: the
+    // help says they are starting values (the window changes them).
+    void add_options(CLI::App& app, bool initial);
 };
 
 // Loads and validates the scene; throws SceneError or std::runtime_error

@@ -314,25 +314,7 @@ void on_scroll(GLFWwindow* window, double, double y_offset) {
 }  // namespace
 
 void ViewCommand::add_options(CLI::App& app) {
-    app.add_option("--scene", scene, "built-in scene name (blurcull scenes) or a .gltf/.glb file")
-        ->capture_default_str();
-    app.add_option("--cull", cull, "initial culling method")
-        ->check(CLI::IsMember({"bbox", "hull", "dualspace", "clip2"}))
-        ->capture_default_str();
-    app.add_option("--spp", spp, "initial samples per pixel")->check(CLI::Range(1, 1024))->capture_default_str();
-    app.add_option("--size", size, "window and image size WxH")->capture_default_str();
-    auto* radius = app.add_option("--lens-radius", lens_radius, "initial thin-lens aperture radius (scene units)")
-                       ->check(CLI::Range(0.0, 1e6));
-    auto* fstop_option =
-        app.add_option("--fstop", fstop, "initial f-number (35 mm equivalent focal length)")->check(CLI::Range(0.1, 1e6));
-    radius->excludes(fstop_option);
-    app.add_option("--focus", focus, "initial focus distance (view depth, scene units)")->check(CLI::Range(1e-6, 1e9));
-    app.add_option("--shutter", shutter,
-                   "initial OPEN,CLOSE: animation seconds for glTF, fractions of the nominal shutter for built-in scenes");
-    app.add_option("--blur-scale", blur_scale, "initial multiplier of motion and lens radius")
-        ->check(CLI::Range(0.0, 1000.0))
-        ->capture_default_str();
-    app.add_option("--seed", seed, "sample pattern seed")->capture_default_str();
+    SceneFlags::add_options(app, true);
     app.add_option("--frames", frames,
                    "render this many frames, turning the orbit and cycling the cull method between them, then exit "
                    "(0: interactive)")
