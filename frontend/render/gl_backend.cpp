@@ -2,14 +2,13 @@
 
 #include "render/camera_model.hpp"
 #include "render/gl_methods.hpp"
+#include "render/gl_render_targets.hpp"
 #include "render/moving_triangle.hpp"
 #include "render/shading.hpp"
 #include "scene/scene_checks.hpp"
 
 #include <gl/gl_context.hpp>
 
-#include <blurcull/glsl/kernel_glsl.hpp>
-#include <blurcull/glsl/render_glsl.hpp>
 #include <blurcull/kernel.hpp>
 
 #include <algorithm>
@@ -45,17 +44,6 @@ static_assert(sizeof(GpuTriangle) == 144, "std430 MovingTriangle");
 constexpr std::size_t triangle_info_bytes = (4 + 4 + 4 + 4 + 4 + 4 * BC_HULL_MAX) * 4;
 constexpr std::size_t cell_bounds_bytes = 6 * 4 * 4;  // CellBounds: ivec4 + 5 vec4
 constexpr int cells_max = 16;                         // CELLS_MAX
-
-std::string_view shader_text(std::string_view name) {
-    std::string_view text = glsl::render_shader_source(name);
-    if (text.empty()) throw GlError("gl: shader '" + std::string(name) + "' was not embedded at build time");
-    return text;
-}
-
-// A stage whose main needs the kernel: kernel, shared declarations, main.
-gl::ShaderStage kernel_stage(GLenum type, std::string_view main_name) {
-    return gl::ShaderStage{type, {glsl::kernel_source(), shader_text("render_common.glsl"), shader_text(main_name)}};
-}
 
 }  // namespace
 
@@ -221,15 +209,14 @@ RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settin
 
     gl::Buffer triangle_buffer(gl, GL_SHADER_STORAGE_BUFFER, triangles.size() * sizeof(GpuTriangle), triangles.data());
     gl::Buffer info_buffer(gl, GL_SHADER_STORAGE_BUFFER, std::max<std::size_t>(count, 1) * triangle_info_bytes);
-    const std::uint32_t zero_counters[2] = {0, 0};
-    gl::Buffer counter_buffer(gl, GL_SHADER_STORAGE_BUFFER, sizeof zero_counters, zero_counters);
+    SampleCounters counters(gl);
     gl::Buffer colour_buffer(gl, GL_SHADER_STORAGE_BUFFER, colours.size() * sizeof(glm::vec4), colours.data());
     gl::Buffer sum_buffer(gl, GL_SHADER_STORAGE_BUFFER, pixels * sizeof(glm::vec4));
     const bool keep_ids = options.keep_sample_ids && sample_ids != nullptr;
     gl::Buffer id_buffer(gl, GL_SHADER_STORAGE_BUFFER, keep_ids ? pixels * spp * sizeof(std::uint32_t) : 4);
     triangle_buffer.bind_base(0);
     info_buffer.bind_base(1);
-    counter_buffer.bind_base(2);
+    counters.bind_base(2);
     colour_buffer.bind_base(3);
     sum_buffer.bind_base(4);
     id_buffer.bind_base(5);
@@ -271,26 +258,12 @@ RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settin
         gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
 
-    gl::Texture id_texture(gl, GL_TEXTURE_2D_MULTISAMPLE, GL_R32UI, width, height, samples_per_pass);
-    gl::Texture depth_texture(gl, GL_TEXTURE_2D_MULTISAMPLE, GL_DEPTH_COMPONENT32F, width, height, samples_per_pass);
-    gl::Framebuffer framebuffer(gl);
-    gl.BindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
-    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D_MULTISAMPLE, id_texture.id(), 0);
-    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D_MULTISAMPLE, depth_texture.id(), 0);
-    if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-        throw GlError("gl: the multisample id/depth framebuffer is incomplete");
-    }
-    gl.Viewport(0, 0, width, height);
-    // Depth is near / w, written by the fragment shaders from covers(): larger
-    // is nearer, 0 is empty; depth clamping, so quads are never clipped by depth.
-    gl.ClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
-    gl.Enable(GL_DEPTH_TEST);
-    gl.DepthFunc(GL_GREATER);
-    gl.Enable(GL_DEPTH_CLAMP);
+    const IdDepthTarget id_depth(gl, width, height, samples_per_pass, "the multisample id/depth framebuffer");
+    id_depth.bind_with_depth_rule();
     gl.Enable(GL_MULTISAMPLE);
     gl.BindVertexArray(state_->vertex_array);
     gl.ActiveTexture(GL_TEXTURE0);
-    gl.BindTexture(GL_TEXTURE_2D_MULTISAMPLE, id_texture.id());
+    gl.BindTexture(GL_TEXTURE_2D_MULTISAMPLE, id_depth.id_texture());
     gl.Finish();
     gl::check_gl(gl, "gl: setup");
     stats.ms_per_phase.emplace_back("setup", ms_since(phase));
@@ -336,16 +309,6 @@ RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settin
     group_id_buffer.bind_base(14);
     group_depth_buffer.bind_base(15);
     std::uint32_t group_base = 0;
-    auto read_counters = [&] {
-        // 32-bit counters per pass (or group), summed in 64 bits here.
-        gl.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-        std::uint32_t counters[2] = {0, 0};
-        counter_buffer.read(counters, sizeof counters);
-        stats.samples_tested += counters[0];
-        stats.samples_hit += counters[1];
-        gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, counter_buffer.id());
-        gl.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof zero_counters, zero_counters);
-    };
     auto compute_samples = [&](std::uint32_t base, std::uint32_t stride) {
         set_common(gl, state_->samples, model, settings, base);
         set_uint(gl, state_->samples, "stride", stride);
@@ -383,7 +346,7 @@ RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settin
             gl.Enable(GL_MULTISAMPLE);
             gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
             gl.DepthMask(GL_TRUE);
-            read_counters();
+            counters.add_to(stats);
             end_step(step_static);
         }
         compute_samples(pass_base, pass_samples);
@@ -414,7 +377,7 @@ RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settin
         set_int(gl, state_->resolve, "pass_ids", 0);
         gl.DispatchCompute(static_cast<GLuint>((width + 7) / 8), static_cast<GLuint>((height + 7) / 8), 1);
         gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-        read_counters();
+        counters.add_to(stats);
         gl::check_gl(gl, "gl: raster pass");
         end_step(step_resolve);
     }

@@ -1,12 +1,11 @@
 #include "render/gl_methods.hpp"
 
 #include "render/camera_model.hpp"
+#include "render/gl_render_targets.hpp"
 #include "render/interleaved_backend.hpp"
 #include "render/moving_triangle.hpp"
 #include "render/progress.hpp"
 
-#include <blurcull/glsl/kernel_glsl.hpp>
-#include <blurcull/glsl/render_glsl.hpp>
 #include <blurcull/kernel.hpp>
 
 #include <algorithm>
@@ -31,16 +30,6 @@ using gl::GlError;
 
 double ms_since(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
-std::string_view shader_text(std::string_view name) {
-    std::string_view text = glsl::render_shader_source(name);
-    if (text.empty()) throw GlError("gl: shader '" + std::string(name) + "' was not embedded at build time");
-    return text;
-}
-
-gl::ShaderStage kernel_stage(GLenum type, std::string_view main_name) {
-    return gl::ShaderStage{type, {glsl::kernel_source(), shader_text("render_common.glsl"), shader_text(main_name)}};
 }
 
 // std430 layouts of render_common.glsl's MovingTriangle and render_method.*'s MethodBox.
@@ -240,36 +229,22 @@ RenderResult render_gl_method(const gl::HeadlessContext& context, std::shared_pt
         }
     }
     gl::Buffer triangle_buffer(gl, GL_SHADER_STORAGE_BUFFER, triangles.size() * sizeof(GpuTriangle), triangles.data());
-    const std::uint32_t zero_counters[2] = {0, 0};
-    gl::Buffer counter_buffer(gl, GL_SHADER_STORAGE_BUFFER, sizeof zero_counters, zero_counters);
+    SampleCounters counters(gl);
     gl::Buffer box_buffer(gl, GL_SHADER_STORAGE_BUFFER, std::max<std::size_t>(count, 1) * sizeof(GpuBox));
     gl::Buffer tuple_buffer(gl, GL_SHADER_STORAGE_BUFFER, interleave ? table.cells.size() * sizeof(std::uint32_t) : 4,
                             interleave ? table.cells.data() : nullptr);
     gl::Buffer sample_buffer(gl, GL_SHADER_STORAGE_BUFFER, interval ? pixels * 4 * sizeof(float) : 16);
     gl::Buffer time_buffer(gl, GL_SHADER_STORAGE_BUFFER, interval ? pixels * sizeof(float) : 4);
     triangle_buffer.bind_base(0);
-    counter_buffer.bind_base(2);
+    counters.bind_base(2);
     sample_buffer.bind_base(7);
     time_buffer.bind_base(8);
     box_buffer.bind_base(9);
     tuple_buffer.bind_base(10);
 
-    gl::Texture id_texture(gl, GL_TEXTURE_2D, GL_R32UI, target_w, target_h);
-    gl::Texture depth_texture(gl, GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, target_w, target_h);
-    gl::Framebuffer framebuffer(gl);
-    gl.BindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
-    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, id_texture.id(), 0);
-    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depth_texture.id(), 0);
-    if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-        throw GlError("gl: the method's id/depth framebuffer is incomplete");
-    }
-    gl.Viewport(0, 0, target_w, target_h);
-    // The stochastic path's depth rule: near / w from covers(), larger is
-    // nearer, cleared to 0, strict, so ties keep the lower triangle index.
-    gl.ClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
-    gl.Enable(GL_DEPTH_TEST);
-    gl.DepthFunc(GL_GREATER);
-    gl.Enable(GL_DEPTH_CLAMP);
+    // The stochastic path's framebuffer and depth rule, single-sampled.
+    const IdDepthTarget id_depth(gl, target_w, target_h, 0, "the method's id/depth framebuffer");
+    id_depth.bind_with_depth_rule();
     gl.BindVertexArray(programs->vertex_array);
 
     const gl::Program& draw = programs->draw;
@@ -329,13 +304,7 @@ RenderResult render_gl_method(const gl::HeadlessContext& context, std::shared_pt
             gl.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(boxes.size() * 6));
         }
         gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
-        // 32-bit counters per pass, summed in 64 bits here.
-        std::uint32_t counters[2] = {0, 0};
-        counter_buffer.read(counters, sizeof counters);
-        stats.samples_tested += counters[0];
-        stats.samples_hit += counters[1];
-        gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, counter_buffer.id());
-        gl.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof zero_counters, zero_counters);
+        counters.add_to(stats);
         // The pass's ids (GL's rows are bottom-up) to their samples: pass k
         // is sample k of every pixel (interval, accum); interleave's tile t
         // is tuple k's cell (gx, gy) of t, sample (gy % s) s + gx % s of
