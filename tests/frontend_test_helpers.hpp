@@ -9,6 +9,8 @@
 #include <doctest/doctest.h>
 #include <glm/glm.hpp>
 
+#include <algorithm>
+
 #include <cstdint>
 #include <cstdlib>
 #include <exception>
@@ -45,6 +47,27 @@ inline bool same_pixels(const Image& a, const Image& b) {
         if (a.pixels[i] != b.pixels[i]) return false;
     }
     return true;
+}
+
+// A width x height render with spp samples and no progress output.
+inline RenderSettings quiet_settings(int width, int height, int spp) {
+    RenderSettings settings;
+    settings.width = width;
+    settings.height = height;
+    settings.spp = spp;
+    settings.progress = false;
+    return settings;
+}
+
+// The fraction of pixels whose every channel is within 1/255.
+inline double fraction_close(const Image& a, const Image& b) {
+    REQUIRE(a.pixels.size() == b.pixels.size());
+    std::size_t close = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+        const glm::vec3 d = glm::abs(a.pixels[i] - b.pixels[i]);
+        close += std::max({d.x, d.y, d.z}) <= 1.0f / 255.0f ? 1 : 0;
+    }
+    return static_cast<double>(close) / static_cast<double>(a.pixels.size());
 }
 
 // The fraction of samples showing the same triangle.

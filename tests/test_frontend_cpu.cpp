@@ -25,15 +25,6 @@ Scene small_scene(const std::string& name, float blur_scale, int width, int heig
     return make_builtin_scene(name, options);
 }
 
-RenderSettings small_settings(int width, int height, int spp) {
-    RenderSettings settings;
-    settings.width = width;
-    settings.height = height;
-    settings.spp = spp;
-    settings.progress = false;
-    return settings;
-}
-
 // A ground plane that runs from behind the camera to the horizon, a wall
 // crossing the near plane, camera motion and defocus: the near-plane paths.
 Scene near_plane_scene() {
@@ -61,7 +52,7 @@ TEST_CASE("every culling method renders the same image, on every built-in scene,
         for (float blur : {1.0f, 2.0f}) {
             for (const CpuOptions& options : {CpuOptions{}, single}) {
                 Scene scene = small_scene(name, blur, width, height);
-                RenderSettings settings = small_settings(width, height, 4);
+                RenderSettings settings = quiet_settings(width, height, 4);
                 settings.cull = CullMethod::bbox;
                 RenderResult reference = render_cpu(scene, settings, options);
                 CHECK(reference.stats.samples_hit > 0);
@@ -81,7 +72,7 @@ TEST_CASE("every culling method renders the same image, on every built-in scene,
 
 TEST_CASE("culling footprints larger than a pixel change nothing in the image") {
     Scene scene = small_scene("forest", 2.0f, 64, 48);
-    RenderSettings settings = small_settings(64, 48, 8);
+    RenderSettings settings = quiet_settings(64, 48, 8);
     settings.cull = CullMethod::bbox;
     RenderResult reference = render_cpu(scene, settings);
     settings.cull = CullMethod::clip2;
@@ -97,7 +88,7 @@ TEST_CASE("culling footprints larger than a pixel change nothing in the image") 
 
 TEST_CASE("near-plane crossings: same image for every method") {
     Scene scene = near_plane_scene();
-    RenderSettings settings = small_settings(80, 60, 8);
+    RenderSettings settings = quiet_settings(80, 60, 8);
     settings.cull = CullMethod::bbox;
     RenderResult reference = render_cpu(scene, settings);
     CHECK(reference.stats.samples_hit > 1000);
@@ -112,7 +103,7 @@ TEST_CASE("near-plane crossings: same image for every method") {
 
 TEST_CASE("the image does not depend on the thread count; the seed changes it") {
     Scene scene = small_scene("car", 1.0f, 64, 48);
-    RenderSettings settings = small_settings(64, 48, 4);
+    RenderSettings settings = quiet_settings(64, 48, 4);
     settings.threads = 1;
     RenderResult one = render_cpu(scene, settings);
     settings.threads = 3;
@@ -134,7 +125,7 @@ TEST_CASE("CPU rasterizer and Embree agree on every built-in scene") {
     const int width = 96, height = 72;
     for (const std::string& name : builtin_scene_names()) {
         Scene scene = small_scene(name, 1.0f, width, height);
-        RenderSettings settings = small_settings(width, height, 16);
+        RenderSettings settings = quiet_settings(width, height, 16);
         RenderResult cpu = render_cpu(scene, settings);
         RenderResult ray = render_embree(scene, settings);
         double error = rmse(cpu.image, ray.image);

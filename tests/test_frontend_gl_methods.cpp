@@ -25,16 +25,6 @@ using namespace blurcull::frontend::test;
 
 namespace {
 
-// Pixels whose every channel is within 1/255.
-double fraction_close(const Image& a, const Image& b) {
-    std::size_t close = 0;
-    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
-        const glm::vec3 d = glm::abs(a.pixels[i] - b.pixels[i]);
-        close += std::max({d.x, d.y, d.z}) <= 1.0f / 255.0f ? 1 : 0;
-    }
-    return static_cast<double>(close) / static_cast<double>(a.pixels.size());
-}
-
 RenderResult render_cpu_method(const Scene& scene, const RenderSettings& settings, std::vector<std::uint32_t>& ids) {
     if (settings.method == "interleave") return render_interleave(scene, settings, {}, &ids);
     if (settings.method == "interval") return render_interval(scene, settings, &ids);
@@ -42,12 +32,8 @@ RenderResult render_cpu_method(const Scene& scene, const RenderSettings& setting
 }
 
 RenderSettings small_settings(const std::string& method, int spp) {
-    RenderSettings settings;
-    settings.width = 48;
-    settings.height = 36;
-    settings.spp = spp;
+    RenderSettings settings = quiet_settings(48, 36, spp);
     settings.seed = 3;
-    settings.progress = false;
     settings.method = method;
     return settings;
 }

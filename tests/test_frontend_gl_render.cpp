@@ -107,26 +107,11 @@ double fraction_same_coverage(const std::vector<std::uint32_t>& a, const std::ve
     return a.empty() ? 1.0 : static_cast<double>(same) / static_cast<double>(a.size());
 }
 
-// Pixels whose every channel is within 1/255.
-double fraction_close(const Image& a, const Image& b) {
-    std::size_t close = 0;
-    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
-        const glm::vec3 d = glm::abs(a.pixels[i] - b.pixels[i]);
-        close += std::max({d.x, d.y, d.z}) <= 1.0f / 255.0f ? 1 : 0;
-    }
-    return static_cast<double>(close) / static_cast<double>(a.pixels.size());
-}
-
 RenderSettings small_settings(int spp) {
-    RenderSettings settings;
-    settings.width = 64;
-    settings.height = 48;
-    settings.spp = spp;
+    RenderSettings settings = quiet_settings(64, 48, spp);
     settings.seed = 3;
-    settings.progress = false;
     return settings;
 }
-
 
 }  // namespace
 
