@@ -240,14 +240,20 @@ BC_FN real bc_radical_inverse(uint k, uint base) {
     return min(value, real(1) - bc_epsilon());
 }
 
+// The lens position with squared radius r2 and angle 2 pi turn, for r2 and
+// turn in [0, 1): uniform on the disk for uniform (r2, turn).
+BC_FN vec2 bc_polar_disk(real r2, real turn) {
+    real r = sqrt(r2);
+    real theta = real(6.283185307179586) * turn;
+    return clamp(vec2(r * cos(theta), r * sin(theta)), vec2(real(-1)), vec2(real(1)));
+}
+
 // Tuple k of the frame's interleaved (u, v, t) set, returned as (u, v, t):
 // t = radical inverse base 2, lens disk radius sqrt(radical inverse base 3),
 // angle 2 pi radical inverse base 5 (uniform on the disk), as in Aqsis 2.0.
 BC_FN vec3 interleaved_tuple(uint k) {
     real t = bc_radical_inverse(k, 2u);
-    real r = sqrt(bc_radical_inverse(k, 3u));
-    real theta = real(6.283185307179586) * bc_radical_inverse(k, 5u);
-    vec2 uv = clamp(vec2(r * cos(theta), r * sin(theta)), vec2(real(-1)), vec2(real(1)));
+    vec2 uv = bc_polar_disk(bc_radical_inverse(k, 3u), bc_radical_inverse(k, 5u));
     return vec3(uv.x, uv.y, t);
 }
 
@@ -290,9 +296,8 @@ BC_FN PixelSample accum_sample(uint k, uint seed) {
     uint index = k + 1u;
     PixelSample s;
     s.time = bc_rotate_unit(bc_radical_inverse(index, 2u), bc_unit(bc_hash(key ^ 1u)));
-    real r = sqrt(bc_rotate_unit(bc_radical_inverse(index, 3u), bc_unit(bc_hash(key ^ 2u))));
-    real theta = real(6.283185307179586) * bc_rotate_unit(bc_radical_inverse(index, 5u), bc_unit(bc_hash(key ^ 3u)));
-    s.lens = clamp(vec2(r * cos(theta), r * sin(theta)), vec2(real(-1)), vec2(real(1)));
+    s.lens = bc_polar_disk(bc_rotate_unit(bc_radical_inverse(index, 3u), bc_unit(bc_hash(key ^ 2u))),
+                           bc_rotate_unit(bc_radical_inverse(index, 5u), bc_unit(bc_hash(key ^ 3u))));
     s.offset = vec2(bc_rotate_unit(bc_radical_inverse(index, 7u), bc_unit(bc_hash(key ^ 4u))),
                     bc_rotate_unit(bc_radical_inverse(index, 11u), bc_unit(bc_hash(key ^ 5u))));
     return s;
