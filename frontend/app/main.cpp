@@ -3,6 +3,8 @@
 #include "app/render_command.hpp"
 #include "app/view_command.hpp"
 
+#include <blurcull/version.hpp>
+
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -12,7 +14,7 @@
 int main(int argc, char** argv) {
     using namespace blurcull::frontend;
     CLI::App app{"blurcull: motion blur and depth of field by stochastic rasterization with sample culling"};
-    app.set_version_flag("--version", "blurcull 0.1.0");
+    app.set_version_flag("--version", std::string("blurcull ") + blurcull::version_string());
     app.require_subcommand(0, 1);
     CLI::App* view_app = nullptr;
     // One line naming the flag and what it accepts, like every other error.
