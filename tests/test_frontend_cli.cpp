@@ -1,7 +1,7 @@
 // The `blurcull` command as a user runs it: renders with a JSON summary and a
 // PNG, and refuses bad input with one line naming the problem and a non-zero
 // exit. BLURCULL_CLI is the path of the built executable.
-#include "render/image.hpp"
+#include "render/common/image.hpp"
 
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>

@@ -2,9 +2,9 @@
 // only skip samples that miss), independent of the thread count, and in
 // agreement with the Embree reference on every built-in scene.
 #include "frontend_test_helpers.hpp"
-#include "render/cpu_backend.hpp"
-#include "render/embree_backend.hpp"
-#include "render/image.hpp"
+#include "render/cpu/cpu_backend.hpp"
+#include "render/embree/embree_backend.hpp"
+#include "render/common/image.hpp"
 #include "scene/builtin_scenes.hpp"
 
 #include <doctest/doctest.h>

@@ -1,11 +1,11 @@
 // The Embree reference renderer and the shared camera model, shading and
 // image utilities, on tiny scenes built here.
-#include "render/camera_model.hpp"
-#include "render/embree_backend.hpp"
-#include "render/image.hpp"
-#include "render/moving_triangle.hpp"
-#include "render/render_types.hpp"
-#include "render/shading.hpp"
+#include "render/common/camera_model.hpp"
+#include "render/embree/embree_backend.hpp"
+#include "render/common/image.hpp"
+#include "render/common/moving_triangle.hpp"
+#include "render/common/render_types.hpp"
+#include "render/common/shading.hpp"
 
 #include <doctest/doctest.h>
 

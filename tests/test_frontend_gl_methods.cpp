@@ -5,7 +5,7 @@
 // failure when CI=true.
 #include "frontend_test_helpers.hpp"
 #include "render/gl_backend.hpp"
-#include "render/interleaved_backend.hpp"
+#include "render/cpu/methods.hpp"
 #include "scene/builtin_scenes.hpp"
 
 #include <doctest/doctest.h>

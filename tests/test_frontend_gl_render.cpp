@@ -3,11 +3,11 @@
 // statistics; the static path's speed-up. No GL context: SKIPPED, or a failure
 // when CI=true.
 #include "frontend_test_helpers.hpp"
-#include "render/cpu_backend.hpp"
+#include "render/cpu/cpu_backend.hpp"
 #include "render/gl_backend.hpp"
-#include "render/camera_model.hpp"
-#include "render/moving_triangle.hpp"
-#include "render/shading.hpp"
+#include "render/common/camera_model.hpp"
+#include "render/common/moving_triangle.hpp"
+#include "render/common/shading.hpp"
 #include "scene/builtin_scenes.hpp"
 
 #include <blurcull/kernel.hpp>

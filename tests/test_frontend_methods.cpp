@@ -3,12 +3,12 @@
 // they document (so their boxes never lose a hit), converging to the
 // stochastic reference as N (K) grows, deterministic whatever the threads.
 #include "frontend_test_helpers.hpp"
-#include "render/camera_model.hpp"
-#include "render/cpu_backend.hpp"
-#include "render/image.hpp"
-#include "render/interleaved_backend.hpp"
-#include "render/moving_triangle.hpp"
-#include "render/shading.hpp"
+#include "render/common/camera_model.hpp"
+#include "render/cpu/cpu_backend.hpp"
+#include "render/common/image.hpp"
+#include "render/cpu/methods.hpp"
+#include "render/common/moving_triangle.hpp"
+#include "render/common/shading.hpp"
 
 #include <blurcull/kernel.hpp>
 #include <blurcull/patterns.hpp>

@@ -3,7 +3,7 @@
 // there is no display. BLURCULL_CLI is the path of the built executable.
 // Without xvfb-run the window tests are skipped, unless CI=true (then they fail).
 #include "frontend_test_helpers.hpp"
-#include "render/image.hpp"
+#include "render/common/image.hpp"
 
 #include <doctest/doctest.h>
 

@@ -14,10 +14,10 @@
 // --repeat runs with the methods interleaved within each repeat, so a drifting
 // machine load hits all of them alike.
 #include "bench_common.hpp"
-#include "render/cpu_backend.hpp"
-#include "render/embree_backend.hpp"
-#include "render/image.hpp"
-#include "render/interleaved_backend.hpp"
+#include "render/cpu/cpu_backend.hpp"
+#include "render/embree/embree_backend.hpp"
+#include "render/common/image.hpp"
+#include "render/cpu/methods.hpp"
 #include "scene/builtin_scenes.hpp"
 
 #include <algorithm>

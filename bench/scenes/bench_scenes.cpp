@@ -10,7 +10,7 @@
 // the same run (same scene, same samples): on a noisy machine only ratios
 // within one run mean something.
 #include "bench_common.hpp"
-#include "render/cpu_backend.hpp"
+#include "render/cpu/cpu_backend.hpp"
 #include "scene/builtin_scenes.hpp"
 
 #include <algorithm>

@@ -2,12 +2,12 @@
 
 #include "app/scene_setup.hpp"
 
-#include "render/cpu_backend.hpp"
-#include "render/embree_backend.hpp"
+#include "render/cpu/cpu_backend.hpp"
+#include "render/embree/embree_backend.hpp"
 #include "render/gl_backend.hpp"
-#include "render/image.hpp"
-#include "render/interleaved_backend.hpp"
-#include "render/render_types.hpp"
+#include "render/common/image.hpp"
+#include "render/cpu/methods.hpp"
+#include "render/common/render_types.hpp"
 #include "scene/builtin_scenes.hpp"
 
 #include <nlohmann/json.hpp>

@@ -4,8 +4,8 @@
 #include "app/text_overlay.hpp"
 
 #include "render/gl_backend.hpp"
-#include "render/image.hpp"
-#include "render/render_types.hpp"
+#include "render/common/image.hpp"
+#include "render/common/render_types.hpp"
 
 #include <gl/gl_context.hpp>
 

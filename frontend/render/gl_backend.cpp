@@ -1,10 +1,10 @@
 #include "render/gl_backend.hpp"
 
-#include "render/camera_model.hpp"
+#include "render/common/camera_model.hpp"
 #include "render/gl_methods.hpp"
 #include "render/gl_render_targets.hpp"
-#include "render/moving_triangle.hpp"
-#include "render/shading.hpp"
+#include "render/common/moving_triangle.hpp"
+#include "render/common/shading.hpp"
 #include "scene/scene_checks.hpp"
 
 #include <gl/gl_context.hpp>

@@ -4,7 +4,7 @@
 // numbers: docs/gl-backend.md.
 #pragma once
 
-#include "render/render_types.hpp"
+#include "render/common/render_types.hpp"
 #include "scene/scene.hpp"
 
 #include <cstdint>

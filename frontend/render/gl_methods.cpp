@@ -1,10 +1,10 @@
 #include "render/gl_methods.hpp"
 
-#include "render/camera_model.hpp"
+#include "render/common/camera_model.hpp"
 #include "render/gl_render_targets.hpp"
-#include "render/interleaved_backend.hpp"
-#include "render/moving_triangle.hpp"
-#include "render/progress.hpp"
+#include "render/cpu/methods.hpp"
+#include "render/common/moving_triangle.hpp"
+#include "render/common/progress.hpp"
 
 #include <blurcull/kernel.hpp>
 

@@ -1,9 +1,9 @@
-#include "render/cpu_backend.hpp"
+#include "render/cpu/cpu_backend.hpp"
 
-#include "render/camera_model.hpp"
-#include "render/moving_triangle.hpp"
-#include "render/progress.hpp"
-#include "render/shading.hpp"
+#include "render/common/camera_model.hpp"
+#include "render/common/moving_triangle.hpp"
+#include "render/common/progress.hpp"
+#include "render/common/shading.hpp"
 #include "scene/scene_checks.hpp"
 
 #include <blurcull/kernel.hpp>

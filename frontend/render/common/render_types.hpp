@@ -2,7 +2,7 @@
 // settings, and what a render returns (the image plus its statistics).
 #pragma once
 
-#include "render/image.hpp"
+#include "render/common/image.hpp"
 
 #include <blurcull/kernel.hpp>
 

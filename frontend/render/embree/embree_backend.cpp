@@ -1,7 +1,7 @@
-#include "render/embree_backend.hpp"
+#include "render/embree/embree_backend.hpp"
 
-#include "render/camera_model.hpp"
-#include "render/shading.hpp"
+#include "render/common/camera_model.hpp"
+#include "render/common/shading.hpp"
 #include "scene/scene_checks.hpp"
 
 #include <blurcull/kernel.hpp>

@@ -1,10 +1,10 @@
-#include "render/interleaved_backend.hpp"
+#include "render/cpu/methods.hpp"
 
-#include "render/camera_model.hpp"
-#include "render/cpu_backend.hpp"
-#include "render/moving_triangle.hpp"
-#include "render/progress.hpp"
-#include "render/shading.hpp"
+#include "render/common/camera_model.hpp"
+#include "render/cpu/cpu_backend.hpp"
+#include "render/common/moving_triangle.hpp"
+#include "render/common/progress.hpp"
+#include "render/common/shading.hpp"
 #include "scene/scene_checks.hpp"
 
 #include <blurcull/kernel.hpp>

@@ -2,7 +2,7 @@
 // lens, linear motion and sample pattern (docs/reference-renderer.md).
 #pragma once
 
-#include "render/render_types.hpp"
+#include "render/common/render_types.hpp"
 #include "scene/scene.hpp"
 
 namespace blurcull::frontend {

@@ -11,8 +11,8 @@
 // std::invalid_argument for bad settings and SceneError for a bad scene.
 #pragma once
 
-#include "render/camera_model.hpp"
-#include "render/render_types.hpp"
+#include "render/common/camera_model.hpp"
+#include "render/common/render_types.hpp"
 #include "scene/scene.hpp"
 
 #include <blurcull/kernel.hpp>

@@ -2,7 +2,7 @@
 // per-sample z-buffer, culling by the kernel (docs/cpu-renderer.md).
 #pragma once
 
-#include "render/render_types.hpp"
+#include "render/common/render_types.hpp"
 #include "scene/scene.hpp"
 
 #include <string>
