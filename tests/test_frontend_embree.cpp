@@ -96,7 +96,7 @@ float orange_coverage(const Image& image, int px, int py) {
 }  // namespace
 
 TEST_CASE("cull method names round-trip and bad names are rejected") {
-    for (CullMethod method : {CullMethod::bbox, CullMethod::hull, CullMethod::dualspace, CullMethod::clip2}) {
+    for (CullMethod method : {CullMethod::bbox, CullMethod::hull, CullMethod::dualspace, CullMethod::two_stage}) {
         CHECK(parse_cull_method(to_string(method)) == method);
     }
     try {
@@ -105,7 +105,7 @@ TEST_CASE("cull method names round-trip and bad names are rejected") {
     } catch (const std::invalid_argument& error) {
         std::string message = error.what();
         CHECK(message.find("boxes") != std::string::npos);
-        CHECK(message.find("clip2") != std::string::npos);
+        CHECK(message.find("twostage") != std::string::npos);
         CHECK(message.find('\n') == std::string::npos);
     }
 }

@@ -127,8 +127,8 @@ TEST_CASE("gl backend: every built-in scene agrees with the cpu backend sample b
             // to keep the test short on llvmpipe.
             const std::vector<CullMethod> culls =
                 spp == 4 ? std::vector<CullMethod>{CullMethod::bbox, CullMethod::hull, CullMethod::dualspace,
-                                                   CullMethod::clip2}
-                         : std::vector<CullMethod>{CullMethod::clip2};
+                                                   CullMethod::two_stage}
+                         : std::vector<CullMethod>{CullMethod::two_stage};
             const RenderSettings settings = small_settings(spp);
             // The CPU backend's decisions in double (the reference) and in
             // float (the GL backend's arithmetic, kernel<float> and its GLSL

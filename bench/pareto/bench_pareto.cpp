@@ -44,11 +44,24 @@ constexpr std::uint32_t reference_seed_a = 7919;
 constexpr std::uint32_t reference_seed_b = 104729;
 constexpr std::uint32_t test_seed = 1;
 
+// The stochastic rasterizer with two culls (its labels are those of the
+// published CSVs), then every other render method of the registry.
+const std::vector<std::string>& known_methods() {
+    static const std::vector<std::string> names = [] {
+        std::vector<std::string> list = {"stochastic-clip2", "stochastic-bbox"};
+        for (const RenderMethodInfo& info : render_methods()) {
+            if (info.method != RenderMethod::stochastic) list.emplace_back(info.name);
+        }
+        return list;
+    }();
+    return names;
+}
+
 struct Options {
     int width = 256, height = 192, repeat = 3, threads = 1, reference_spp = 1024;
     double blur_sigma = 2.0;
     std::vector<std::string> scenes = builtin_scene_names();
-    std::vector<std::string> methods = {"stochastic-clip2", "stochastic-bbox", "interleave", "interval", "accum"};
+    std::vector<std::string> methods = known_methods();
     std::vector<int> spps = {1, 4, 16, 64};
     std::string cache_dir = (std::filesystem::temp_directory_path() / "blurcull-pareto-cache").string();
     std::string csv_path, markdown_path;
@@ -89,12 +102,6 @@ int parse_int(const std::string& option, const std::string& text, int lo, int hi
     return static_cast<int>(value);
 }
 
-const std::vector<std::string>& known_methods() {
-    static const std::vector<std::string> names = {"stochastic-clip2", "stochastic-bbox", "interleave", "interval",
-                                                   "accum"};
-    return names;
-}
-
 int square_root(int n) {
     int root = 0;
     while ((root + 1) * (root + 1) <= n) ++root;
@@ -117,8 +124,8 @@ std::string setting_label(const Config& config) {
 RenderResult render(const Scene& scene, RenderSettings settings, const Config& config) {
     settings.spp = config.spp;
     if (config.method == "stochastic-clip2" || config.method == "stochastic-bbox") {
-        settings.method = "stochastic";
-        settings.cull = config.method == "stochastic-clip2" ? CullMethod::clip2 : CullMethod::bbox;
+        settings.method = RenderMethod::stochastic;
+        settings.cull = config.method == "stochastic-clip2" ? CullMethod::two_stage : CullMethod::bbox;
         return render_cpu(scene, settings);
     }
     if (config.method == "interleave") {
@@ -128,7 +135,7 @@ RenderResult render(const Scene& scene, RenderSettings settings, const Config& c
         options.tile_width = square_root(config.spp);
         return render_interleave(scene, settings, options);
     }
-    settings.method = config.method;
+    settings.method = parse_render_method(config.method);
     return render_with_method(scene, settings);
 }
 

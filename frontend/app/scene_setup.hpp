@@ -41,7 +41,7 @@ struct SceneFlags {
         : scene(std::move(default_scene)), spp(default_spp), size(std::move(default_size)) {}
 
     std::string scene;
-    std::string cull = "clip2";
+    std::string cull = "twostage";
     int spp;
     std::string size;
     double lens_radius = -1.0;  // < 0: the scene's own
