@@ -465,6 +465,11 @@ TEST_CASE("embree: bad settings and scenes are rejected with a message") {
     settings.width = 0;
     CHECK_THROWS_AS(render_embree(scene, settings), std::invalid_argument);
     settings.width = 8;
+    settings.method = RenderMethod::accum;  // the rasterizers' method: refused, naming those that take it
+    CHECK_THROWS_WITH_AS(render_embree(scene, settings),
+                         "render method accum: only the cpu and gl backends take it (backend embree)",
+                         std::invalid_argument);
+    settings.method = RenderMethod::stochastic;
     scene.triangle_material[0] = 9;
     CHECK_THROWS_WITH_AS(render_embree(scene, settings), doctest::Contains("material 9"), std::runtime_error);
 }
