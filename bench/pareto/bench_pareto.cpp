@@ -113,11 +113,11 @@ std::string setting_label(const Config& config) {
     const std::string n = std::to_string(config.spp);
     if (config.method == "stochastic-clip2") return n + " spp (clip2 cull)";
     if (config.method == "stochastic-bbox") return n + " spp (bbox cull)";
-    if (config.method == "interleave") {
+    if (config.method == to_string(RenderMethod::interleave)) {
         const std::string w = std::to_string(square_root(config.spp));
         return "N = " + n + " tuples (tile " + w + "x" + w + ")";
     }
-    if (config.method == "interval") return "N = " + n + " shutter strata";
+    if (config.method == to_string(RenderMethod::interval)) return "N = " + n + " shutter strata";
     return "K = " + n + " passes";
 }
 
@@ -128,7 +128,7 @@ RenderResult render(const Scene& scene, RenderSettings settings, const Config& c
         settings.cull = config.method == "stochastic-clip2" ? CullMethod::two_stage : CullMethod::bbox;
         return render_cpu(scene, settings);
     }
-    if (config.method == "interleave") {
+    if (config.method == to_string(RenderMethod::interleave)) {
         // N = spp tuples: a tile is one pixel's s x s lattice cells, so every
         // pixel sees every tuple once (the "N = spp" point of the comparison).
         InterleaveOptions options;
@@ -395,7 +395,7 @@ int main(int argc, char** argv) {
         for (const std::string& method : o.methods)
             for (int spp : o.spps)
                 // N = spp tuples needs tiles of at least 2 x 2 cells.
-                if (method != "interleave" || spp >= 4) configs.push_back({method, spp});
+                if (method != to_string(RenderMethod::interleave) || spp >= 4) configs.push_back({method, spp});
 
         std::vector<Row> rows;
         std::vector<Reference> references;

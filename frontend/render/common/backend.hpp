@@ -15,6 +15,7 @@ using BackendSet = unsigned;
 constexpr BackendSet backend_bit(Backend backend) { return 1u << static_cast<unsigned>(backend); }
 constexpr BackendSet all_backends = backend_bit(Backend::cpu) | backend_bit(Backend::embree) | backend_bit(Backend::gl);
 
+// Whether `backend` is in `set`.
 constexpr bool takes(BackendSet set, Backend backend) { return (set & backend_bit(backend)) != 0; }
 
 // "cpu", "embree", "gl".

@@ -28,6 +28,7 @@ struct CullMethodInfo {
 // Every cull method, in the order of the enum.
 const std::vector<CullMethodInfo>& cull_methods();
 
+// The registry entry of `method`.
 const CullMethodInfo& cull_method_info(CullMethod method);
 
 // The method's name: "bbox", "hull", "dualspace", "twostage".

@@ -31,6 +31,7 @@ struct RenderMethodInfo {
 // Every render method, in the order of the enum.
 const std::vector<RenderMethodInfo>& render_methods();
 
+// The registry entry of `method`.
 const RenderMethodInfo& render_method_info(RenderMethod method);
 
 // "stochastic", "interleave", "interval", "accum".

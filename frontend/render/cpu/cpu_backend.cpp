@@ -12,9 +12,8 @@
 #include <atomic>
 #include <chrono>
 #include <cstdint>
-#include <string>
 #include <limits>
-#include <mutex>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -201,6 +200,7 @@ public:
           depth_(samples_.size()),
           hit_(samples_.size()) {}
 
+    // Rasterizes work tile `tile` (row-major over the tiles) into its pixels of `image`.
     void render_tile(int tile, Image& image) {
         const int tx = tile % frame_.setup.tiles_x, ty = tile / frame_.setup.tiles_x;
         x0_ = tx * tile_size;
@@ -215,6 +215,7 @@ public:
         resolve(image);
     }
 
+    // This worker's counts: exact tests, hits, sample bounds set up, and empty ones.
     std::uint64_t tested = 0, hits = 0, bounded = 0, bounded_empty = 0;
 
 private:
@@ -286,6 +287,7 @@ private:
         return typename K::vec2(corner.z, corner.w);
     }
 
+    // The sample bounds of a block or footprint, counted.
     typename K::SampleBounds bounds_of(const Current& current, int px0, int py0, int px1, int py1) {
         typename K::SampleBounds sb =
             K::sample_bounds(*current.tri, footprint_lo(px0, py1), footprint_hi(px1, py0), frame_.method);
@@ -328,6 +330,7 @@ private:
         }
     }
 
+    // Tests a footprint's samples that may pass `sb`.
     void test_samples(Current& current, int px0, int py0, int px1, int py1, const typename K::SampleBounds& sb) {
         // The screen bound per footprint first: skip it whole, or spare its
         // samples the per-sample screen test.
@@ -357,6 +360,7 @@ private:
                 for (std::uint32_t j = 0; j < frame_.spp; ++j) test_sample(current, slot(px, py, j), sb);
     }
 
+    // The per-sample test chain: bounds, screen bound, exact coverage, depth.
     void test_sample(const Current& current, std::size_t k, const typename K::SampleBounds& sb) {
         const Sample& s = samples_[k];
         // The lens/time test first: it is cheaper than a hull and culls more.
@@ -373,6 +377,7 @@ private:
         }
     }
 
+    // The box filter of the tile's samples into its pixels.
     void resolve(Image& image) const {
         for (int py = y0_; py <= y1_; ++py) {
             for (int px = x0_; px <= x1_; ++px) {
