@@ -2,6 +2,9 @@
 #pragma once
 
 #include "app/scene_setup.hpp"
+#include "render/common/render_types.hpp"
+#include "render/cpu/cpu_backend.hpp"
+#include "render/gl_backend.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -14,13 +17,13 @@ struct RenderCommand : SceneFlags {
     RenderCommand() : SceneFlags("forest", 16, "1024x768") {}
 
     std::string backend = "auto";
-    std::string method = "stochastic";
+    std::string method = to_string(RenderSettings{}.method);
     std::string output;         // empty: <scene>.png in the current folder
     bool json = false;
     int threads = 0;
-    int footprint = 4;  // CpuOptions::footprint
-    std::string precision = "double";  // CpuOptions::precision
-    int gl_cell = 8;    // GlOptions::cell_pixels
+    int footprint = CpuOptions{}.footprint;
+    std::string precision = to_string(CpuOptions{}.precision);
+    int gl_cell = GlOptions{}.cell_pixels;
     bool quiet = false;
 
     // The backend-specific options, to tell whether they were given
