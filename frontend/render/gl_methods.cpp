@@ -2,9 +2,9 @@
 
 #include "render/common/camera_model.hpp"
 #include "render/gl_render_targets.hpp"
-#include "render/cpu/methods.hpp"
 #include "render/common/moving_triangle.hpp"
 #include "render/common/progress.hpp"
+#include "render/cpu/methods.hpp"
 
 #include <blurcull/kernel.hpp>
 
