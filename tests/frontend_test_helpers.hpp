@@ -3,7 +3,7 @@
 #pragma once
 
 #include "render/gl_backend.hpp"
-#include "render/image.hpp"
+#include "render/common/image.hpp"
 #include "scene/scene.hpp"
 
 #include <doctest/doctest.h>

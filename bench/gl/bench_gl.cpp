@@ -16,7 +16,7 @@
 // GL (llvmpipe) timings are not GPU timings.
 #include "bench_common.hpp"
 #include "render/gl_backend.hpp"
-#include "render/render_types.hpp"
+#include "render/common/render_types.hpp"
 #include "scene/builtin_scenes.hpp"
 
 #include <chrono>

@@ -10,7 +10,7 @@
 // the same run (same scene, same samples): on a noisy machine only ratios
 // within one run mean something.
 #include "bench_common.hpp"
-#include "render/cpu_backend.hpp"
+#include "render/cpu/cpu_backend.hpp"
 #include "scene/builtin_scenes.hpp"
 
 #include <algorithm>
@@ -42,7 +42,7 @@ const Published published[] = {
     {"forest", "motion + defocus", "170k", {0.4, 0.2}, {5, 2}, {19, 13}},
 };
 
-const CullMethod methods[] = {CullMethod::bbox, CullMethod::hull, CullMethod::dualspace, CullMethod::clip2};
+const CullMethod methods[] = {CullMethod::bbox, CullMethod::hull, CullMethod::dualspace, CullMethod::two_stage};
 
 struct Row {
     std::string scene;

@@ -1,5 +1,6 @@
 #include "app/scene_setup.hpp"
 
+#include "render/common/cull_method.hpp"
 #include "scene/builtin_scenes.hpp"
 #include "scene/gltf_loader.hpp"
 #include "scene/scene_checks.hpp"
@@ -120,8 +121,8 @@ void SceneFlags::add_options(CLI::App& app, bool initial) {
     const std::string start = initial ? "initial " : "";
     app.add_option("--scene", scene, "built-in scene name (blurcull scenes) or a .gltf/.glb file")
         ->capture_default_str();
-    app.add_option("--cull", cull, start + "culling method")
-        ->check(CLI::IsMember({"bbox", "hull", "dualspace", "clip2"}))
+    app.add_option("--cull", cull, start + "culling method: " + cull_method_help())
+        ->check(CLI::IsMember(cull_method_names_and_aliases()))
         ->capture_default_str();
     app.add_option("--spp", spp, start + "samples per pixel")->check(CLI::Range(1, 1024))->capture_default_str();
     app.add_option("--size", size, "image size WxH")->capture_default_str();

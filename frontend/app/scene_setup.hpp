@@ -3,6 +3,7 @@
 // shutter and blur-scale overrides applied.
 #pragma once
 
+#include "render/common/render_types.hpp"
 #include "scene/scene.hpp"
 
 #include <CLI/CLI.hpp>
@@ -41,7 +42,7 @@ struct SceneFlags {
         : scene(std::move(default_scene)), spp(default_spp), size(std::move(default_size)) {}
 
     std::string scene;
-    std::string cull = "clip2";
+    std::string cull = to_string(RenderSettings{}.cull);
     int spp;
     std::string size;
     double lens_radius = -1.0;  // < 0: the scene's own

@@ -4,8 +4,8 @@
 #include "app/text_overlay.hpp"
 
 #include "render/gl_backend.hpp"
-#include "render/image.hpp"
-#include "render/render_types.hpp"
+#include "render/common/image.hpp"
+#include "render/common/render_types.hpp"
 
 #include <gl/gl_context.hpp>
 
@@ -35,7 +35,7 @@ const char* const view_controls_help =
     "Controls: left drag orbit | wheel dolly | R reset view\n"
     "  A / Shift+A  lens radius x1.25 / /1.25     F / Shift+F  focus distance x1.1 / /1.1\n"
     "  S / Shift+S  shutter length x1.25 / /1.25  B / Shift+B  blur scale x1.25 / /1.25\n"
-    "  N  next spp (4, 8, 16, 32)                 C  next cull method (bbox, hull, dualspace, clip2)\n"
+    "  N  next spp (4, 8, 16, 32)                 C  next cull method (bbox, hull, dualspace, twostage)\n"
     "  P  screenshot (--screenshot FILE, else view-N.png)   Esc / Q  quit\n";
 
 namespace {
@@ -43,7 +43,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 constexpr int spp_steps[] = {4, 8, 16, 32};
-constexpr CullMethod cull_steps[] = {CullMethod::bbox, CullMethod::hull, CullMethod::dualspace, CullMethod::clip2};
+constexpr CullMethod cull_steps[] = {CullMethod::bbox, CullMethod::hull, CullMethod::dualspace, CullMethod::two_stage};
 
 int next_spp(int spp) {
     for (int step : spp_steps) {
@@ -134,7 +134,7 @@ struct ViewState {
     float shutter_close = 1.0f;
     double blur_scale = 1.0;
     int spp = 4;
-    CullMethod cull = CullMethod::clip2;
+    CullMethod cull = CullMethod::two_stage;
 };
 
 // The orbit: rotates the world about its centre in view space, then moves
@@ -412,7 +412,7 @@ int ViewCommand::run() const {
             if (rendered == frames) break;
             if (rendered > 0) {
                 // Between frames: a turn of the orbit and the next cull method, so
-                // both the per-triangle (bbox, hull) and per-cell (dualspace, clip2)
+                // both the per-triangle (bbox, hull) and per-cell (dualspace, twostage)
                 // bounds run.
                 view.yaw += 0.35f;
                 view.cull = next_cull(view.cull);

@@ -1,10 +1,10 @@
 #include "render/gl_backend.hpp"
 
-#include "render/camera_model.hpp"
+#include "render/common/camera_model.hpp"
 #include "render/gl_methods.hpp"
 #include "render/gl_render_targets.hpp"
-#include "render/moving_triangle.hpp"
-#include "render/shading.hpp"
+#include "render/common/moving_triangle.hpp"
+#include "render/common/shading.hpp"
 #include "scene/scene_checks.hpp"
 
 #include <gl/gl_context.hpp>
@@ -137,7 +137,7 @@ std::string GlRenderer::description() const {
 
 RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settings, const GlOptions& options,
                                 std::vector<std::uint32_t>* sample_ids) {
-    if (settings.method != "stochastic") {
+    if (settings.method != RenderMethod::stochastic) {
         state_->context.make_current();
         return render_gl_method(state_->context, state_->methods, scene, settings,
                                 options.keep_sample_ids ? sample_ids : nullptr);
@@ -406,7 +406,7 @@ RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settin
     return result;
 }
 
-RenderResult render_gl(const Scene& scene, const RenderSettings& settings) {
+RenderResult render_gl(const Scene& scene, const RenderSettings& settings, const GlOptions& options) {
     const Clock::time_point start = Clock::now();
     validate_settings(settings);
     validate_scene(scene);
@@ -418,9 +418,9 @@ RenderResult render_gl(const Scene& scene, const RenderSettings& settings) {
     warm_up.height = 1;
     warm_up.spp = 4;
     warm_up.progress = false;
-    renderer.render(scene, warm_up);
+    renderer.render(scene, warm_up, options);
     const double compile_ms = ms_since(start);
-    RenderResult result = renderer.render(scene, settings);
+    RenderResult result = renderer.render(scene, settings, options);
     result.stats.ms_per_phase.insert(result.stats.ms_per_phase.begin(), {"compile", compile_ms});
     result.stats.ms_total = ms_since(start);
     return result;

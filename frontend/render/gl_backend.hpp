@@ -4,7 +4,7 @@
 // numbers: docs/gl-backend.md.
 #pragma once
 
-#include "render/render_types.hpp"
+#include "render/common/render_types.hpp"
 #include "scene/scene.hpp"
 
 #include <cstdint>
@@ -56,8 +56,8 @@ public:
     GlRenderer& operator=(GlRenderer&&) noexcept;
     ~GlRenderer();
 
-    // settings.method "stochastic" renders as described above; "interleave",
-    // "interval" and "accum" as the CPU renderers of interleaved_backend.hpp
+    // settings.method stochastic renders as described above; interleave,
+    // interval and accum as the CPU renderers of render/cpu/methods.hpp
     // (gl_methods.hpp; their sample_ids are in that layout, spp per pixel).
     // Throws std::invalid_argument for bad settings, SceneError for a bad
     // scene, gl::GlError when the image does not fit the context's limits.
@@ -77,7 +77,7 @@ private:
 // (their compile time is the "compile" phase of ms_per_phase, included in
 // ms_total). settings.threads is used only by the host side of the
 // interleave / interval / accum methods (their per-pass boxes).
-RenderResult render_gl(const Scene& scene, const RenderSettings& settings);
+RenderResult render_gl(const Scene& scene, const RenderSettings& settings, const GlOptions& options = {});
 
 // Whether a headless OpenGL 4.5 context can be made here; when not, and
 // `reason` is given, says why.

@@ -1,10 +1,10 @@
 #include "render/gl_methods.hpp"
 
-#include "render/camera_model.hpp"
+#include "render/common/camera_model.hpp"
 #include "render/gl_render_targets.hpp"
-#include "render/interleaved_backend.hpp"
-#include "render/moving_triangle.hpp"
-#include "render/progress.hpp"
+#include "render/common/moving_triangle.hpp"
+#include "render/common/progress.hpp"
+#include "render/cpu/methods.hpp"
 
 #include <blurcull/kernel.hpp>
 
@@ -188,7 +188,7 @@ RenderResult render_gl_method(const gl::HeadlessContext& context, std::shared_pt
     const gl::Functions& gl = context.gl();
     if (!programs) programs = std::make_shared<GlMethodPrograms>(gl);
     const int width = settings.width, height = settings.height;
-    const bool interleave = plan.method == "interleave", interval = plan.method == "interval";
+    const bool interleave = plan.method == RenderMethod::interleave, interval = plan.method == RenderMethod::interval;
     const int lattice_w = width * plan.scale;
     // Interleave: one framebuffer cell per tile of the lattice; else one per pixel.
     const int tile_w = interleave ? plan.tiles.width : 1;
@@ -338,6 +338,7 @@ RenderResult render_gl_method(const gl::HeadlessContext& context, std::shared_pt
 
     phase = Clock::now();
     result.image = resolve_method_samples(scene, plan, hits, width, height);
+    result.warnings = plan.warnings;
     if (sample_ids != nullptr) *sample_ids = std::move(hits);
     stats.ms_per_phase.emplace_back("resolve", ms_since(phase));
     stats.ms_total = ms_since(start);

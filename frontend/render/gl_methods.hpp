@@ -5,7 +5,7 @@
 // the kernel's GLSL covers() and a per-sample depth test. docs/gl-backend.md.
 #pragma once
 
-#include "render/render_types.hpp"
+#include "render/common/render_types.hpp"
 #include "scene/scene.hpp"
 
 #include <gl/gl_context.hpp>

@@ -4,7 +4,7 @@
 // tested/hit sample counters.
 #pragma once
 
-#include "render/render_types.hpp"
+#include "render/common/render_types.hpp"
 
 #include <gl/gl_context.hpp>
 

@@ -1,7 +1,7 @@
-#include "render/embree_backend.hpp"
+#include "render/embree/embree_backend.hpp"
 
-#include "render/camera_model.hpp"
-#include "render/shading.hpp"
+#include "render/common/camera_model.hpp"
+#include "render/common/shading.hpp"
 #include "scene/scene_checks.hpp"
 
 #include <blurcull/kernel.hpp>
@@ -150,6 +150,11 @@ unsigned resolve_thread_count(int requested) {
 RenderResult render_embree(const Scene& scene, const RenderSettings& settings) {
     const Clock::time_point start = Clock::now();
     validate_settings(settings);
+    const RenderMethodInfo& method = render_method_info(settings.method);
+    if (!takes(method.backends, Backend::embree)) {
+        throw std::invalid_argument(std::string("render method ") + method.name + ": " +
+                                    only_backends_take_it(method.backends) + " (backend embree)");
+    }
     validate_scene(scene);
     const CameraModel model(scene.camera, settings.width, settings.height);
     const unsigned thread_count = resolve_thread_count(settings.threads);

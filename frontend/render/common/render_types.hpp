@@ -1,8 +1,11 @@
-// Types every backend shares: which culling method to use, the render
-// settings, and what a render returns (the image plus its statistics).
+// Types every backend shares: the render settings (with the cull and render
+// methods of their registries) and what a render returns (the image, its
+// statistics and its warnings).
 #pragma once
 
-#include "render/image.hpp"
+#include "render/common/cull_method.hpp"
+#include "render/common/image.hpp"
+#include "render/common/render_method.hpp"
 
 #include <blurcull/kernel.hpp>
 
@@ -15,49 +18,17 @@
 
 namespace blurcull::frontend {
 
-// How a rasterizer decides which samples a triangle may cover (see BRIEF.md 3-4).
-enum class CullMethod { bbox, hull, dualspace, clip2 };
-
-inline const char* to_string(CullMethod method) {
-    switch (method) {
-        case CullMethod::bbox: return "bbox";
-        case CullMethod::hull: return "hull";
-        case CullMethod::dualspace: return "dualspace";
-        case CullMethod::clip2: return "clip2";
-    }
-    return "unknown";
-}
-
-// The kernel's BC_CULL_* constant for a method.
-inline int kernel_cull_method(CullMethod method) {
-    switch (method) {
-        case CullMethod::bbox: return BC_CULL_BBOX;
-        case CullMethod::hull: return BC_CULL_HULL;
-        case CullMethod::dualspace: return BC_CULL_DUALSPACE;
-        case CullMethod::clip2: return BC_CULL_CLIP2;
-    }
-    return BC_CULL_BBOX;
-}
-
-// Throws std::invalid_argument naming the valid methods when `name` is none of them.
-inline CullMethod parse_cull_method(const std::string& name) {
-    for (CullMethod method : {CullMethod::bbox, CullMethod::hull, CullMethod::dualspace, CullMethod::clip2}) {
-        if (name == to_string(method)) return method;
-    }
-    throw std::invalid_argument("unknown cull method '" + name + "' (valid: bbox, hull, dualspace, clip2)");
-}
-
 struct RenderSettings {
     int width = 1024;
     int height = 768;
     int spp = 16;  // samples per pixel
     std::uint32_t seed = 1;
-    CullMethod cull = CullMethod::clip2;
+    CullMethod cull = CullMethod::two_stage;
     int threads = 0;  // 0 = std::thread::hardware_concurrency()
     bool progress = true;  // report progress on stderr when a render is slow
-    // Which renderer: "stochastic" (render_cpu), "interleave", "interval" or
-    // "accum" (render/interleaved_backend.hpp, docs/sampling.md).
-    std::string method = "stochastic";
+    // Which renderer: stochastic (render_cpu), interleave, interval or accum
+    // (render/cpu/methods.hpp, docs/sampling.md).
+    RenderMethod method = RenderMethod::stochastic;
 };
 
 // Throws std::invalid_argument with a one-line message when a setting is out of range.
@@ -97,6 +68,9 @@ struct RenderStats {
 struct RenderResult {
     Image image;
     RenderStats stats;
+    // One line each, for the caller to show ("cpu: skipped 3 triangles ..."):
+    // the render layer prints nothing but its progress.
+    std::vector<std::string> warnings;
 };
 
 }  // namespace blurcull::frontend

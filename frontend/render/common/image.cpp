@@ -1,4 +1,4 @@
-#include "render/image.hpp"
+#include "render/common/image.hpp"
 
 #include <algorithm>
 #include <cerrno>

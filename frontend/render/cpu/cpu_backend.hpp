@@ -2,10 +2,11 @@
 // per-sample z-buffer, culling by the kernel (docs/cpu-renderer.md).
 #pragma once
 
-#include "render/render_types.hpp"
+#include "render/common/render_types.hpp"
 #include "scene/scene.hpp"
 
 #include <string>
+#include <vector>
 
 namespace blurcull::frontend {
 
@@ -13,12 +14,28 @@ namespace blurcull::frontend {
 // the arithmetic of the kernel's GLSL and so of the GL backend.
 enum class KernelPrecision { float64, float32 };
 
-// "double" or "float"; throws std::invalid_argument naming the value otherwise.
+struct KernelPrecisionInfo {
+    KernelPrecision precision;
+    const char* name;  // what the command takes and prints
+    const char* help;  // one line
+};
+
+// Every precision, in the order of the enum: the one list of their names.
+const std::vector<KernelPrecisionInfo>& kernel_precisions();
+
+// "double" or "float".
+const char* to_string(KernelPrecision precision);
+
+// The names of kernel_precisions(), in order.
+std::vector<std::string> kernel_precision_names();
+
+// "double" or "float"; throws std::invalid_argument("kernel precision 'x' is
+// not double or float") otherwise.
 KernelPrecision parse_kernel_precision(const std::string& name);
 
 struct CpuOptions {
     // Side, in pixels, of the screen footprint the per-footprint sample bounds
-    // (dualspace, clip2) are computed for: 1 = per pixel; larger amortises
+    // (dualspace, twostage) are computed for: 1 = per pixel; larger amortises
     // their setup over more samples at the price of looser bounds.
     int footprint = 4;
     // Side, in pixels, of the blocks bounded first: a block whose bounds hold
@@ -37,7 +54,7 @@ struct CpuOptions {
 // stats.samples_tested counts the exact tests run (samples that passed the
 // cull), stats.samples_hit those that found coverage. Deterministic whatever
 // the thread count. Throws std::invalid_argument for bad settings and
-// SceneError for a bad scene.
+// SceneError for a bad scene. Triangles it skips are in result.warnings.
 RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, const CpuOptions& options = {});
 
 }  // namespace blurcull::frontend

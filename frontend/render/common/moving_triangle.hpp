@@ -2,7 +2,7 @@
 // ends and their circles of confusion (conventions in camera_model.hpp).
 #pragma once
 
-#include "render/camera_model.hpp"
+#include "render/common/camera_model.hpp"
 #include "scene/scene.hpp"
 
 #include <blurcull/kernel.hpp>
