@@ -2,7 +2,7 @@
 // sample-id comparison, and the one GL renderer a test file reuses.
 #pragma once
 
-#include "render/gl_backend.hpp"
+#include "render/gl/gl_backend.hpp"
 #include "render/image.hpp"
 #include "scene/scene.hpp"
 

@@ -4,7 +4,7 @@
 
 #include "render/cpu_backend.hpp"
 #include "render/embree_backend.hpp"
-#include "render/gl_backend.hpp"
+#include "render/gl/gl_backend.hpp"
 #include "render/image.hpp"
 #include "render/interleaved_backend.hpp"
 #include "render/render_types.hpp"

@@ -1,12 +1,11 @@
 // What the GL stochastic path (gl_backend.cpp) and the GL interleave /
-// interval / accum passes (gl_methods.cpp) share: their shader stages, the
+// interval / accum passes (gl_sampling_methods.cpp) share: their shader stages, the
 // triangle-id + depth framebuffer with blurcull's depth rule, and the
 // tested/hit sample counters.
 #pragma once
 
+#include "render/gl/gl_context.hpp"
 #include "render/render_types.hpp"
-
-#include <gl/gl_context.hpp>
 
 #include <string_view>
 

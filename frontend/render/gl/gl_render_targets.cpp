@@ -1,7 +1,8 @@
-#include "render/gl_render_targets.hpp"
+#include "render/gl/gl_render_targets.hpp"
+
+#include "render/gl/render_glsl.hpp"
 
 #include <blurcull/glsl/kernel_glsl.hpp>
-#include <blurcull/glsl/render_glsl.hpp>
 
 #include <cstdint>
 #include <string>

@@ -1,13 +1,12 @@
-#include "render/gl_backend.hpp"
+#include "render/gl/gl_backend.hpp"
 
 #include "render/camera_model.hpp"
-#include "render/gl_methods.hpp"
-#include "render/gl_render_targets.hpp"
+#include "render/gl/gl_context.hpp"
+#include "render/gl/gl_render_targets.hpp"
+#include "render/gl/gl_sampling_methods.hpp"
 #include "render/moving_triangle.hpp"
 #include "render/shading.hpp"
 #include "scene/scene_checks.hpp"
-
-#include <gl/gl_context.hpp>
 
 #include <blurcull/kernel.hpp>
 
@@ -35,7 +34,7 @@ double ms_since(Clock::time_point start) {
 // MSAA samples per pass: llvmpipe's maximum; spp / 4 passes reach any spp.
 constexpr int samples_per_pass = 4;
 
-// std430 layouts of the shaders' structs (shaders/glsl/render_common.glsl).
+// std430 layouts of the shaders' structs (shaders/render_common.glsl).
 struct GpuTriangle {           // MovingTriangle: vec3 p[6] (stride 16), vec2 c[6]
     float p[6][4];
     float c[6][2];
@@ -58,7 +57,7 @@ struct GlRenderer::State {
     gl::Program draw_moving;
     gl::Program resolve;
     GLuint vertex_array = 0;
-    // interleave / interval / accum (gl_methods.cpp), compiled on first use;
+    // interleave / interval / accum (gl_sampling_methods.cpp), compiled on first use;
     // declared after the context, so destroyed before it.
     std::shared_ptr<GlMethodPrograms> methods;
 

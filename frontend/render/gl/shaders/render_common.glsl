@@ -1,4 +1,4 @@
-// Shared by the GL backend's stages (frontend/render/gl_backend.cpp): compiled
+// Shared by the GL backend's stages (frontend/render/gl/gl_backend.cpp): compiled
 // after the kernel's GLSL and before each stage's main. docs/gl-backend.md.
 
 // What render_setup.comp finds out about triangle i, once per frame.

@@ -5,10 +5,9 @@
 // the kernel's GLSL covers() and a per-sample depth test. docs/gl-backend.md.
 #pragma once
 
+#include "render/gl/gl_context.hpp"
 #include "render/render_types.hpp"
 #include "scene/scene.hpp"
-
-#include <gl/gl_context.hpp>
 
 #include <cstdint>
 #include <memory>

@@ -1,7 +1,7 @@
-#include "render/gl_methods.hpp"
+#include "render/gl/gl_sampling_methods.hpp"
 
 #include "render/camera_model.hpp"
-#include "render/gl_render_targets.hpp"
+#include "render/gl/gl_render_targets.hpp"
 #include "render/interleaved_backend.hpp"
 #include "render/moving_triangle.hpp"
 #include "render/progress.hpp"
