@@ -59,12 +59,6 @@ float round_down(double v) {
     return f;
 }
 
-int get_integer(const gl::Functions& gl, GLenum name) {
-    GLint value = 0;
-    gl.GetIntegerv(name, &value);
-    return value;
-}
-
 GLint location(const gl::Functions& gl, const gl::Program& program, const char* name) {
     return gl.GetUniformLocation(program.id(), name);
 }
@@ -177,6 +171,212 @@ void pass_boxes(const MethodPlan& plan, int pass, const InterleaveTupleCells* ta
     }
 }
 
+// The framebuffer a method draws into: interleave, one cell per tile of the
+// width*s x height*s lattice; else one per pixel.
+struct MethodTarget {
+    int lattice_width;  // lattice cells per row (width * plan.scale)
+    int tile_width;     // lattice cells per framebuffer cell side (1 but for interleave)
+    int width, height;  // framebuffer cells
+    std::size_t cells;  // width * height
+};
+
+MethodTarget method_target(const MethodPlan& plan, int width, int height) {
+    const bool interleave = plan.method == "interleave";
+    MethodTarget target{};
+    target.lattice_width = width * plan.scale;
+    target.tile_width = interleave ? plan.tiles.width : 1;
+    target.width = interleave ? (target.lattice_width + target.tile_width - 1) / target.tile_width : width;
+    target.height = interleave ? (height * plan.scale + target.tile_width - 1) / target.tile_width : height;
+    target.cells = static_cast<std::size_t>(target.width) * static_cast<std::size_t>(target.height);
+    return target;
+}
+
+// The kernel's float triangles, as the stochastic path uploads them; at least
+// one entry (GL refuses empty buffers).
+std::vector<GpuTriangle> gpu_triangles(const Scene& scene, const CameraModel& model) {
+    const std::size_t count = scene.triangles.size();
+    std::vector<GpuTriangle> triangles(std::max<std::size_t>(count, 1));
+    for (std::size_t i = 0; i < count; ++i) {
+        const kernelf::MovingTriangle tri = make_moving_triangle<float>(scene, model, i);
+        for (int j = 0; j < 6; ++j) {
+            triangles[i].p[j][0] = tri.p[j].x;
+            triangles[i].p[j][1] = tri.p[j].y;
+            triangles[i].p[j][2] = tri.p[j].z;
+            triangles[i].p[j][3] = 0.0f;
+            triangles[i].c[j][0] = tri.c[j].x;
+            triangles[i].c[j][1] = tri.c[j].y;
+        }
+    }
+    return triangles;
+}
+
+// One interleave / interval / accum frame: the constructor uploads the
+// triangles and per method the tuples' cells or makes the interval samples'
+// buffers, makes the single-sampled id/depth target and sets the uniforms;
+// run_pass then draws each pass and keeps its ids.
+class MethodFrame {
+public:
+    MethodFrame(const gl::Functions& gl, const GlMethodPrograms& programs, const Scene& scene,
+                const RenderSettings& settings, const MethodPlan& plan, const MethodTarget& target);
+
+    // Pass `pass`: its boxes (host, double, as the CPU renderers), its samples
+    // (interval), a quad per triangle that may hold a sample, in index order,
+    // then its ids into the hits. Returns the milliseconds spent on the boxes.
+    double run_pass(int pass, RenderStats& stats);
+    // Every pass's ids, (p * spp + j), no_sample_hit for the background.
+    std::vector<std::uint32_t> take_hits() { return std::move(hits_); }
+
+private:
+    void set_uniforms() const;
+    void draw_boxes(int pass);
+    // The pass's ids (GL's rows are bottom-up) to their samples.
+    void read_pass_ids(int pass);
+
+    const gl::Functions& gl_;
+    const GlMethodPrograms& programs_;
+    const RenderSettings& settings_;
+    const MethodPlan& plan_;
+    const MethodTarget target_;
+    const bool interleave_, interval_;
+    const std::size_t pixels_, per_pixel_;
+    const InterleaveTupleCells table_;  // interleave only
+    gl::Buffer triangle_buffer_;
+    SampleCounters counters_;
+    gl::Buffer box_buffer_, tuple_buffer_, sample_buffer_, time_buffer_;
+    // The stochastic path's framebuffer and depth rule, single-sampled.
+    const IdDepthTarget id_depth_;
+    std::vector<std::uint32_t> hits_, pass_ids_;
+    std::vector<PassBoxes> parts_;
+    std::vector<GpuBox> boxes_;
+};
+
+MethodFrame::MethodFrame(const gl::Functions& gl, const GlMethodPrograms& programs, const Scene& scene,
+                         const RenderSettings& settings, const MethodPlan& plan, const MethodTarget& target)
+    : gl_(gl),
+      programs_(programs),
+      settings_(settings),
+      plan_(plan),
+      target_(target),
+      interleave_(plan.method == "interleave"),
+      interval_(plan.method == "interval"),
+      pixels_(static_cast<std::size_t>(settings.width) * static_cast<std::size_t>(settings.height)),
+      per_pixel_(static_cast<std::size_t>(plan.per_pixel)),
+      table_(interleave_ ? interleave_tuple_cells(plan, settings.width, settings.height) : InterleaveTupleCells{}),
+      triangle_buffer_([&] {
+          const std::vector<GpuTriangle> triangles = gpu_triangles(scene, plan.model);
+          return gl::Buffer(gl, GL_SHADER_STORAGE_BUFFER, triangles.size() * sizeof(GpuTriangle), triangles.data());
+      }()),
+      counters_(gl),
+      box_buffer_(gl, GL_SHADER_STORAGE_BUFFER, std::max<std::size_t>(scene.triangles.size(), 1) * sizeof(GpuBox)),
+      tuple_buffer_(gl, GL_SHADER_STORAGE_BUFFER, interleave_ ? table_.cells.size() * sizeof(std::uint32_t) : 4,
+                    interleave_ ? table_.cells.data() : nullptr),
+      sample_buffer_(gl, GL_SHADER_STORAGE_BUFFER, interval_ ? pixels_ * 4 * sizeof(float) : 16),
+      time_buffer_(gl, GL_SHADER_STORAGE_BUFFER, interval_ ? pixels_ * sizeof(float) : 4),
+      id_depth_(gl, target.width, target.height, 0, "the method's id/depth framebuffer"),
+      hits_(pixels_ * per_pixel_, no_sample_hit),
+      pass_ids_(target.cells) {
+    triangle_buffer_.bind_base(0);
+    counters_.bind_base(2);
+    sample_buffer_.bind_base(7);
+    time_buffer_.bind_base(8);
+    box_buffer_.bind_base(9);
+    tuple_buffer_.bind_base(10);
+    id_depth_.bind_with_depth_rule();
+    gl.BindVertexArray(programs.vertex_array);
+    set_uniforms();
+    gl::check_gl(gl, "gl: method setup");
+    boxes_.reserve(scene.triangles.size());
+}
+
+void MethodFrame::set_uniforms() const {
+    const gl::Program& draw = programs_.draw;
+    const auto width = static_cast<float>(settings_.width), height = static_cast<float>(settings_.height);
+    gl_.UseProgram(draw.id());
+    gl_.Uniform2f(location(gl_, draw, "image_size"), width, height);
+    gl_.Uniform2f(location(gl_, draw, "target_size"), static_cast<float>(target_.width),
+                  static_cast<float>(target_.height));
+    gl_.Uniform1f(location(gl_, draw, "near_plane"), plan_.model.znear);
+    gl_.Uniform1ui(location(gl_, draw, "seed"), settings_.seed);
+    gl_.Uniform1ui(location(gl_, draw, "scale"), static_cast<std::uint32_t>(plan_.scale));
+    gl_.Uniform1ui(location(gl_, draw, "lattice_width"), static_cast<std::uint32_t>(target_.lattice_width));
+    gl_.Uniform1ui(location(gl_, draw, "tile_count"), static_cast<std::uint32_t>(target_.cells));
+    gl_.Uniform1i(location(gl_, draw, "method_kind"), interleave_ ? 0 : (interval_ ? 1 : 2));
+    const gl::Program& samples = programs_.samples;
+    gl_.UseProgram(samples.id());
+    gl_.Uniform2f(location(gl_, samples, "image_size"), width, height);
+    gl_.Uniform1ui(location(gl_, samples, "spp"), static_cast<std::uint32_t>(plan_.per_pixel));
+    gl_.Uniform1ui(location(gl_, samples, "seed"), settings_.seed);
+}
+
+double MethodFrame::run_pass(int pass, RenderStats& stats) {
+    static const GLuint clear_id[4] = {no_sample_hit, 0, 0, 0};
+    static const GLfloat clear_depth = 0.0f;
+    const Clock::time_point boxes_start = Clock::now();
+    pass_boxes(plan_, pass, interleave_ ? &table_ : nullptr, target_.lattice_width, settings_, parts_, boxes_, stats);
+    const double boxes_ms = ms_since(boxes_start);
+    if (interval_) {
+        const gl::Program& samples = programs_.samples;
+        gl_.UseProgram(samples.id());
+        gl_.Uniform1ui(location(gl_, samples, "pass_index"), static_cast<std::uint32_t>(pass));
+        gl_.DispatchCompute(static_cast<GLuint>((settings_.width + 7) / 8),
+                            static_cast<GLuint>((settings_.height + 7) / 8), 1);
+        gl_.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    gl_.ClearBufferuiv(GL_COLOR, 0, clear_id);
+    gl_.ClearBufferfv(GL_DEPTH, 0, &clear_depth);
+    if (!boxes_.empty()) draw_boxes(pass);
+    gl_.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+    counters_.add_to(stats);
+    read_pass_ids(pass);
+    gl::check_gl(gl_, "gl: method pass");
+    return boxes_ms;
+}
+
+void MethodFrame::draw_boxes(int pass) {
+    gl_.BindBuffer(GL_SHADER_STORAGE_BUFFER, box_buffer_.id());
+    gl_.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(boxes_.size() * sizeof(GpuBox)),
+                      boxes_.data());
+    const gl::Program& draw = programs_.draw;
+    gl_.UseProgram(draw.id());
+    gl_.Uniform1ui(location(gl_, draw, "pass_index"), static_cast<std::uint32_t>(pass));
+    if (!interval_) {
+        const kernelf::PixelSample& s = plan_.pass_samples[static_cast<std::size_t>(pass)];
+        gl_.Uniform2f(location(gl_, draw, "pass_lens"), s.lens.x, s.lens.y);
+        gl_.Uniform1f(location(gl_, draw, "pass_t"), s.time);
+        gl_.Uniform2f(location(gl_, draw, "pass_offset"), s.offset.x, s.offset.y);
+    }
+    gl_.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(boxes_.size() * 6));
+}
+
+// Pass k is sample k of every pixel (interval, accum); interleave's tile t
+// is tuple k's cell (gx, gy) of t, sample (gy % s) s + gx % s of pixel
+// (gx / s, gy / s).
+void MethodFrame::read_pass_ids(int pass) {
+    const int target_w = target_.width, target_h = target_.height;
+    gl_.ReadPixels(0, 0, target_w, target_h, GL_RED_INTEGER, GL_UNSIGNED_INT, pass_ids_.data());
+    const auto lattice_w = static_cast<std::uint32_t>(target_.lattice_width);
+    for (int row = 0; row < target_h; ++row) {
+        const std::size_t y = static_cast<std::size_t>(target_h - 1 - row);
+        for (int x = 0; x < target_w; ++x) {
+            const std::uint32_t id = pass_ids_[static_cast<std::size_t>(row) * target_w + static_cast<std::size_t>(x)];
+            const std::size_t target = y * static_cast<std::size_t>(target_w) + static_cast<std::size_t>(x);
+            if (!interleave_) {
+                hits_[target * per_pixel_ + static_cast<std::size_t>(pass)] = id;
+                continue;
+            }
+            const std::uint32_t cell = table_.cells[static_cast<std::size_t>(pass) * target_.cells + target];
+            if (cell == no_sample_hit) continue;
+            const int gx = static_cast<int>(cell % lattice_w);
+            const int gy = static_cast<int>(cell / lattice_w);
+            const int side = plan_.scale;
+            const std::size_t pixel =
+                static_cast<std::size_t>(gy / side) * static_cast<std::size_t>(settings_.width) +
+                static_cast<std::size_t>(gx / side);
+            hits_[pixel * per_pixel_ + static_cast<std::size_t>((gy % side) * side + gx % side)] = id;
+        }
+    }
+}
+
 }  // namespace
 
 RenderResult render_gl_method(const gl::HeadlessContext& context, std::shared_ptr<GlMethodPrograms>& programs,
@@ -187,148 +387,24 @@ RenderResult render_gl_method(const gl::HeadlessContext& context, std::shared_pt
     const MethodPlan plan = make_method_plan(scene, settings);  // validates settings, method and scene
     const gl::Functions& gl = context.gl();
     if (!programs) programs = std::make_shared<GlMethodPrograms>(gl);
-    const int width = settings.width, height = settings.height;
-    const bool interleave = plan.method == "interleave", interval = plan.method == "interval";
-    const int lattice_w = width * plan.scale;
-    // Interleave: one framebuffer cell per tile of the lattice; else one per pixel.
-    const int tile_w = interleave ? plan.tiles.width : 1;
-    const int target_w = interleave ? (lattice_w + tile_w - 1) / tile_w : width;
-    const int target_h = interleave ? (height * plan.scale + tile_w - 1) / tile_w : height;
-    const int max_size = std::min({get_integer(gl, GL_MAX_TEXTURE_SIZE), get_integer(gl, GL_MAX_FRAMEBUFFER_WIDTH),
-                                   get_integer(gl, GL_MAX_FRAMEBUFFER_HEIGHT)});
-    if (target_w > max_size || target_h > max_size) {
-        throw GlError("gl: image size " + std::to_string(width) + "x" + std::to_string(height) +
-                      " exceeds the context's limit of " + std::to_string(max_size) + " pixels per side");
-    }
+    const MethodTarget target = method_target(plan, settings.width, settings.height);
+    require_target_fits(gl, target.width, target.height, settings.width, settings.height);
     const std::size_t count = scene.triangles.size();
     if (count > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max() / 6)) {
         throw GlError("gl: " + std::to_string(count) + " triangles exceed the backend's limit");
     }
-    const std::size_t pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
-    const std::size_t targets = static_cast<std::size_t>(target_w) * static_cast<std::size_t>(target_h);
-    const auto per_pixel = static_cast<std::size_t>(plan.per_pixel);
-    InterleaveTupleCells table;
-    if (interleave) table = interleave_tuple_cells(plan, width, height);
 
     RenderResult result;
     RenderStats& stats = result.stats;
     stats.triangles = count;
-
-    // The kernel's float triangles (as the stochastic path), the boxes' buffer,
-    // and per method the tuples' cells or the interval samples.
-    std::vector<GpuTriangle> triangles(std::max<std::size_t>(count, 1));
-    for (std::size_t i = 0; i < count; ++i) {
-        const kernelf::MovingTriangle tri = make_moving_triangle<float>(scene, plan.model, i);
-        for (int j = 0; j < 6; ++j) {
-            triangles[i].p[j][0] = tri.p[j].x;
-            triangles[i].p[j][1] = tri.p[j].y;
-            triangles[i].p[j][2] = tri.p[j].z;
-            triangles[i].p[j][3] = 0.0f;
-            triangles[i].c[j][0] = tri.c[j].x;
-            triangles[i].c[j][1] = tri.c[j].y;
-        }
-    }
-    gl::Buffer triangle_buffer(gl, GL_SHADER_STORAGE_BUFFER, triangles.size() * sizeof(GpuTriangle), triangles.data());
-    SampleCounters counters(gl);
-    gl::Buffer box_buffer(gl, GL_SHADER_STORAGE_BUFFER, std::max<std::size_t>(count, 1) * sizeof(GpuBox));
-    gl::Buffer tuple_buffer(gl, GL_SHADER_STORAGE_BUFFER, interleave ? table.cells.size() * sizeof(std::uint32_t) : 4,
-                            interleave ? table.cells.data() : nullptr);
-    gl::Buffer sample_buffer(gl, GL_SHADER_STORAGE_BUFFER, interval ? pixels * 4 * sizeof(float) : 16);
-    gl::Buffer time_buffer(gl, GL_SHADER_STORAGE_BUFFER, interval ? pixels * sizeof(float) : 4);
-    triangle_buffer.bind_base(0);
-    counters.bind_base(2);
-    sample_buffer.bind_base(7);
-    time_buffer.bind_base(8);
-    box_buffer.bind_base(9);
-    tuple_buffer.bind_base(10);
-
-    // The stochastic path's framebuffer and depth rule, single-sampled.
-    const IdDepthTarget id_depth(gl, target_w, target_h, 0, "the method's id/depth framebuffer");
-    id_depth.bind_with_depth_rule();
-    gl.BindVertexArray(programs->vertex_array);
-
-    const gl::Program& draw = programs->draw;
-    gl.UseProgram(draw.id());
-    gl.Uniform2f(location(gl, draw, "image_size"), static_cast<float>(width), static_cast<float>(height));
-    gl.Uniform2f(location(gl, draw, "target_size"), static_cast<float>(target_w), static_cast<float>(target_h));
-    gl.Uniform1f(location(gl, draw, "near_plane"), plan.model.znear);
-    gl.Uniform1ui(location(gl, draw, "seed"), settings.seed);
-    gl.Uniform1ui(location(gl, draw, "scale"), static_cast<std::uint32_t>(plan.scale));
-    gl.Uniform1ui(location(gl, draw, "lattice_width"), static_cast<std::uint32_t>(lattice_w));
-    gl.Uniform1ui(location(gl, draw, "tile_count"), static_cast<std::uint32_t>(targets));
-    gl.Uniform1i(location(gl, draw, "method_kind"), interleave ? 0 : (interval ? 1 : 2));
-    const gl::Program& samples = programs->samples;
-    gl.UseProgram(samples.id());
-    gl.Uniform2f(location(gl, samples, "image_size"), static_cast<float>(width), static_cast<float>(height));
-    gl.Uniform1ui(location(gl, samples, "spp"), static_cast<std::uint32_t>(plan.per_pixel));
-    gl.Uniform1ui(location(gl, samples, "seed"), settings.seed);
-    gl::check_gl(gl, "gl: method setup");
+    MethodFrame frame(gl, *programs, scene, settings, plan, target);
     stats.ms_per_phase.emplace_back("setup", ms_since(phase));
 
-    // Per pass: the boxes (host, double, as the CPU renderers), a quad per
-    // triangle that may hold a sample, in index order, then the pass's ids.
-    std::vector<std::uint32_t> hits(pixels * per_pixel, no_sample_hit);
-    std::vector<std::uint32_t> pass_ids(targets);
-    std::vector<PassBoxes> parts;
-    std::vector<GpuBox> boxes;
-    boxes.reserve(count);
-    const GLuint clear_id[4] = {no_sample_hit, 0, 0, 0};
-    const GLfloat clear_depth = 0.0f;
     double boxes_ms = 0.0;
     phase = Clock::now();
     Progress progress(settings.progress, start, plan.passes, "gl");
     for (int pass = 0; pass < plan.passes; ++pass) {
-        const Clock::time_point boxes_start = Clock::now();
-        pass_boxes(plan, pass, interleave ? &table : nullptr, lattice_w, settings, parts, boxes, stats);
-        boxes_ms += ms_since(boxes_start);
-        if (interval) {
-            gl.UseProgram(samples.id());
-            gl.Uniform1ui(location(gl, samples, "pass_index"), static_cast<std::uint32_t>(pass));
-            gl.DispatchCompute(static_cast<GLuint>((width + 7) / 8), static_cast<GLuint>((height + 7) / 8), 1);
-            gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-        }
-        gl.ClearBufferuiv(GL_COLOR, 0, clear_id);
-        gl.ClearBufferfv(GL_DEPTH, 0, &clear_depth);
-        if (!boxes.empty()) {
-            gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, box_buffer.id());
-            gl.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(boxes.size() * sizeof(GpuBox)),
-                             boxes.data());
-            gl.UseProgram(draw.id());
-            gl.Uniform1ui(location(gl, draw, "pass_index"), static_cast<std::uint32_t>(pass));
-            if (!interval) {
-                const kernelf::PixelSample& s = plan.pass_samples[static_cast<std::size_t>(pass)];
-                gl.Uniform2f(location(gl, draw, "pass_lens"), s.lens.x, s.lens.y);
-                gl.Uniform1f(location(gl, draw, "pass_t"), s.time);
-                gl.Uniform2f(location(gl, draw, "pass_offset"), s.offset.x, s.offset.y);
-            }
-            gl.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(boxes.size() * 6));
-        }
-        gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
-        counters.add_to(stats);
-        // The pass's ids (GL's rows are bottom-up) to their samples: pass k
-        // is sample k of every pixel (interval, accum); interleave's tile t
-        // is tuple k's cell (gx, gy) of t, sample (gy % s) s + gx % s of
-        // pixel (gx / s, gy / s).
-        gl.ReadPixels(0, 0, target_w, target_h, GL_RED_INTEGER, GL_UNSIGNED_INT, pass_ids.data());
-        for (int row = 0; row < target_h; ++row) {
-            const std::size_t y = static_cast<std::size_t>(target_h - 1 - row);
-            for (int x = 0; x < target_w; ++x) {
-                const std::uint32_t id = pass_ids[static_cast<std::size_t>(row) * target_w + static_cast<std::size_t>(x)];
-                const std::size_t target = y * static_cast<std::size_t>(target_w) + static_cast<std::size_t>(x);
-                if (!interleave) {
-                    hits[target * per_pixel + static_cast<std::size_t>(pass)] = id;
-                    continue;
-                }
-                const std::uint32_t cell = table.cells[static_cast<std::size_t>(pass) * targets + target];
-                if (cell == no_sample_hit) continue;
-                const int gx = static_cast<int>(cell % static_cast<std::uint32_t>(lattice_w));
-                const int gy = static_cast<int>(cell / static_cast<std::uint32_t>(lattice_w));
-                const int side = plan.scale;
-                const std::size_t pixel = static_cast<std::size_t>(gy / side) * width + static_cast<std::size_t>(gx / side);
-                hits[pixel * per_pixel + static_cast<std::size_t>((gy % side) * side + gx % side)] = id;
-            }
-        }
-        gl::check_gl(gl, "gl: method pass");
+        boxes_ms += frame.run_pass(pass, stats);
         progress.advance();
     }
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -337,7 +413,8 @@ RenderResult render_gl_method(const gl::HeadlessContext& context, std::shared_pt
     stats.ms_per_phase.emplace_back("raster", ms_since(phase) - boxes_ms);
 
     phase = Clock::now();
-    result.image = resolve_method_samples(scene, plan, hits, width, height);
+    std::vector<std::uint32_t> hits = frame.take_hits();
+    result.image = resolve_method_samples(scene, plan, hits, settings.width, settings.height);
     if (sample_ids != nullptr) *sample_ids = std::move(hits);
     stats.ms_per_phase.emplace_back("resolve", ms_since(phase));
     stats.ms_total = ms_since(start);
