@@ -42,9 +42,12 @@ struct GpuTriangle {           // MovingTriangle: vec3 p[6] (stride 16), vec2 c[
     float c[6][2];
 };
 static_assert(sizeof(GpuTriangle) == 144, "std430 MovingTriangle");
+// TriangleInfo: vec4 box, ivec4 rect, int needs, hull_count, path, padding,
+// vec4 outline01, outline2, hull[BC_HULL_MAX].
 constexpr std::size_t triangle_info_bytes = (4 + 4 + 4 + 4 + 4 + 4 * BC_HULL_MAX) * 4;
-constexpr std::size_t cell_bounds_bytes = 6 * 4 * 4;  // CellBounds: ivec4 + 5 vec4
-constexpr int cells_max = 16;                         // CELLS_MAX
+// CellBounds: ivec4 rect, vec4 lens, time_lines_u_a, _u_b, _v_a, _v_b.
+constexpr std::size_t cell_bounds_bytes = 6 * 4 * 4;
+constexpr int cells_max = 16;  // CELLS_MAX
 
 }  // namespace
 
