@@ -1,11 +1,11 @@
 // --method interleave, interval and accum on the GL backend
-// (frontend/render/gl_methods.cpp) against the CPU renderers
+// (frontend/render/gl/gl_sampling_methods.cpp) against the CPU renderers
 // (interleaved_backend.hpp): the same samples decided the same way, the same
 // resolved image, the same box statistics. No GL context: SKIPPED, or a
 // failure when CI=true.
 #include "frontend_test_helpers.hpp"
-#include "render/gl_backend.hpp"
 #include "render/cpu/methods.hpp"
+#include "render/gl/gl_backend.hpp"
 #include "scene/builtin_scenes.hpp"
 
 #include <doctest/doctest.h>

@@ -19,9 +19,9 @@
 
 #include "frontend_test_helpers.hpp"
 #include "kernel_generators.hpp"
+#include "render/gl/gl_context.hpp"
 
 #include <blurcull/glsl/kernel_glsl.hpp>
-#include <gl/gl_context.hpp>
 
 #include <doctest/doctest.h>
 

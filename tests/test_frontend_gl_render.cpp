@@ -1,13 +1,13 @@
-// The GL backend (frontend/render/gl_backend.hpp) against the CPU backend: the
+// The GL backend (frontend/render/gl/gl_backend.hpp) against the CPU backend: the
 // same samples decided the same way, the same resolved image, the same
 // statistics; the static path's speed-up. No GL context: SKIPPED, or a failure
 // when CI=true.
 #include "frontend_test_helpers.hpp"
-#include "render/cpu/cpu_backend.hpp"
-#include "render/gl_backend.hpp"
 #include "render/common/camera_model.hpp"
 #include "render/common/moving_triangle.hpp"
 #include "render/common/shading.hpp"
+#include "render/cpu/cpu_backend.hpp"
+#include "render/gl/gl_backend.hpp"
 #include "scene/builtin_scenes.hpp"
 
 #include <blurcull/kernel.hpp>

@@ -8,7 +8,7 @@
 #include "render/cpu/cpu_backend.hpp"
 #include "render/cpu/methods.hpp"
 #include "render/embree/embree_backend.hpp"
-#include "render/gl_backend.hpp"
+#include "render/gl/gl_backend.hpp"
 #include "scene/builtin_scenes.hpp"
 
 #include <nlohmann/json.hpp>

@@ -4,7 +4,7 @@
 #include "app/scene_setup.hpp"
 #include "render/common/render_types.hpp"
 #include "render/cpu/cpu_backend.hpp"
-#include "render/gl_backend.hpp"
+#include "render/gl/gl_backend.hpp"
 
 #include <CLI/CLI.hpp>
 

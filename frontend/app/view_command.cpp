@@ -3,11 +3,10 @@
 #include "app/scene_setup.hpp"
 #include "app/text_overlay.hpp"
 
-#include "render/gl_backend.hpp"
 #include "render/common/image.hpp"
 #include "render/common/render_types.hpp"
-
-#include <gl/gl_context.hpp>
+#include "render/gl/gl_backend.hpp"
+#include "render/gl/gl_context.hpp"
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>

@@ -8,10 +8,10 @@ PASS_SAMPLE_BUFFERS
 
 flat in int g_index;
 flat in vec4 g_lens;
-flat in vec4 g_tx;
-flat in vec4 g_tx2;
-flat in vec4 g_ty;
-flat in vec4 g_ty2;
+flat in vec4 g_time_lines_u_a;
+flat in vec4 g_time_lines_u_b;
+flat in vec4 g_time_lines_v_a;
+flat in vec4 g_time_lines_v_b;
 layout(location = 0) out uint out_id;
 
 // The pixel (row 0 at the top) of this fragment: GL's window rows grow upwards.
@@ -33,17 +33,17 @@ void main() {
     sb.empty = false;
     sb.u_range = g_lens.xy;
     sb.v_range = g_lens.zw;
-    sb.tx = g_tx;
-    sb.tx2 = g_tx2;
-    sb.ty = g_ty;
-    sb.ty2 = g_ty2;
+    sb.tx = g_time_lines_u_a;
+    sb.tx2 = g_time_lines_u_b;
+    sb.ty = g_time_lines_v_a;
+    sb.ty2 = g_time_lines_v_b;
     if (!sample_passes(sb, s.lens, s.time)) discard;
     vec2 ndc = ndc_lens.xy;
     ScreenBound b;
     b.empty = false;
     b.lo = infos[g_index].box.xy;
     b.hi = infos[g_index].box.zw;
-    b.hull_count = infos[g_index].meta.y;
+    b.hull_count = infos[g_index].hull_count;
     for (int k = 0; k < BC_HULL_MAX; ++k) {
         b.hull_edge[k] = k < b.hull_count ? infos[g_index].hull[k].xyz : vec3(0.0);
     }

@@ -1,4 +1,4 @@
-// The interleave, interval and accum methods (frontend/render/gl_methods.cpp):
+// The interleave, interval and accum methods (frontend/render/gl/gl_sampling_methods.cpp):
 // per pass, one quad per listed triangle over the framebuffer cells that may
 // hold its samples (tiles for interleave, pixels otherwise), from the
 // rectangle the host computed for that pass (method_pass_box, the same boxes

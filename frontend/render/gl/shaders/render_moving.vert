@@ -8,20 +8,20 @@ uniform int cells_per_triangle;
 
 flat out int g_index;
 flat out vec4 g_lens;  // u_range, v_range
-flat out vec4 g_tx;
-flat out vec4 g_tx2;
-flat out vec4 g_ty;
-flat out vec4 g_ty2;
+flat out vec4 g_time_lines_u_a;  // the cell's CellBounds.time_lines_*
+flat out vec4 g_time_lines_u_b;
+flat out vec4 g_time_lines_v_a;
+flat out vec4 g_time_lines_v_b;
 
 void main() {
     int cell = gl_VertexID / 6;
     g_index = int(moving_list[cell / cells_per_triangle]);
     CellBounds c = cells[cell];
     g_lens = c.lens;
-    g_tx = c.tx;
-    g_tx2 = c.tx2;
-    g_ty = c.ty;
-    g_ty2 = c.ty2;
+    g_time_lines_u_a = c.time_lines_u_a;
+    g_time_lines_u_b = c.time_lines_u_b;
+    g_time_lines_v_a = c.time_lines_v_a;
+    g_time_lines_v_b = c.time_lines_v_b;
     if (c.rect.x > c.rect.z) {
         gl_Position = vec4(-2.0, -2.0, 0.0, 1.0);
         return;

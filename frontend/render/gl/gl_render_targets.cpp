@@ -1,8 +1,10 @@
-#include "render/gl_render_targets.hpp"
+#include "render/gl/gl_render_targets.hpp"
+
+#include "render/gl/render_glsl.hpp"
 
 #include <blurcull/glsl/kernel_glsl.hpp>
-#include <blurcull/glsl/render_glsl.hpp>
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 
@@ -18,6 +20,21 @@ std::string_view shader_text(std::string_view name) {
 constexpr std::uint32_t zero_counters[2] = {0, 0};
 
 }  // namespace
+
+int get_integer(const gl::Functions& gl, GLenum name) {
+    GLint value = 0;
+    gl.GetIntegerv(name, &value);
+    return value;
+}
+
+void require_target_fits(const gl::Functions& gl, int target_width, int target_height, int width, int height) {
+    const int max_size = std::min({get_integer(gl, GL_MAX_TEXTURE_SIZE), get_integer(gl, GL_MAX_FRAMEBUFFER_WIDTH),
+                                   get_integer(gl, GL_MAX_FRAMEBUFFER_HEIGHT)});
+    if (target_width > max_size || target_height > max_size) {
+        throw gl::GlError("gl: image size " + std::to_string(width) + "x" + std::to_string(height) +
+                          " exceeds the context's limit of " + std::to_string(max_size) + " pixels per side");
+    }
+}
 
 gl::ShaderStage kernel_stage(GLenum type, std::string_view main_name) {
     return gl::ShaderStage{type, {glsl::kernel_source(), shader_text("render_common.glsl"), shader_text(main_name)}};

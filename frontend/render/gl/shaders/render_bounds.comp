@@ -20,7 +20,7 @@ void main() {
     SampleBounds sb = no_sample_bounds();
     out_cell.rect = ivec4(0, 0, -1, -1);
     ivec4 r = infos[i].rect;
-    if (infos[i].meta.z == PATH_MOVING) {
+    if (infos[i].path == PATH_MOVING) {
         int width = r.z - r.x + 1, height = r.w - r.y + 1;
         int columns = cells_per_triangle == 1 ? 1 : clamp((width + cell_pixels - 1) / cell_pixels, 1, 4);
         int rows = cells_per_triangle == 1 ? 1 : clamp((height + cell_pixels - 1) / cell_pixels, 1, 4);
@@ -32,7 +32,7 @@ void main() {
         c.w = min(c.y + cell_h - 1, r.w);
         if (row < rows && column < columns && c.x <= c.z && c.y <= c.w) {
             out_cell.rect = c;
-            if (cells_per_triangle > 1 && infos[i].meta.x != 0) {
+            if (cells_per_triangle > 1 && infos[i].needs != 0) {
                 // The footprint as the CPU backend forms it (pixel_ndc_bounds of the corner pixels).
                 vec2 top_left = grid_ndc(c.x, c.y);
                 vec2 bottom_right = grid_ndc(c.z + 1, c.w + 1);
@@ -43,9 +43,9 @@ void main() {
         }
     }
     out_cell.lens = vec4(sb.u_range, sb.v_range);
-    out_cell.tx = sb.tx;
-    out_cell.tx2 = sb.tx2;
-    out_cell.ty = sb.ty;
-    out_cell.ty2 = sb.ty2;
+    out_cell.time_lines_u_a = sb.tx;
+    out_cell.time_lines_u_b = sb.tx2;
+    out_cell.time_lines_v_a = sb.ty;
+    out_cell.time_lines_v_b = sb.ty2;
     cells[slot] = out_cell;
 }

@@ -68,7 +68,10 @@ void main() {
     info.outline01 = vec4(0.0);
     info.outline2 = vec4(0.0);
     int needs = classes[i];
-    info.meta = ivec4(needs, 0, PATH_NONE, 0);
+    info.needs = needs;
+    info.hull_count = 0;
+    info.path = PATH_NONE;
+    info.padding = 0;
     for (int k = 0; k < BC_HULL_MAX; ++k) info.hull[k] = vec4(0.0);
     if (needs == BC_INVALID) {
         infos[i] = info;
@@ -82,7 +85,7 @@ void main() {
         return;
     }
     info.box = vec4(b.lo, b.hi);
-    info.meta.y = b.hull_count;
+    info.hull_count = b.hull_count;
     for (int k = 0; k < BC_HULL_MAX; ++k) {
         if (k < b.hull_count) info.hull[k] = vec4(b.hull_edge[k], 0.0);
     }
@@ -103,7 +106,7 @@ void main() {
         return;
     }
     info.rect = r;
-    info.meta.z = is_static ? PATH_STATIC : PATH_MOVING;
+    info.path = is_static ? PATH_STATIC : PATH_MOVING;
     // The static path draws one triangle per static triangle (llvmpipe's
     // cost here is per primitive, not per fragment): the triangle grown by a
     // pixel, or, when that is larger (small or thin triangles: a thin

@@ -9,7 +9,7 @@
 // made current (`blurcull view`'s GLFW window), so the same renderer draws there.
 #pragma once
 
-#include "gl_functions.hpp"
+#include "render/gl/gl_functions.hpp"
 
 #include <cstddef>
 #include <memory>

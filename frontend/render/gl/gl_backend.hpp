@@ -58,7 +58,7 @@ public:
 
     // settings.method stochastic renders as described above; interleave,
     // interval and accum as the CPU renderers of render/cpu/methods.hpp
-    // (gl_methods.hpp; their sample_ids are in that layout, spp per pixel).
+    // (gl_sampling_methods.hpp; their sample_ids are in that layout, spp per pixel).
     // Throws std::invalid_argument for bad settings, SceneError for a bad
     // scene, gl::GlError when the image does not fit the context's limits.
     RenderResult render(const Scene& scene, const RenderSettings& settings, const GlOptions& options = {},

@@ -1,11 +1,14 @@
-// Shared by the GL backend's stages (frontend/render/gl_backend.cpp): compiled
+// Shared by the GL backend's stages (frontend/render/gl/gl_backend.cpp): compiled
 // after the kernel's GLSL and before each stage's main. docs/gl-backend.md.
 
 // What render_setup.comp finds out about triangle i, once per frame.
 struct TriangleInfo {
     vec4 box;    // screen_bound: lo.xy, hi.xy (NDC)
     ivec4 rect;  // pixels x0, y0, x1, y1 (inclusive, row 0 at the top) holding every sample in box
-    ivec4 meta;  // x: classify(), y: hull_count, z: path (0 none, 1 static, 2 moving)
+    int needs;       // classify(): 0 (static, in focus), BC_NEEDS_* bits, or BC_INVALID
+    int hull_count;  // screen_bound's hull edges in hull[]
+    int path;        // the path that draws it: PATH_NONE, PATH_STATIC or PATH_MOVING
+    int padding;     // 0; the four ints fill the 16 bytes before outline01 (std430)
     vec4 outline01;  // static path: the one triangle it draws (window pixels,
     vec4 outline2;   // y up), vertices 0, 1 in outline01 and 2 in outline2.xy
     vec4 hull[BC_HULL_MAX];  // the hull's edges (xyz)
@@ -69,10 +72,14 @@ vec2 grid_ndc(int x, int y) {
 struct CellBounds {
     ivec4 rect;  // pixels x0, y0, x1, y1; empty when x0 > x1
     vec4 lens;   // u_range, v_range
-    vec4 tx;
-    vec4 tx2;
-    vec4 ty;
-    vec4 ty2;
+    // SampleBounds' time lines (sample_passes): each holds (a, b, c, d) for
+    // a + b u <= t <= c + d u, over the lens u (time_lines_u_*) or v
+    // (time_lines_v_*). Two-stage: _a from the footprint's far edge (condition
+    // A), _b from its near edge (B); dual-space: _a the time range, _b [0, 1].
+    vec4 time_lines_u_a;  // SampleBounds.tx
+    vec4 time_lines_u_b;  // SampleBounds.tx2
+    vec4 time_lines_v_a;  // SampleBounds.ty
+    vec4 time_lines_v_b;  // SampleBounds.ty2
 };
 
 // Corner k (0..5, two triangles) of the quad over pixels rect, in NDC.

@@ -1,4 +1,4 @@
-#include "gl_context.hpp"
+#include "render/gl/gl_context.hpp"
 
 #include <EGL/egl.h>
 #include <EGL/eglext.h>

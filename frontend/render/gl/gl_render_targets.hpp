@@ -1,16 +1,23 @@
 // What the GL stochastic path (gl_backend.cpp) and the GL interleave /
-// interval / accum passes (gl_methods.cpp) share: their shader stages, the
-// triangle-id + depth framebuffer with blurcull's depth rule, and the
-// tested/hit sample counters.
+// interval / accum passes (gl_sampling_methods.cpp) share: their shader stages, the
+// triangle-id + depth framebuffer with blurcull's depth rule, its size check,
+// and the tested/hit sample counters.
 #pragma once
 
 #include "render/common/render_types.hpp"
-
-#include <gl/gl_context.hpp>
+#include "render/gl/gl_context.hpp"
 
 #include <string_view>
 
 namespace blurcull::frontend {
+
+// glGetIntegerv of one value.
+int get_integer(const gl::Functions& gl, GLenum name);
+
+// Throws gl::GlError when a target_width x target_height framebuffer exceeds
+// the context's texture or framebuffer size limits; the message names the
+// image, width x height, that it is for.
+void require_target_fits(const gl::Functions& gl, int target_width, int target_height, int width, int height);
 
 // A stage whose main needs the kernel: the emitted kernel GLSL,
 // render_common.glsl, then `main_name`. Throws gl::GlError when a shader was

@@ -6,9 +6,8 @@
 #pragma once
 
 #include "render/common/render_types.hpp"
+#include "render/gl/gl_context.hpp"
 #include "scene/scene.hpp"
-
-#include <gl/gl_context.hpp>
 
 #include <cstdint>
 #include <memory>
