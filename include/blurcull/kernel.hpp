@@ -20,6 +20,9 @@ struct kernel {
     using vec3 = glm::vec<3, Real, glm::defaultp>;
     using vec4 = glm::vec<4, Real, glm::defaultp>;
     using uint = std::uint32_t;
+    // GLSL's ivec2, ivec4 (pixel positions and rectangles of the raster glue).
+    using ivec2 = glm::ivec2;
+    using ivec4 = glm::ivec4;
 
     // GLSL built-ins the shared text uses, forwarded to GLM (whose names follow GLSL).
     template <class X> static X min(X a, X b) { return glm::min(a, b); }
@@ -44,6 +47,7 @@ struct kernel {
 
 #include "detail/sampling_body.inl"
 #include "detail/kernel_body.inl"
+#include "detail/raster_body.inl"
 };
 
 using kernelf = kernel<float>;

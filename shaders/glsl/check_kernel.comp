@@ -46,9 +46,23 @@ void main() {
     uint tile = interleaved_corner_colour(px, py, 7u) + interleaved_prototype(px, py, 7u);
     vec2 jitter = interleaved_jitter(px, py, 7u);
     PixelSample accum = accum_sample(px, 7u);
+    vec2 image_size = vec2(values[45], values[46]);
+    vec2 raster = ndc_to_raster(raster_to_ndc(s, image_size), image_size);
+    vec2 sample_pos = pixel_sample_ndc(ivec2(px, py), uv, image_size);
+    ivec4 rect = box_cell_rect(s - vec2(0.01), s + vec2(0.01), image_size);
+    vec4 rect_ndc = pixel_rect_ndc(rect, image_size);
+    ivec2 cell = interleaved_cell(ivec2(px, py), int(values[47]), 6);
+    vec2 interleaved = interleaved_sample_ndc(cell, 2, jitter, image_size);
+    float hit_depth;
+    int test = sample_test(tri, screen, on_screen, bounds, s, uv, t, near, hit_depth);
+    float key = depth_key(near, hit_depth);
+    bool wins = depth_nearer(hit_depth, depth) || depth_key_wins(key, px, depth, py);
+    vec2 camera_ab = camera_coc(values[37], values[38], values[39]);
 
     values[0] = coc + vertex.x + float(finite) + float(needs) + float(covered) + depth + float(on_screen) + float(footprint_state) +
                 float(passes) + time_range.x + sample_at.offset.x + sample_at.lens.y + sample_at.time + patterned.time +
                 tiled.time + from_setup.time + others[0].time + others[1].time + others[2].time + others[3].time + tuple.x +
-                float(tile) + jitter.x + accum.time + accum.offset.x + accum.lens.y + bc_rotate_unit(jitter.x, jitter.y);
+                float(tile) + jitter.x + accum.time + accum.offset.x + accum.lens.y + bc_rotate_unit(jitter.x, jitter.y) +
+                raster.x + sample_pos.y + float(rect.x) + rect_ndc.w + interleaved.x + float(test) + key + float(wins) +
+                camera_ab.y;
 }
