@@ -43,7 +43,12 @@ struct kernel {
     static constexpr real bc_tiny() { return std::numeric_limits<real>::min(); }
 
 #include "detail/sampling_body.inl"
-#include "detail/kernel_body.inl"
+#include "detail/coc_motion_body.inl"
+#include "detail/oracle_body.inl"
+#include "detail/screen_bound_body.inl"
+#include "detail/dual_space_body.inl"
+#include "detail/two_stage_body.inl"
+#include "detail/sample_bounds_body.inl"
 };
 
 using kernelf = kernel<float>;
