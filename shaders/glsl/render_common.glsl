@@ -5,7 +5,7 @@
 struct TriangleInfo {
     vec4 box;    // screen_bound: lo.xy, hi.xy (NDC)
     ivec4 rect;  // pixels x0, y0, x1, y1 (inclusive, row 0 at the top) holding every sample in box
-    ivec4 meta;  // x: classify(), y: hull_count, z: path (0 none, 1 static, 2 moving)
+    ivec4 meta;  // x: bc_classify(), y: hull_count, z: path (0 none, 1 static, 2 moving)
     vec4 outline01;  // static path: the one triangle it draws (window pixels,
     vec4 outline2;   // y up), vertices 0, 1 in outline01 and 2 in outline2.xy
     vec4 hull[BC_HULL_MAX];  // the hull's edges (xyz)
@@ -59,7 +59,7 @@ vec2 grid_ndc(int x, int y) {
     float static_depth_key(int i, uint slot) { \
         vec4 ndc_lens = group_ndc_lens[slot]; \
         float depth; \
-        if (!covers(triangles[i], ndc_lens.xy, ndc_lens.zw, group_time[slot], near_plane, depth)) return -1.0; \
+        if (!bc_covers(triangles[i], ndc_lens.xy, ndc_lens.zw, group_time[slot], near_plane, depth)) return -1.0; \
         return clamp(near_plane / depth, 0.0, 1.0); \
     }
 

@@ -56,6 +56,7 @@ BC_FN vec2 thin_lens_coc(real projection_scale, real lens_radius, real focus_dep
     return vec2(a, -a / focus_depth);
 }
 
+// The signed CoC c(w) = a + b w of the thin lens (a, b) = coc_ab at view depth w.
 BC_FN real coc_at(vec2 coc_ab, real w) {
     return coc_ab.x + coc_ab.y * w;
 }
@@ -71,12 +72,15 @@ BC_FN real coc_controlled(vec2 coc_ab, real w, real focus_range, real max_coc) {
 
 // ---- motion, classification ------------------------------------------------
 
+// Vertex i (0..2) at shutter time t in [0, 1], sheared by lens position uv:
+// clip (x + u c_x, y + v c_y, w), positions and CoC interpolated linearly.
 BC_FN vec3 vertex_at(BC_IN(MovingTriangle) tri, int i, real t, vec2 uv) {
     vec3 p = (real(1) - t) * tri.p[i] + t * tri.p[i + 3];
     vec2 c = (real(1) - t) * tri.c[i] + t * tri.c[i + 3];
     return vec3(p.x + uv.x * c.x, p.y + uv.y * c.y, p.z);
 }
 
+// Whether every position and CoC of the triangle is finite (no NaN, no Inf).
 BC_FN bool triangle_is_finite(BC_IN(MovingTriangle) tri) {
     for (int j = 0; j < 6; ++j) {
         if (!bc_finite(tri.p[j].x) || !bc_finite(tri.p[j].y) || !bc_finite(tri.p[j].z) ||

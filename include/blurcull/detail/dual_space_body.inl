@@ -34,7 +34,7 @@ BC_FN bool bc_lens_halfline(real a, real b, real s, BC_INOUT(vec2) r) {
 // Time: the lens-widened offsets at t = 0 and 1, merged over the vertices; the
 // lower envelope of the A offsets is concave in t, so it lies above its chord
 // (1-t) m0 + t m1, which must reach <= 0 (B mirrored). Clip space: any w.
-BC_FN bool bc_dual_time(BC_IN(MovingTriangle) tri, int axis, real s0, real s1, BC_OUT(vec2) tr) {
+BC_FN bool bc_dual_time_bounds(BC_IN(MovingTriangle) tri, int axis, real s0, real s1, BC_OUT(vec2) tr) {
     tr = vec2(real(0), real(1));
     vec2 m = vec2(bc_huge());   // A: min over vertices at t = 0, 1
     vec2 mb = vec2(-bc_huge()); // B: max over vertices at t = 0, 1
@@ -58,7 +58,7 @@ BC_FN bool bc_dual_time(BC_IN(MovingTriangle) tri, int axis, real s0, real s1, B
 // Lens: with every w > 0, the screen position (x + u c) / w of each vertex end
 // is linear in u; the minimum over them is concave, so above its chord between
 // u = -1 and u = 1, which must reach <= s1 (the maximum mirrored, >= s0).
-BC_FN vec2 bc_dual_lens(BC_IN(MovingTriangle) tri, int axis, real s0, real s1) {
+BC_FN vec2 bc_dual_lens_bounds(BC_IN(MovingTriangle) tri, int axis, real s0, real s1) {
     vec2 r = vec2(real(-1), real(1));
     for (int j = 0; j < 6; ++j) {
         if (!(tri.p[j].z > real(0))) return r;

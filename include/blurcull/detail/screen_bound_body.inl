@@ -7,7 +7,7 @@
 #define BC_CULL_BBOX 0
 #define BC_CULL_HULL 1
 #define BC_CULL_DUALSPACE 2
-#define BC_CULL_CLIP2 3
+#define BC_CULL_TWO_STAGE 3
 
 #define BC_HULL_MAX 24
 
@@ -147,10 +147,10 @@ BC_FN void bc_build_hull(BC_IN(MovingTriangle) tri, real near, BC_INOUT(ScreenBo
     b.hull_count = h;
 }
 
-// Per-triangle screen bound: the clipped, CoC-grown box; with method
+// Per-triangle screen bound: the clipped, CoC-grown box; with cull mode
 // BC_CULL_HULL also the convex hull when no vertex is behind the near plane.
 // Non-finite input or results give the whole screen (never a cull).
-BC_FN ScreenBound screen_bound(BC_IN(MovingTriangle) tri, real near, int method) {
+BC_FN ScreenBound screen_bound(BC_IN(MovingTriangle) tri, real near, int cull) {
     ScreenBound b;
     b.empty = false;
     b.lo = vec2(-bc_huge());
@@ -163,7 +163,7 @@ BC_FN ScreenBound screen_bound(BC_IN(MovingTriangle) tri, real near, int method)
     b.lo = vec2(ex.x, ey.x);
     b.hi = vec2(ex.y, ey.y);
     b.empty = ex.x > ex.y || ey.x > ey.y;
-    if ((method == BC_CULL_HULL || method == BC_CULL_CLIP2) && !b.empty) bc_build_hull(tri, near, b);
+    if ((cull == BC_CULL_HULL || cull == BC_CULL_TWO_STAGE) && !b.empty) bc_build_hull(tri, near, b);
     return b;
 }
 
@@ -190,6 +190,8 @@ BC_FN int screen_footprint(BC_IN(ScreenBound) b, vec2 lo, vec2 hi) {
     return inside ? BC_FOOTPRINT_INSIDE : BC_FOOTPRINT_PARTIAL;
 }
 
+// Whether screen position s (NDC) lies inside the bound: false means no
+// sample at s can be covered.
 BC_FN bool screen_contains(BC_IN(ScreenBound) b, vec2 s) {
     if (b.empty) return false;
     if (s.x < b.lo.x || s.x > b.hi.x || s.y < b.lo.y || s.y > b.hi.y) return false;

@@ -64,7 +64,7 @@ BC_FN bool bc_one_coc_sign(BC_IN(MovingTriangle) tri, int axis) {
 // monotone linear fraction of t, so A and B need u <= max_j u_j(s1) and
 // u >= min_j u_j(s0) (c > 0; c < 0 swaps s0 and s1). A vertex on or across
 // the focal plane (mixed signs, or c = 0) leaves the whole lens.
-BC_FN vec2 bc_stage1(BC_IN(MovingTriangle) tri, int axis, BC_IN(BcEdgeCrossings) x) {
+BC_FN vec2 bc_two_stage_lens_bounds(BC_IN(MovingTriangle) tri, int axis, BC_IN(BcEdgeCrossings) x) {
     vec2 r = vec2(real(-1), real(1));
     if (!bc_one_coc_sign(tri, axis)) return r;
     bool positive = tri.c[0][axis] > real(0);
@@ -312,7 +312,7 @@ BC_FN bool bc_condition_lines(vec3 e0, vec3 e1, vec3 c0, vec3 c1, vec3 tol0, vec
 // near edge s0 reach >= 0, passed negated). A covered sample satisfies both,
 // so it lies between both pairs of lines. Narrows `lens`. False: nothing can
 // be covered.
-BC_FN bool bc_stage2(BC_IN(MovingTriangle) tri, int axis, real s0, real s1, BC_IN(BcEdgeCrossings) x,
+BC_FN bool bc_two_stage_time_bounds(BC_IN(MovingTriangle) tri, int axis, real s0, real s1, BC_IN(BcEdgeCrossings) x,
                      BC_INOUT(vec2) lens, BC_OUT(vec4) lines_a, BC_OUT(vec4) lines_b) {
     vec3 ea0;  // condition A: x - s1 w (+ u c) <= 0, roots u_j(s1)
     vec3 ea1;
