@@ -4,3 +4,5 @@
 #include "version.hpp"
 #include "kernel.hpp"
 #include "patterns.hpp"
+#include "pattern_names.hpp"
+#include "interleaved_tiles.hpp"
