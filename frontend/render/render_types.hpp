@@ -15,7 +15,9 @@
 
 namespace blurcull::frontend {
 
-// How a rasterizer decides which samples a triangle may cover (see BRIEF.md 3-4).
+// How a rasterizer decides which samples a triangle may cover: the bounds of
+// docs/kernel.md (box, convex hull of McGuire et al. 2010, dual-space of Laine
+// et al. 2011, clip-space two-stage of Wu, Way, Tsai and Shih, JISE 31(3), 2015).
 enum class CullMethod { bbox, hull, dualspace, clip2 };
 
 inline const char* to_string(CullMethod method) {
@@ -34,7 +36,7 @@ inline int kernel_cull_method(CullMethod method) {
         case CullMethod::bbox: return BC_CULL_BBOX;
         case CullMethod::hull: return BC_CULL_HULL;
         case CullMethod::dualspace: return BC_CULL_DUALSPACE;
-        case CullMethod::clip2: return BC_CULL_CLIP2;
+        case CullMethod::clip2: return BC_CULL_TWO_STAGE;
     }
     return BC_CULL_BBOX;
 }
