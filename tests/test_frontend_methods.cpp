@@ -11,6 +11,7 @@
 #include "render/common/shading.hpp"
 
 #include <blurcull/kernel.hpp>
+#include <blurcull/interleaved_tiles.hpp>
 #include <blurcull/patterns.hpp>
 
 #include <doctest/doctest.h>

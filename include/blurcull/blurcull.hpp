@@ -4,3 +4,5 @@
 #include <blurcull/version.hpp>  // generated from the project version (cmake/version.hpp.in)
 #include "kernel.hpp"
 #include "patterns.hpp"
+#include "pattern_names.hpp"
+#include "interleaved_tiles.hpp"

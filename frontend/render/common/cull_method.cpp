@@ -16,7 +16,7 @@ const std::vector<CullMethodInfo>& cull_methods() {
         {CullMethod::dualspace, "dualspace", {}, "the screen box, then lens and time bounds per footprint (Laine et al. 2011)",
          BC_CULL_DUALSPACE, true, rasterizers},
         {CullMethod::two_stage, "twostage", {"clip2"}, "the hull, then lens and time bounds per footprint in two stages",
-         BC_CULL_CLIP2, true, rasterizers},
+         BC_CULL_TWO_STAGE, true, rasterizers},
     };
     return methods;
 }

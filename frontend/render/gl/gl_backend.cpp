@@ -317,7 +317,7 @@ private:
 // Cells per moving triangle: the cull methods that bound lens and time get
 // their bounds per cell (at most 4 x 4); the others one cell, the rectangle.
 int cells_per_triangle_for(int method) {
-    return method == BC_CULL_DUALSPACE || method == BC_CULL_CLIP2 ? cells_max : 1;
+    return method == BC_CULL_DUALSPACE || method == BC_CULL_TWO_STAGE ? cells_max : 1;
 }
 
 StochasticFrame::StochasticFrame(const GlRenderer::State& state, const Scene& scene, const RenderSettings& settings,

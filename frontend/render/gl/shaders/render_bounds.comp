@@ -17,7 +17,7 @@ void main() {
     if (slot >= moving_count * cells_per_triangle) return;
     int i = int(moving_list[slot / cells_per_triangle]), cell = slot % cells_per_triangle;
     CellBounds out_cell;
-    SampleBounds sb = no_sample_bounds();
+    SampleBounds sb = bc_no_sample_bounds();
     out_cell.rect = ivec4(0, 0, -1, -1);
     ivec4 r = infos[i].rect;
     if (infos[i].path == PATH_MOVING) {
@@ -36,16 +36,16 @@ void main() {
                 // The footprint as the CPU backend forms it (pixel_ndc_bounds of the corner pixels).
                 vec2 top_left = grid_ndc(c.x, c.y);
                 vec2 bottom_right = grid_ndc(c.z + 1, c.w + 1);
-                sb = sample_bounds(triangles[i], vec2(top_left.x, bottom_right.y),
+                sb = bc_sample_bounds(triangles[i], vec2(top_left.x, bottom_right.y),
                                    vec2(bottom_right.x, top_left.y), method);
                 if (sb.empty) out_cell.rect = ivec4(0, 0, -1, -1);
             }
         }
     }
     out_cell.lens = vec4(sb.u_range, sb.v_range);
-    out_cell.time_lines_u_a = sb.tx;
-    out_cell.time_lines_u_b = sb.tx2;
-    out_cell.time_lines_v_a = sb.ty;
-    out_cell.time_lines_v_b = sb.ty2;
+    out_cell.time_lines_u_a = sb.u_time_a;
+    out_cell.time_lines_u_b = sb.u_time_b;
+    out_cell.time_lines_v_a = sb.v_time_a;
+    out_cell.time_lines_v_b = sb.v_time_b;
     cells[slot] = out_cell;
 }

@@ -5,7 +5,7 @@
 struct TriangleInfo {
     vec4 box;    // screen_bound: lo.xy, hi.xy (NDC)
     ivec4 rect;  // pixels x0, y0, x1, y1 (inclusive, row 0 at the top) holding every sample in box
-    int needs;       // classify(): 0 (static, in focus), BC_NEEDS_* bits, or BC_INVALID
+    int needs;       // bc_classify(): 0 (static, in focus), BC_NEEDS_* bits, or BC_INVALID
     int hull_count;  // screen_bound's hull edges in hull[]
     int path;        // the path that draws it: PATH_NONE, PATH_STATIC or PATH_MOVING
     int padding;     // 0; the four ints fill the 16 bytes before outline01 (std430)
@@ -62,7 +62,7 @@ vec2 grid_ndc(int x, int y) {
     float static_depth_key(int i, uint slot) { \
         vec4 ndc_lens = group_ndc_lens[slot]; \
         float depth; \
-        if (!covers(triangles[i], ndc_lens.xy, ndc_lens.zw, group_time[slot], near_plane, depth)) return -1.0; \
+        if (!bc_covers(triangles[i], ndc_lens.xy, ndc_lens.zw, group_time[slot], near_plane, depth)) return -1.0; \
         return clamp(near_plane / depth, 0.0, 1.0); \
     }
 

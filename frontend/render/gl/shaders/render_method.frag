@@ -1,6 +1,6 @@
 // The interleave, interval and accum methods: one invocation per framebuffer
 // cell (one sample each; no MSAA), the pass's sample of that cell, the
-// triangle's box for the pass, then the exact covers() and gl_FragDepth =
+// triangle's box for the pass, then the exact bc_covers() and gl_FragDepth =
 // near / w with a strict GREATER depth test, as the stochastic path.
 //  * interleave (method_kind 0): one framebuffer cell per tile of the
 //    width*s x height*s lattice; in the pass of tuple k, tile t's cell is
@@ -48,7 +48,7 @@ void main() {
         cell = uvec2(slot_cell % lattice_width, slot_cell / lattice_width);
         ivec4 r = boxes[g_box].rect;
         if (int(cell.x) < r.x || int(cell.x) > r.z || int(cell.y) < r.y || int(cell.y) > r.w) discard;
-        vec2 jitter = interleaved_jitter(cell.x, cell.y, seed);
+        vec2 jitter = bc_interleaved_jitter(cell.x, cell.y, seed);
         precise vec2 offset = (vec2(float(cell.x % scale), float(cell.y % scale)) + jitter) / float(scale);
         // The largest float below 1, as the CPU clamps it.
         offset = min(offset, vec2(uintBitsToFloat(0x3f7fffffu)));
@@ -66,11 +66,11 @@ void main() {
     b.lo = boxes[g_box].box.xy;
     b.hi = boxes[g_box].box.zw;
     b.hull_count = 0;
-    if (!screen_contains(b, ndc)) discard;
+    if (!bc_screen_contains(b, ndc)) discard;
     atomicAdd(tested, 1u);
     int triangle = boxes[g_box].index.x;
     float depth;
-    if (!covers(triangles[triangle], ndc, lens, time, near_plane, depth)) discard;
+    if (!bc_covers(triangles[triangle], ndc, lens, time, near_plane, depth)) discard;
     atomicAdd(hit, 1u);
     gl_FragDepth = near_plane / depth;
     out_id = uint(triangle);

@@ -12,7 +12,7 @@ void main() {
     uvec2 pixel = gl_GlobalInvocationID.xy;
     if (pixel.x >= uint(image_size.x) || pixel.y >= uint(image_size.y)) return;
     uint p = pixel.y * uint(image_size.x) + pixel.x;
-    PixelSample s = interval_sample(pixel.x, pixel.y, pass_index, spp, seed);
+    PixelSample s = bc_interval_sample(pixel.x, pixel.y, pass_index, spp, seed);
     pass_ndc_lens[p] = vec4(sample_ndc(pixel.x, pixel.y, s.offset), s.lens);
     pass_time[p] = s.time;
 }

@@ -13,11 +13,11 @@ void main() {
     uvec2 pixel = gl_GlobalInvocationID.xy;
     if (pixel.x >= uint(image_size.x) || pixel.y >= uint(image_size.y)) return;
     uint slot = (pixel.y * uint(image_size.x) + pixel.x) * stride;
-    PixelSampleSetup setup = pixel_sample_setup(pixel.x, pixel.y, spp, seed);
+    PixelSampleSetup setup = bc_pixel_sample_setup(pixel.x, pixel.y, spp, seed);
     for (uint k = 0u; k < stride; ++k) {
         uint j = pass_base + k;
         if (j >= spp) break;
-        PixelSample s = pixel_sample_from(setup, j);
+        PixelSample s = bc_pixel_sample_from(setup, j);
         pass_ndc_lens[slot + k] = vec4(sample_ndc(pixel.x, pixel.y, s.offset), s.lens);
         pass_time[slot + k] = s.time;
     }

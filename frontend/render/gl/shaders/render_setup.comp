@@ -79,7 +79,7 @@ void main() {
     }
     // Static and in focus: the static path (no cells, no hull, no lens/time bounds).
     bool is_static = needs == 0 && force_full == 0;
-    ScreenBound b = screen_bound(tri, near_plane, is_static ? BC_CULL_BBOX : method);
+    ScreenBound b = bc_screen_bound(tri, near_plane, is_static ? BC_CULL_BBOX : method);
     if (b.empty) {
         infos[i] = info;
         return;

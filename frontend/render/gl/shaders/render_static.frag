@@ -1,7 +1,7 @@
 // Static path: triangles that neither move nor defocus. One invocation per
 // sample (gl_SampleID; llvmpipe shades a shader that writes gl_SampleMask per
 // sample anyway): sample pass_base + gl_SampleID of the pattern
-// (render_samples.comp), the screen box, then covers(), which for such a
+// (render_samples.comp), the screen box, then bc_covers(), which for such a
 // triangle is three edge functions. No cells, no hull, no lens/time bounds.
 // The exact depth goes to gl_FragDepth (near / w), as on the moving path.
 layout(std430, binding = 1) readonly buffer Infos { TriangleInfo infos[]; };
@@ -27,10 +27,10 @@ void main() {
     b.lo = infos[g_index].box.xy;
     b.hi = infos[g_index].box.zw;
     b.hull_count = 0;
-    if (!screen_contains(b, ndc_lens.xy)) discard;
+    if (!bc_screen_contains(b, ndc_lens.xy)) discard;
     atomicAdd(tested, 1u);
     float depth;
-    if (!covers(triangles[g_index], ndc_lens.xy, ndc_lens.zw, pass_time[slot], near_plane, depth)) discard;
+    if (!bc_covers(triangles[g_index], ndc_lens.xy, ndc_lens.zw, pass_time[slot], near_plane, depth)) discard;
     atomicAdd(hit, 1u);
     gl_FragDepth = near_plane / depth;
     gl_SampleMask[0] = 1 << gl_SampleID;

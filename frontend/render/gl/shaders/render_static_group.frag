@@ -8,7 +8,7 @@
 // gl_FragDepth), on equal keys the lower index. group_depths takes the
 // largest key (atomicMax: positive floats order as their bits); a triangle
 // below it has lost. Otherwise a compare-and-swap loop on group_ids against
-// the current holder's key, recomputed (covers() is deterministic): lock-free
+// the current holder's key, recomputed (bc_covers() is deterministic): lock-free
 // (a failed swap means another triangle progressed), and the holder only
 // ever improves, so it ends as the nearest, lowest-index triangle.
 layout(std430, binding = 1) readonly buffer Infos { TriangleInfo infos[]; };
@@ -39,7 +39,7 @@ void main() {
         if (pass_base + k >= spp) break;
         uint slot = first + k;
         vec4 ndc_lens = group_ndc_lens[slot];
-        if (!screen_contains(b, ndc_lens.xy)) continue;
+        if (!bc_screen_contains(b, ndc_lens.xy)) continue;
         ++tested_here;
         float key = static_depth_key(g_index, slot);
         if (key < 0.0) continue;
