@@ -181,7 +181,6 @@ MethodPlan make_method_plan(const Scene& scene, const RenderSettings& settings, 
                                         std::to_string(settings.spp));
         }
     }
-    validate_scene(scene);
     MethodPlan plan;
     plan.method = settings.method;
     plan.model = CameraModel(scene.camera, settings.width, settings.height);

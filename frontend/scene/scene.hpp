@@ -1,6 +1,12 @@
 // A scene as every backend sees it: triangles whose vertices have a world
 // position at shutter open and at shutter close (linear motion in between), a
 // thin-lens camera whose view may also differ between the two, flat materials.
+//
+// Validity is checked once, where a scene is made: make_builtin_scene,
+// load_gltf_scene and load_scene return scenes that pass validate_scene
+// (scene_checks.hpp), and make_mostly_static keeps a valid scene valid. The
+// backends trust the scene they are given and do not check it again: code
+// that builds or edits a Scene by hand calls validate_scene before rendering.
 #pragma once
 
 #include <glm/glm.hpp>
