@@ -651,3 +651,19 @@ TEST_CASE("glTF: warnings reach the sink in order, before the error of the same 
     REQUIRE(lines.size() == 1);
     CHECK(lines[0] == path + ": warning: line primitives are skipped");
 }
+
+TEST_CASE("validated once: the makers mark their scenes, require_valid_scene checks only the others") {
+    const std::string triangle = kDataDir + "triangle.gltf";
+    CHECK(make_builtin_scene("hand", SceneOptions{}).validated);
+    CHECK(load_gltf_scene(triangle, GltfOptions{}).validated);
+    CHECK(load_scene("car").validated);
+    CHECK(load_scene(triangle).validated);
+    CHECK(make_mostly_static(make_builtin_scene("car", SceneOptions{}), 10).validated);
+    CHECK_FALSE(Scene{}.validated);
+
+    Scene edited = make_builtin_scene("hand", SceneOptions{});
+    edited.triangle_material[0] = 99;
+    CHECK_NOTHROW(require_valid_scene(edited));  // trusted: its maker checked it, the edit did not say so
+    edited.validated = false;
+    CHECK(error_of([&] { require_valid_scene(edited); }).find("triangle 0 uses material 99") != std::string::npos);
+}

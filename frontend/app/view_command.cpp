@@ -448,6 +448,7 @@ int ViewCommand::run() const {
             posed.camera.view_close = orbit * base.camera.view_close;
             posed.camera.lens_radius = view.lens_radius;
             posed.camera.focus_distance = view.focus;
+            posed.validated = false;  // camera from the keys: the renderer checks it again
 
             RenderSettings settings;
             settings.width = width;

@@ -36,8 +36,8 @@ struct CpuOptions {
 // image is the same for every settings.cull (tests/test_frontend_cpu.cpp).
 // stats.samples_tested counts the exact tests run (samples that passed the
 // cull), stats.samples_hit those that found coverage. Deterministic whatever
-// the thread count. Throws std::invalid_argument for bad settings; the
-// scene is trusted to be valid (scene/scene.hpp).
+// the thread count. Throws std::invalid_argument for bad settings and
+// SceneError for a bad scene.
 RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, const CpuOptions& options = {});
 
 }  // namespace blurcull::frontend

@@ -150,6 +150,7 @@ unsigned resolve_thread_count(int requested) {
 RenderResult render_embree(const Scene& scene, const RenderSettings& settings) {
     const Clock::time_point start = Clock::now();
     validate_settings(settings);
+    require_valid_scene(scene);
     const CameraModel model(scene.camera, settings.width, settings.height);
     const unsigned thread_count = resolve_thread_count(settings.threads);
 

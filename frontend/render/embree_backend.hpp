@@ -11,8 +11,8 @@ namespace blurcull::frontend {
 // blurcull::kernelf::pixel_sample(px, py, j, spp, seed). Deterministic: the
 // image depends only on the scene and settings (not on the thread count).
 // stats.samples_tested = rays traced, stats.samples_hit = rays that hit.
-// Throws std::invalid_argument for bad settings, std::runtime_error for
-// Embree failures; the scene is trusted to be valid (scene/scene.hpp).
+// Throws std::invalid_argument for bad settings, SceneError for a bad scene
+// (validate_scene), std::runtime_error for Embree failures.
 RenderResult render_embree(const Scene& scene, const RenderSettings& settings);
 
 }  // namespace blurcull::frontend

@@ -59,8 +59,8 @@ public:
     // settings.method "stochastic" renders as described above; "interleave",
     // "interval" and "accum" as the CPU renderers of interleaved_backend.hpp
     // (gl_methods.hpp; their sample_ids are in that layout, spp per pixel).
-    // Throws std::invalid_argument for bad settings, gl::GlError when the
-    // image does not fit the context's limits; the scene is trusted to be valid.
+    // Throws std::invalid_argument for bad settings, SceneError for a bad
+    // scene, gl::GlError when the image does not fit the context's limits.
     RenderResult render(const Scene& scene, const RenderSettings& settings, const GlOptions& options = {},
                         std::vector<std::uint32_t>* sample_ids = nullptr);
 

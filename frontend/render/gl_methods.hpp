@@ -23,7 +23,7 @@ struct GlMethodPrograms;
 // (current on the calling thread). With sample_ids, fills it as the CPU
 // renderers do: (*sample_ids)[p * spp + j], no_sample_hit for the background.
 // Throws std::invalid_argument for bad settings or an unknown method,
-// gl::GlError when the framebuffer (the image;
+// SceneError for a bad scene, gl::GlError when the framebuffer (the image;
 // interleave: one cell per tile of the width*s x height*s lattice) exceeds
 // the context's limits.
 RenderResult render_gl_method(const gl::HeadlessContext& context, std::shared_ptr<GlMethodPrograms>& programs,

@@ -8,7 +8,7 @@
 // Same scene, camera model, shading, coverage test (kernel<double>::covers),
 // z-buffer rule (strict, triangles in index order), resolve and statistics as
 // render_cpu; deterministic whatever the thread count. Each throws
-// std::invalid_argument for bad settings (the scene is trusted to be valid).
+// std::invalid_argument for bad settings and SceneError for a bad scene.
 #pragma once
 
 #include "render/camera_model.hpp"
@@ -100,7 +100,7 @@ struct MethodPlan {
 };
 
 // Throws std::invalid_argument (bad settings, unknown method, interleave with
-// a non-square spp).
+// a non-square spp) or SceneError.
 MethodPlan make_method_plan(const Scene& scene, const RenderSettings& settings, const InterleaveOptions& options = {});
 
 // The box that pass k tests triangle i (visible) in and its rectangle of

@@ -27,12 +27,13 @@ std::vector<std::string> builtin_scene_names() { return {"hand", "car", "dragonf
 Scene make_builtin_scene(const std::string& name, const SceneOptions& options) {
     Scene scene = builtin::build_scene(name, options);
     validate_scene(scene);
+    scene.validated = true;
     return scene;
 }
 
 Scene make_mostly_static(const Scene& source, int moving_every) {
     if (moving_every < 1) throw SceneError("mostly static scene: moving_every must be >= 1");
-    Scene scene = source;
+    Scene scene = source;  // keeps source.validated: the result is valid when the source is
     scene.position_open.clear();
     scene.position_close.clear();
     scene.camera.lens_radius = 0.0f;

@@ -82,6 +82,7 @@ Scene load_scene(const std::string& name_or_path, const SceneSettings& settings,
     Scene scene = build_builtin(name_or_path, settings);
     apply_lens_settings(scene.camera, settings);
     validate_scene(scene);
+    scene.validated = true;
     return scene;
 }
 

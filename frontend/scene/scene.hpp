@@ -3,10 +3,10 @@
 // thin-lens camera whose view may also differ between the two, flat materials.
 //
 // Validity is checked once, where a scene is made: make_builtin_scene,
-// load_gltf_scene and load_scene return scenes that pass validate_scene
-// (scene_checks.hpp), and make_mostly_static keeps a valid scene valid. The
-// backends trust the scene they are given and do not check it again: code
-// that builds or edits a Scene by hand calls validate_scene before rendering.
+// load_gltf_scene and load_scene return scenes that passed validate_scene
+// (scene_checks.hpp) and say so in Scene::validated; make_mostly_static keeps
+// a valid scene valid. The backends call require_valid_scene, which trusts a
+// scene so marked and checks any other (one built by hand).
 #pragma once
 
 #include <glm/glm.hpp>
@@ -47,6 +47,12 @@ struct Scene {
     Camera camera;
     glm::vec3 light_direction{0.3f, 0.8f, 0.5f};  // towards the light, world space
     glm::vec3 background{0.02f, 0.02f, 0.03f};
+
+    // True when the maker that returned this scene validated it, so the
+    // backends need not check it again. Code that edits such a scene in a
+    // way that could break validity (new vertices, triangles, materials, or
+    // values from outside) clears it, and the backend checks it once more.
+    bool validated = false;
 };
 
 }  // namespace blurcull::frontend

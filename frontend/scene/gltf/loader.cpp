@@ -64,12 +64,13 @@ Scene build_scene(const std::string& path, const GltfOptions& options, const War
     return scene;
 }
 
-void validate_loaded_scene(const Scene& scene, const std::string& path) {
+void validate_loaded_scene(Scene& scene, const std::string& path) {
     try {
         validate_scene(scene);
     } catch (const SceneError& error) {
         throw SceneError(path + ": " + error.what());
     }
+    scene.validated = true;
 }
 
 }  // namespace blurcull::frontend::gltf

@@ -14,7 +14,8 @@ namespace blurcull::frontend::gltf {
 // both shutter ends, appends the meshes and sets up the camera.
 Scene build_scene(const std::string& path, const GltfOptions& options, const WarningSink& warn);
 
-// validate_scene with a failure worded as the loader's: "<path>: scene ...".
-void validate_loaded_scene(const Scene& scene, const std::string& path);
+// validate_scene with a failure worded as the loader's ("<path>: scene
+// ..."); marks the scene validated.
+void validate_loaded_scene(Scene& scene, const std::string& path);
 
 }  // namespace blurcull::frontend::gltf
