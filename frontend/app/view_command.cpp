@@ -58,10 +58,6 @@ CullMethod next_cull(CullMethod cull) {
     return cull_steps[0];
 }
 
-bool ends_with(const std::string& text, const std::string& suffix) {
-    return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 void require_writable_folder(const std::string& path, const char* flag) {
     std::size_t slash = path.find_last_of('/');
     std::string folder = slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
@@ -334,7 +330,7 @@ int ViewCommand::run() const {
     request.aspect = static_cast<float>(width) / static_cast<float>(height);
     request.blur_scale = blur_scale;
     request.has_shutter = true;  // the view changes it, so it is always explicit
-    const bool gltf = ends_with(scene, ".gltf") || ends_with(scene, ".glb");
+    const bool gltf = is_gltf_file(scene);
     request.shutter_open = 0.0f;
     request.shutter_close = gltf ? 1.0f / 24.0f : 1.0f;  // the loaders' defaults
     if (!shutter.empty()) parse_shutter(shutter, request.shutter_open, request.shutter_close);
@@ -451,6 +447,7 @@ int ViewCommand::run() const {
             posed.camera.view_close = orbit * base.camera.view_close;
             posed.camera.lens_radius = view.lens_radius;
             posed.camera.focus_distance = view.focus;
+            posed.validated = false;  // camera from the keys: the renderer checks it again
 
             RenderSettings settings;
             settings.width = width;

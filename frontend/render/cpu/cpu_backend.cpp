@@ -493,7 +493,7 @@ RenderResult render_cpu_in(const Scene& scene, const RenderSettings& settings, c
 
 RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, const CpuOptions& options) {
     validate_settings(settings);
-    validate_scene(scene);
+    require_valid_scene(scene);
     if (options.footprint < 1) throw std::invalid_argument("cpu: footprint must be >= 1 pixel");
     if (options.block < 0) throw std::invalid_argument("cpu: block must be >= 0 pixels");
     switch (options.precision) {

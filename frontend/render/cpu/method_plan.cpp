@@ -134,7 +134,7 @@ MethodPlan make_method_plan(const Scene& scene, const RenderSettings& settings, 
                                         std::to_string(settings.spp));
         }
     }
-    validate_scene(scene);
+    require_valid_scene(scene);
     MethodPlan plan;
     plan.method = settings.method;
     plan.model = CameraModel(scene.camera, settings.width, settings.height);

@@ -155,7 +155,7 @@ RenderResult render_embree(const Scene& scene, const RenderSettings& settings) {
         throw std::invalid_argument(std::string("render method ") + method.name + ": " +
                                     only_backends_take_it(method.backends) + " (backend embree)");
     }
-    validate_scene(scene);
+    require_valid_scene(scene);
     const CameraModel model(scene.camera, settings.width, settings.height);
     const unsigned thread_count = resolve_thread_count(settings.threads);
 

@@ -123,7 +123,7 @@ gl::Buffer storage_buffer(const gl::Functions& gl, const std::vector<T>& data) {
 // What GlRenderer::render checks before any GL work.
 void check_stochastic_request(const Scene& scene, const RenderSettings& settings, const GlOptions& options) {
     validate_settings(settings);
-    validate_scene(scene);
+    require_valid_scene(scene);
     if (options.cell_pixels < 1) throw std::invalid_argument("gl: cell_pixels must be >= 1");
     if (options.static_group_samples < 0 || options.static_group_samples % samples_per_pass != 0) {
         throw std::invalid_argument("gl: static_group_samples must be 0 or a positive multiple of 4");
@@ -557,7 +557,7 @@ RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settin
 RenderResult render_gl(const Scene& scene, const RenderSettings& settings, const GlOptions& options) {
     const Clock::time_point start = Clock::now();
     validate_settings(settings);
-    validate_scene(scene);
+    require_valid_scene(scene);
     GlRenderer renderer;
     // llvmpipe compiles a program's code on its first draw: one 1x1 frame
     // makes that happen here, so "raster+resolve" is the frame alone.

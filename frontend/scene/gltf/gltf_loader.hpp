@@ -1,11 +1,13 @@
 // glTF 2.0 (.gltf / .glb) scenes for blurcull: node animation and skinning
 // are sampled at shutter open and close, giving every vertex its two world
 // positions; an animated camera node gives view_open / view_close.
+// The loader's steps live beside this header: parse, validate, accessors,
+// nodes, animation, skin, meshes, camera (docs/scenes.md).
 #pragma once
 
-#include "scene/builtin_scenes.hpp"
 #include "scene/scene.hpp"
 #include "scene/scene_error.hpp"
+#include "scene/warnings.hpp"
 
 #include <string>
 
@@ -16,7 +18,6 @@ struct GltfOptions {
     float shutter_open = 0.0f;
     float shutter_close = 1.0f / 24.0f;
     // Scales the shutter interval: close = open + blur_scale * (close - open).
-    // For built-in scenes (load_scene) it scales motion and lens instead.
     float blur_scale = 1.0f;
     // Index into the file's cameras; -1 = the first perspective camera used
     // by a node, or an automatic camera framing the scene when there is none.
@@ -31,13 +32,10 @@ struct GltfOptions {
     float focus_distance = -1.0f;
 };
 
-// Throws SceneError("<path>: <problem>") for anything it cannot load.
-// Non-fatal oddities (points/lines primitives, non-finite positions, morph
-// targets, ...) print one "<path>: warning: ..." line per kind on stderr.
-Scene load_gltf_scene(const std::string& path, const GltfOptions& options);
-
-// A path ending in .gltf / .glb (any case) loads the file; any other name
-// is a built-in scene (blur_scale and aspect are passed on).
-Scene load_scene(const std::string& name_or_path, const GltfOptions& options = GltfOptions{});
+// Loads and validates (validate_scene) the file. Throws SceneError
+// ("<path>: <problem>") for anything it cannot load. Non-fatal oddities
+// (points/lines primitives, non-finite positions, morph targets, ...) go to
+// `warn`, one "<path>: warning: ..." line per kind; an empty sink drops them.
+Scene load_gltf_scene(const std::string& path, const GltfOptions& options, const WarningSink& warn = {});
 
 }  // namespace blurcull::frontend
