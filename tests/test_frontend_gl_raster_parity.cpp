@@ -21,7 +21,7 @@
 #include "render/gl/gpu_layout_shared.h"
 
 #include <blurcull/glsl/kernel_glsl.hpp>
-#include <gl/gl_context.hpp>
+#include "render/gl/gl_context.hpp"
 
 #include <doctest/doctest.h>
 
@@ -96,32 +96,32 @@ void main() {
     uint index_a = uint(i_in[i + 13]), index_b = uint(i_in[i + 14]);
     bool check_screen = i_in[i + 15] != 0;
 
-    vec2 v = raster_to_ndc(raster, image_size);
+    vec2 v = bc_raster_to_ndc(raster, image_size);
     result[o] = floatBitsToUint(v.x); result[o + 1] = floatBitsToUint(v.y);
-    v = ndc_to_raster(ndc, image_size);
+    v = bc_ndc_to_raster(ndc, image_size);
     result[o + 2] = floatBitsToUint(v.x); result[o + 3] = floatBitsToUint(v.y);
-    v = pixel_sample_ndc(pixel, offset, image_size);
+    v = bc_pixel_sample_ndc(pixel, offset, image_size);
     result[o + 4] = floatBitsToUint(v.x); result[o + 5] = floatBitsToUint(v.y);
-    vec4 box = pixel_rect_ndc(rect, image_size);
+    vec4 box = bc_pixel_rect_ndc(rect, image_size);
     for (int k = 0; k < 4; ++k) result[o + 6 + k] = floatBitsToUint(box[k]);
-    ivec4 r = box_cell_rect(lo, hi, cells);
+    ivec4 r = bc_box_cell_rect(lo, hi, cells);
     for (int k = 0; k < 4; ++k) result[o + 10 + k] = uint(r[k]);
-    ivec2 c = interleaved_cell(tile, slot, tile_width);
+    ivec2 c = bc_interleaved_cell(tile, slot, tile_width);
     result[o + 14] = uint(c.x); result[o + 15] = uint(c.y);
-    v = interleaved_sample_ndc(cell, scale, jitter, image_size);
+    v = bc_interleaved_sample_ndc(cell, scale, jitter, image_size);
     result[o + 16] = floatBitsToUint(v.x); result[o + 17] = floatBitsToUint(v.y);
     for (int method = 0; method < 4; ++method) {
-        ScreenBound sb = screen_bound(tri, tri_near, method);
-        SampleBounds b = sample_bounds(tri, lo, hi, method);
+        ScreenBound sb = bc_screen_bound(tri, tri_near, method);
+        SampleBounds b = bc_sample_bounds(tri, lo, hi, method);
         float depth;
-        result[o + 18 + 2 * method] = uint(sample_test(tri, sb, check_screen, b, s, uv, t, tri_near, depth));
+        result[o + 18 + 2 * method] = uint(bc_sample_test(tri, sb, check_screen, b, s, uv, t, tri_near, depth));
         result[o + 19 + 2 * method] = floatBitsToUint(depth);
     }
-    result[o + 26] = depth_nearer(depth_a, depth_b) ? 1u : 0u;
-    float key_a = depth_key(near, depth_a), key_b = depth_key(near, depth_b);
+    result[o + 26] = bc_depth_nearer(depth_a, depth_b) ? 1u : 0u;
+    float key_a = bc_depth_key(near, depth_a), key_b = bc_depth_key(near, depth_b);
     result[o + 27] = floatBitsToUint(key_a);
-    result[o + 28] = depth_key_wins(key_a, index_a, key_b, index_b) ? 1u : 0u;
-    v = camera_coc(lens.x, lens.y, lens.z);
+    result[o + 28] = bc_depth_key_wins(key_a, index_a, key_b, index_b) ? 1u : 0u;
+    v = bc_camera_coc(lens.x, lens.y, lens.z);
     result[o + 29] = floatBitsToUint(v.x); result[o + 30] = floatBitsToUint(v.y);
 }
 )glsl";

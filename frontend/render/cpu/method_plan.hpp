@@ -9,6 +9,7 @@
 #include "scene/scene.hpp"
 
 #include <blurcull/kernel.hpp>
+#include <blurcull/interleaved_tiles.hpp>
 #include <blurcull/patterns.hpp>
 
 #include <cstddef>
