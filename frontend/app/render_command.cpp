@@ -117,9 +117,20 @@ std::string writable_output_path(const RenderCommand& command) {
 // and cpu otherwise (software GL, llvmpipe, is far slower than the cpu
 // backend); one line says which.
 Backend choose_backend(const RenderCommand& command) {
-    if (command.backend != "auto") return parse_backend(command.backend);
-    std::string why;
+    if (command.backend != "auto") {
+        const Backend named = parse_backend(command.backend);
+        if (!backend_built(named)) {
+            throw std::runtime_error("--backend " + command.backend + ": " + backend_missing_reason(named) +
+                                     "; use --backend cpu");
+        }
+        return named;
+    }
+    std::string why = backend_missing_reason(Backend::gl);
+#if BLURCULL_HAVE_GL
     const Backend chosen = gl_hardware_available(&why) ? Backend::gl : Backend::cpu;
+#else
+    const Backend chosen = Backend::cpu;
+#endif
     if (!command.quiet) {
         std::fprintf(stderr, "note: --backend auto: using %s (%s)\n", to_string(chosen),
                      chosen == Backend::gl ? "hardware OpenGL 4.5 context" : ("gl: " + why).c_str());
@@ -163,12 +174,14 @@ void refuse_unhonoured_options(const RenderCommand& command, Backend backend) {
 
 // --backend gl asked for explicitly: refused, with the reason, when no
 // context can be made.
-void require_gl_context(const RenderCommand& command) {
+void require_gl_context([[maybe_unused]] const RenderCommand& command) {
+#if BLURCULL_HAVE_GL
     if (command.backend != "gl") return;
     std::string why;
     if (!gl_available(&why)) {
         throw std::runtime_error("--backend gl: no OpenGL 4.5 context could be made (" + why + "); use --backend cpu");
     }
+#endif
 }
 
 // The scene, its lens, focus, shutter and blur-scale overrides; throws naming
@@ -207,10 +220,15 @@ RenderJob set_up(const RenderCommand& command) {
 // Renders on the job's backend with its method.
 RenderResult dispatch(const RenderJob& job) {
     try {
+        // choose_backend refused the backends this build does not have.
         switch (job.backend) {
+#if BLURCULL_HAVE_EMBREE
             case Backend::embree: return render_embree(job.scene, job.settings);
+#endif
+#if BLURCULL_HAVE_GL
             case Backend::gl: return render_gl(job.scene, job.settings, job.gl);
-            case Backend::cpu: break;
+#endif
+            default: break;
         }
         if (job.settings.method != RenderMethod::stochastic) return render_with_method(job.scene, job.settings);
         return render_cpu(job.scene, job.settings, job.cpu);

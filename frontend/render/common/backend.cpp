@@ -18,6 +18,23 @@ const char* to_string(Backend backend) {
     return "unknown";
 }
 
+bool backend_built(Backend backend) {
+    switch (backend) {
+        case Backend::cpu: return true;
+        case Backend::embree: return BLURCULL_HAVE_EMBREE != 0;
+        case Backend::gl: return BLURCULL_HAVE_GL != 0;
+    }
+    return false;
+}
+
+std::string backend_missing_reason(Backend backend) {
+    if (backend_built(backend)) return "";
+    if (backend == Backend::embree) return "this blurcull was built without Embree 3 (libembree-dev not found, or BLURCULL_WITH_EMBREE=OFF, when it "
+               "was configured)";
+    return "this blurcull was built without OpenGL (the headers of libegl-dev, libgl-dev and libosmesa6-dev not "
+           "found, or BLURCULL_WITH_GL=OFF, when it was configured)";
+}
+
 std::vector<std::string> backend_names() {
     std::vector<std::string> names;
     for (Backend backend : every_backend) names.emplace_back(to_string(backend));

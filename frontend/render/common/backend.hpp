@@ -27,6 +27,15 @@ std::vector<std::string> backend_names();
 // The backend named `name`; throws std::invalid_argument naming the valid ones otherwise.
 Backend parse_backend(const std::string& name);
 
+// Whether this build has `backend`: the cpu backend always; embree and gl
+// when their libraries or headers were found at configure time
+// (frontend/CMakeLists.txt sets BLURCULL_HAVE_EMBREE and BLURCULL_HAVE_GL).
+bool backend_built(Backend backend);
+
+// Why `backend` is not in this build ("" when it is): what was missing at
+// configure time and the Debian package that brings it.
+std::string backend_missing_reason(Backend backend);
+
 // "the cpu backend", "the cpu and gl backends", "the cpu, embree and gl backends".
 std::string describe_backends(BackendSet set);
 
