@@ -8,6 +8,10 @@ namespace blurcull::frontend {
 
 const std::vector<CullMethodInfo>& cull_methods() {
     static const BackendSet rasterizers = backend_bit(Backend::cpu) | backend_bit(Backend::gl);
+    // Each entry's formula (docs/architecture.md, "hop test"): the kernel's
+    // sample_bounds (include/blurcull/detail/sample_bounds_body.inl) runs
+    // screen_bound (screen_bound_body.inl: bbox, hull) and, for the methods
+    // that bound samples, dual_space_body.inl or two_stage_body.inl.
     static const std::vector<CullMethodInfo> methods = {
         {CullMethod::bbox, "bbox", {}, "the clipped screen box of the triangle over shutter and lens", BC_CULL_BBOX, false,
          rasterizers},
