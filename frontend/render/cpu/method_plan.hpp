@@ -56,8 +56,8 @@ struct MethodPlan {
 // a non-square spp) or SceneError.
 MethodPlan make_method_plan(const Scene& scene, const RenderSettings& settings, const InterleaveOptions& options = {});
 
-// The box that pass k tests triangle i (visible) in and its rectangle of
-// lattice cells, one cell wider on each side; empty rect when off screen.
+// The box that pass k tests triangle i (visible) in and the lattice cells
+// that can hold a sample in it (box_cell_rect); empty rect when off screen.
 struct PassBox {
     kernel<double>::ScreenBound bound;
     CellRect rect;
