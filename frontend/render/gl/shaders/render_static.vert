@@ -10,7 +10,7 @@ flat out int g_index;
 void main() {
     int i = int(static_list[gl_VertexID / 3]);
     g_index = i;
-    if (infos[i].path != PATH_STATIC) {
+    if (infos[i].path != BC_GL_PATH_STATIC) {
         gl_Position = vec4(-2.0, -2.0, 0.0, 1.0);
         return;
     }
