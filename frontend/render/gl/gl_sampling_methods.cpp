@@ -1,9 +1,9 @@
 #include "render/gl/gl_sampling_methods.hpp"
 
 #include "render/common/camera_model.hpp"
+#include "render/common/method_plan.hpp"
 #include "render/common/moving_triangle.hpp"
 #include "render/common/progress.hpp"
-#include "render/cpu/methods.hpp"
 #include "render/gl/gl_render_targets.hpp"
 #include "render/gl/gpu_layout_shared.h"
 

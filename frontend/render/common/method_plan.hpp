@@ -1,7 +1,8 @@
-// What the CPU renderers of interleave, interval and accum (methods.hpp) and
-// the GL backend's methods (gl_methods.cpp) share: every choice of samples
-// and boxes is made here once, so both backends test the same samples against
-// the same boxes.
+// What the CPU renderers of interleave, interval and accum
+// (render/cpu/methods.hpp) and the GL backend's methods
+// (render/gl/gl_sampling_methods.cpp) share: every choice of samples and boxes
+// is made here once, so both backends test the same samples against the same
+// boxes.
 #pragma once
 
 #include "render/common/camera_model.hpp"

@@ -1,4 +1,4 @@
-#include "render/cpu/method_plan.hpp"
+#include "render/common/method_plan.hpp"
 
 #include "render/common/moving_triangle.hpp"
 #include "render/common/shading.hpp"
