@@ -17,6 +17,12 @@ vec2 sample_ndc(uint px, uint py, vec2 offset) {
     return bc_pixel_sample_ndc(ivec2(px, py), offset, image_size);
 }
 
+// The cell (row 0 at the top) of a fragment at window position frag_coord
+// (gl_FragCoord.xy) in a framebuffer of `size` cells: GL's window rows grow upwards.
+uvec2 fragment_cell(vec2 frag_coord, vec2 size) {
+    return uvec2(uint(frag_coord.x), uint(size.y) - 1u - uint(frag_coord.y));
+}
+
 // The current pass's samples (render_samples.comp): pixel p's sample
 // pass_base + k is at slot 4 p + k.
 #define PASS_SAMPLE_BUFFERS \

@@ -31,8 +31,7 @@ flat in int g_box;
 layout(location = 0) out uint out_id;
 
 void main() {
-    // The cell (row 0 at the top) of this fragment: GL's window rows grow upwards.
-    uvec2 cell = uvec2(uint(gl_FragCoord.x), uint(target_size.y) - 1u - uint(gl_FragCoord.y));
+    uvec2 cell = fragment_cell(gl_FragCoord.xy, target_size);
     vec2 ndc;
     vec2 lens = pass_lens;
     float time = pass_t;

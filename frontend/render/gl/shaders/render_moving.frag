@@ -14,15 +14,10 @@ flat in vec4 g_time_lines_v_a;
 flat in vec4 g_time_lines_v_b;
 layout(location = 0) out uint out_id;
 
-// The pixel (row 0 at the top) of this fragment: GL's window rows grow upwards.
-uvec2 fragment_pixel() {
-    return uvec2(uint(gl_FragCoord.x), uint(image_size.y) - 1u - uint(gl_FragCoord.y));
-}
-
 void main() {
     uint j = pass_base + uint(gl_SampleID);
     if (j >= spp) discard;
-    uvec2 pixel = fragment_pixel();
+    uvec2 pixel = fragment_cell(gl_FragCoord.xy, image_size);
     uint slot = (pixel.y * uint(image_size.x) + pixel.x) * 4u + uint(gl_SampleID);
     vec4 ndc_lens = pass_ndc_lens[slot];
     PixelSample s;

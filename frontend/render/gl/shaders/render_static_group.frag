@@ -19,12 +19,8 @@ layout(std430, binding = 15) buffer GroupDepths { uint group_depths[]; };
 
 flat in int g_index;
 
-uvec2 fragment_pixel() {
-    return uvec2(uint(gl_FragCoord.x), uint(image_size.y) - 1u - uint(gl_FragCoord.y));
-}
-
 void main() {
-    uvec2 pixel = fragment_pixel();
+    uvec2 pixel = fragment_cell(gl_FragCoord.xy, image_size);
     // The rect holds every sample in the box: none outside it can be covered.
     ivec4 rect = infos[g_index].rect;
     if (int(pixel.x) < rect.x || int(pixel.x) > rect.z || int(pixel.y) < rect.y || int(pixel.y) > rect.w) return;
