@@ -31,7 +31,7 @@ set(allowed
   "common|kernel,scene"
   "cpu|kernel,scene,common"
   "embree|kernel,scene,common"
-  "gl|kernel,glsl,scene,common,cpu"
+  "gl|kernel,glsl,scene,common"
   "app|kernel,glsl,scene,common,cpu,embree,gl")
 
 function(unit_of path out)

@@ -29,9 +29,6 @@ using Clock = std::chrono::steady_clock;
 
 constexpr int tile_size = 16;  // pixels per side of a binning and work tile
 
-double ms_since(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 struct PixelRect {
     int x0, y0, x1, y1;  // inclusive

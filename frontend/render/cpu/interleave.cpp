@@ -16,7 +16,6 @@ namespace blurcull::frontend {
 using cpu_methods::Clock;
 using cpu_methods::Counters;
 using cpu_methods::K;
-using cpu_methods::ms_since;
 
 namespace {
 

@@ -16,7 +16,6 @@ namespace blurcull::frontend {
 using cpu_methods::Clock;
 using cpu_methods::Counters;
 using cpu_methods::K;
-using cpu_methods::ms_since;
 
 RenderResult render_interval(const Scene& scene, const RenderSettings& settings, std::vector<std::uint32_t>* sample_ids) {
     const Clock::time_point start = Clock::now();

@@ -3,8 +3,9 @@
 // counters, the per-sample test with the depth rule, and the common end of a render.
 #pragma once
 
-#include "render/common/render_types.hpp"
 #include "render/common/method_plan.hpp"
+#include "render/common/progress.hpp"
+#include "render/common/render_types.hpp"
 #include "scene/scene.hpp"
 
 #include <blurcull/kernel.hpp>
@@ -20,9 +21,6 @@ namespace blurcull::frontend::cpu_methods {
 // the boxes that restrict it are conservative against it.
 using K = blurcull::kernel<double>;
 using Clock = std::chrono::steady_clock;
-
-// Milliseconds from `start` to now.
-double ms_since(Clock::time_point start);
 
 // One sample: its NDC position, lens position and time.
 struct Sample {

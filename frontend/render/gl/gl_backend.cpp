@@ -3,6 +3,7 @@
 #include "render/common/camera_model.hpp"
 #include "render/common/cull_method.hpp"
 #include "render/common/moving_triangle.hpp"
+#include "render/common/progress.hpp"
 #include "render/common/shading.hpp"
 #include "render/gl/gl_context.hpp"
 #include "render/gl/gl_render_targets.hpp"
@@ -30,9 +31,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using gl::GlError;
 
-double ms_since(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 // MSAA samples per pass: llvmpipe's maximum; spp / 4 passes reach any spp.
 constexpr int samples_per_pass = 4;

@@ -29,9 +29,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using gl::GlError;
 
-double ms_since(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 // The shaders' std430 structs (gpu_layout_shared.h, shared with the GLSL).
 using gpu::GpuMovingTriangle;
