@@ -1,18 +1,12 @@
 #include "render/cpu/method_runner.hpp"
 
-#include <algorithm>
+#include "render/cpu/parallel_items.hpp"
+
 #include <atomic>
-#include <thread>
 #include <utility>
 
 namespace blurcull::frontend::cpu_methods {
 namespace {
-
-int thread_count(const RenderSettings& settings, int items) {
-    const int threads =
-        settings.threads > 0 ? settings.threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-    return std::max(1, std::min(threads, items));
-}
 
 void store_counters(RenderStats& stats, const Counters& counters) {
     stats.samples_tested = counters.tested;
@@ -20,34 +14,6 @@ void store_counters(RenderStats& stats, const Counters& counters) {
     stats.bounds_computed = counters.bounded;
     stats.bounds_empty = counters.bounded_empty;
 }
-
-}  // namespace
-
-Counters run_items(const RenderSettings& settings, int items, const std::function<void(int, Counters&)>& work) {
-    std::atomic<int> next{0};
-    std::atomic<std::uint64_t> tested{0}, hit{0}, bounded{0}, bounded_empty{0};
-    auto worker = [&]() {
-        Counters local;
-        for (int item = next.fetch_add(1); item < items; item = next.fetch_add(1)) work(item, local);
-        tested.fetch_add(local.tested);
-        hit.fetch_add(local.hit);
-        bounded.fetch_add(local.bounded);
-        bounded_empty.fetch_add(local.bounded_empty);
-    };
-    std::vector<std::thread> helpers;
-    try {
-        for (int i = 1; i < thread_count(settings, items); ++i) helpers.emplace_back(worker);
-    } catch (...) {
-        next.store(items);
-        for (std::thread& helper : helpers) helper.join();
-        throw;
-    }
-    worker();
-    for (std::thread& helper : helpers) helper.join();
-    return Counters{tested.load(), hit.load(), bounded.load(), bounded_empty.load()};
-}
-
-namespace {
 
 MethodPlan plan_for(const Scene& scene, const RenderSettings& settings, RenderMethod method,
                     const InterleaveOptions& options) {
@@ -57,6 +23,20 @@ MethodPlan plan_for(const Scene& scene, const RenderSettings& settings, RenderMe
 }
 
 }  // namespace
+
+Counters run_items(const RenderSettings& settings, int items, const std::function<void(int, Counters&)>& work) {
+    std::atomic<std::uint64_t> tested{0}, hit{0}, bounded{0}, bounded_empty{0};
+    run_parallel_items(
+        render_threads(settings), items, [] { return Counters{}; },
+        [&](Counters& local, int item) { work(item, local); },
+        [&](const Counters& local) {
+            tested.fetch_add(local.tested);
+            hit.fetch_add(local.hit);
+            bounded.fetch_add(local.bounded);
+            bounded_empty.fetch_add(local.bounded_empty);
+        });
+    return Counters{tested.load(), hit.load(), bounded.load(), bounded_empty.load()};
+}
 
 MethodRender::MethodRender(const Scene& scene, const RenderSettings& settings, RenderMethod method,
                            const InterleaveOptions& options)
