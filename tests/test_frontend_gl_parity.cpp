@@ -8,22 +8,7 @@
 //
 // No GL context (no Mesa): fails when CI=true, else skips with a message.
 
-// Host code must not contract a*b+c into an fma: llvmpipe does not fuse
-// (design brief, section 8). Before any include, so the kernel's functions
-// instantiated below are compiled this way too.
-#if defined(__clang__)
-#pragma clang fp contract(off)
-#elif defined(__GNUC__)
-#pragma GCC optimize("fp-contract=off")
-#endif
-
-#include "frontend_test_helpers.hpp"
-#include "kernel_generators.hpp"
-#include "render/gl/gl_context.hpp"
-
-#include <blurcull/glsl/kernel_glsl.hpp>
-
-#include <doctest/doctest.h>
+#include "gl_parity_helpers.hpp"
 
 #include <algorithm>
 #include <array>
@@ -40,7 +25,7 @@
 
 using namespace blurcull;
 using namespace blurcull::testing;
-using blurcull::frontend::test::is_ci;
+using blurcull::frontend::test::context_or_skip;
 using Kf = kernel<float>;
 
 namespace {
@@ -185,17 +170,6 @@ std::int64_t ulp_distance(float a, float b) {
     };
     std::int64_t d = ordered(a) - ordered(b);
     return d < 0 ? -d : d;
-}
-
-// A context, or nothing after saying why (and failing in CI).
-std::optional<gl::HeadlessContext> context_or_skip(std::optional<gl::ContextKind> kind = std::nullopt) {
-    try {
-        return kind ? gl::HeadlessContext::create(*kind) : gl::HeadlessContext::create();
-    } catch (const gl::GlError& e) {
-        if (is_ci()) FAIL("no headless OpenGL 4.5 context in CI: " << std::string(e.what()));
-        MESSAGE("SKIPPED: no headless OpenGL 4.5 context (" << std::string(e.what()) << "); CI=true makes this a failure");
-        return std::nullopt;
-    }
 }
 
 struct Inputs {

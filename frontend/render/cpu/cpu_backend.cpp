@@ -4,6 +4,7 @@
 #include "render/common/moving_triangle.hpp"
 #include "render/common/progress.hpp"
 #include "render/common/shading.hpp"
+#include "render/cpu/parallel_items.hpp"
 #include "scene/scene_checks.hpp"
 
 #include <blurcull/kernel.hpp>
@@ -387,31 +388,21 @@ private:
 // does not depend on the schedule.
 template <class Real>
 void rasterize_tiles(const FrameContext<Real>& frame, int threads, Clock::time_point start, RenderResult& result) {
-    std::atomic<int> next_tile{0};
     std::atomic<std::uint64_t> total_tested{0}, total_hit{0}, total_bounded{0}, total_bounded_empty{0};
     const int tile_count = frame.setup.tiles_x * frame.setup.tiles_y;
     Progress progress(frame.settings.progress, start, tile_count);
-    auto work = [&]() {
-        TileRasterizer<Real> rasterizer(frame);
-        for (int tile = next_tile.fetch_add(1); tile < tile_count; tile = next_tile.fetch_add(1)) {
+    cpu_methods::run_parallel_items(
+        threads, tile_count, [&] { return TileRasterizer<Real>(frame); },
+        [&](TileRasterizer<Real>& rasterizer, int tile) {
             rasterizer.render_tile(tile, result.image);
             progress.advance();
-        }
-        total_tested.fetch_add(rasterizer.tested);
-        total_hit.fetch_add(rasterizer.hits);
-        total_bounded.fetch_add(rasterizer.bounded);
-        total_bounded_empty.fetch_add(rasterizer.bounded_empty);
-    };
-    std::vector<std::thread> helpers;
-    try {
-        for (int i = 1; i < std::min(threads, tile_count); ++i) helpers.emplace_back(work);
-    } catch (...) {
-        next_tile.store(tile_count);
-        for (std::thread& helper : helpers) helper.join();
-        throw;
-    }
-    work();
-    for (std::thread& helper : helpers) helper.join();
+        },
+        [&](const TileRasterizer<Real>& rasterizer) {
+            total_tested.fetch_add(rasterizer.tested);
+            total_hit.fetch_add(rasterizer.hits);
+            total_bounded.fetch_add(rasterizer.bounded);
+            total_bounded_empty.fetch_add(rasterizer.bounded_empty);
+        });
     progress.finish();
     RenderStats& stats = result.stats;
     stats.samples_tested = total_tested.load();
@@ -431,8 +422,7 @@ RenderResult render_cpu_in(const Scene& scene, const RenderSettings& settings, c
     // Only the per-footprint methods bound lens and time; a static, in-focus
     // triangle has neither to bound, whatever the method.
     const bool cull_bounds = cull.bounds_samples;
-    const int threads =
-        settings.threads > 0 ? settings.threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    const int threads = cpu_methods::render_threads(settings);
 
     RenderResult result;
     result.stats.triangles = scene.triangles.size();
