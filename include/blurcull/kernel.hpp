@@ -248,6 +248,10 @@ struct kernel {
 #include "detail/two_stage_body.inl"
 #include "detail/sample_bounds_body.inl"
 #include "detail/raster_body.inl"
+#include "detail/dodecahedron_body.inl"
+#include "detail/clusters_body.inl"
+#include "detail/virtual_view_body.inl"
+#include "detail/layer_trace_body.inl"
 };
 
 using kernelf = kernel<float>;
