@@ -208,4 +208,22 @@ inline TraceRay make_trace_ray(Rng& rng, const LayerScene& s) {
     return r;
 }
 
+// The pixels of a mirror sphere (radius 1 at z = 5) seen from the origin
+// through a 96 x 96 image: positions and the mirror directions of the view
+// rays.
+inline void mirror_sphere_pixels(std::vector<dvec3>& positions, std::vector<dvec3>& directions) {
+    for (int y = 0; y < 96; ++y)
+        for (int x = 0; x < 96; ++x) {
+            dvec3 ray = glm::normalize(dvec3((x + 0.5) / 96.0 * 0.5 - 0.25, (y + 0.5) / 96.0 * 0.5 - 0.25, 1.0));
+            dvec3 centre(0, 0, 5);
+            double b = glm::dot(ray, centre);
+            double disc = b * b - (glm::dot(centre, centre) - 1.0);
+            if (disc <= 0) continue;
+            dvec3 p = ray * (b - std::sqrt(disc));
+            dvec3 nrm = glm::normalize(p - centre);
+            positions.push_back(p);
+            directions.push_back(ray - 2.0 * glm::dot(ray, nrm) * nrm);
+        }
+}
+
 }  // namespace blurcull::testing

@@ -201,23 +201,15 @@ TEST_CASE_TEMPLATE("clustering a mirror sphere: facets, 1-3 clusters each, deter
                    double) {
     using K = kernel<Real>;
     using V = typename K::vec3;
-    // A sphere of radius 1 at z = 5 seen from the origin: each visible point's
-    // mirror direction of the view ray.
+    // A mirror sphere: each visible point's mirror direction of the view ray.
+    std::vector<dvec3> dp, dd;
+    mirror_sphere_pixels(dp, dd);
     std::vector<V> positions;
     std::vector<V> directions;
-    for (int y = 0; y < 96; ++y)
-        for (int x = 0; x < 96; ++x) {
-            dvec3 ray = glm::normalize(dvec3((x + 0.5) / 96.0 * 0.5 - 0.25, (y + 0.5) / 96.0 * 0.5 - 0.25, 1.0));
-            dvec3 centre(0, 0, 5);
-            double b = glm::dot(ray, centre);
-            double disc = b * b - (glm::dot(centre, centre) - 1.0);
-            if (disc <= 0) continue;
-            dvec3 p = ray * (b - std::sqrt(disc));
-            dvec3 nrm = glm::normalize(p - centre);
-            dvec3 r = ray - 2.0 * glm::dot(ray, nrm) * nrm;
-            positions.push_back(to_vec3<Real>(p));
-            directions.push_back(to_vec3<Real>(r));
-        }
+    for (std::size_t i = 0; i < dp.size(); ++i) {
+        positions.push_back(to_vec3<Real>(dp[i]));
+        directions.push_back(to_vec3<Real>(dd[i]));
+    }
     ClusterOptions options;
     Clustering<Real> a = cluster_reflector_pixels<Real>(positions, directions, options);
     Clustering<Real> b = cluster_reflector_pixels<Real>(positions, directions, options);

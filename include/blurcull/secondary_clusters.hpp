@@ -62,7 +62,8 @@ int first_centres(const std::vector<typename kernel<Real>::vec3>& positions, con
         std::size_t pick = 0;
         for (std::size_t m : members) {
             Real d = K::bc_distance2(positions[m], centres[0]);
-            for (int c = 1; c < chosen; ++c) d = K::min(d, K::bc_distance2(positions[m], centres[static_cast<std::size_t>(c)]));
+            for (int c = 1; c < chosen; ++c)
+                d = K::min(d, K::bc_distance2(positions[m], centres[static_cast<std::size_t>(c)]));
             if (d > farthest) {
                 farthest = d;
                 pick = m;
@@ -128,12 +129,14 @@ Clustering<Real> cluster_reflector_pixels(const std::vector<typename kernel<Real
     std::size_t n = std::min(positions.size(), directions.size());
     out.cluster_of.assign(n, -1);
     std::array<std::vector<std::size_t>, BC_DODECAHEDRON_FACES> members;
-    for (std::size_t i = 0; i < n; ++i) members[static_cast<std::size_t>(K::dodecahedron_facet(directions[i]))].push_back(i);
+    for (std::size_t i = 0; i < n; ++i)
+        members[static_cast<std::size_t>(K::dodecahedron_facet(directions[i]))].push_back(i);
     std::uint32_t target = K::cluster_target_size(static_cast<std::uint32_t>(n), options.wanted_clusters);
     std::vector<int> local;
     for (int facet = 0; facet < BC_DODECAHEDRON_FACES; ++facet) {
         const auto& m = members[static_cast<std::size_t>(facet)];
-        auto k = static_cast<int>(K::clusters_for_facet(static_cast<std::uint32_t>(m.size()), target, options.max_per_facet));
+        auto pixels = static_cast<std::uint32_t>(m.size());
+        auto k = static_cast<int>(K::clusters_for_facet(pixels, target, options.max_per_facet));
         if (k == 0) continue;
         std::array<typename K::vec3, BC_CLUSTERS_PER_FACET_MAX> centres{};
         k = detail::first_centres<Real>(positions, m, k, options.seed, facet, centres);
@@ -149,8 +152,9 @@ Clustering<Real> cluster_reflector_pixels(const std::vector<typename kernel<Real
         }
         std::array<int, BC_CLUSTERS_PER_FACET_MAX> global{};
         for (int c = 0; c < k; ++c) {
+            const auto& s = sums[static_cast<std::size_t>(c)];
             global[static_cast<std::size_t>(c)] = static_cast<int>(out.clusters.size());
-            if (sums[static_cast<std::size_t>(c)].count > 0u) out.clusters.push_back({facet, sums[static_cast<std::size_t>(c)]});
+            if (s.count > 0u) out.clusters.push_back({facet, s});
         }
         for (std::size_t i = 0; i < m.size(); ++i) out.cluster_of[m[i]] = global[static_cast<std::size_t>(local[i])];
     }

@@ -94,11 +94,12 @@ void main() {
     bool wins = bc_depth_nearer(hit_depth, depth) || bc_depth_key_wins(key, px, depth, py);
     vec2 camera_ab = bc_camera_coc(values[37], values[38], values[39]);
 
+    float secondary = check_secondary_rays(vec3(values[45], values[46], values[47]), vec3(values[48], values[49], values[57]));
+
     values[0] = coc + vertex.x + float(finite) + float(needs) + float(covered) + depth + float(on_screen) + float(footprint_state) +
                 float(passes) + time_range.x + sample_at.offset.x + sample_at.lens.y + sample_at.time + patterned.time +
                 tiled.time + from_setup.time + others[0].time + others[1].time + others[2].time + others[3].time + tuple.x +
                 float(tile) + jitter.x + accum.time + accum.offset.x + accum.lens.y + bc_rotate_unit(jitter.x, jitter.y) +
                 raster.x + sample_pos.y + float(rect.x) + rect_ndc.w + interleaved.x + float(test) + key + float(wins) +
-                camera_ab.y +
-                check_secondary_rays(vec3(values[45], values[46], values[47]), vec3(values[48], values[49], values[57]));
+                camera_ab.y + secondary;
 }

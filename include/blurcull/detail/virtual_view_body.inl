@@ -59,10 +59,12 @@ struct VirtualViewFit {
 // revisited", JCGT 6(1) 2017), with right x up = forward.
 BC_FN void virtual_view_basis(vec3 forward, BC_OUT(vec3) right, BC_OUT(vec3) up) {
     real sign = forward.z >= real(0) ? real(1) : -real(1);
-    real a = -real(1) / (sign + forward.z);
-    real b = forward.x * forward.y * a;
-    right = vec3(real(1) + sign * forward.x * forward.x * a, sign * b, -sign * forward.x);
-    up = vec3(b, sign + forward.y * forward.y * a, -forward.y);
+    BC_PRECISE real a = -real(1) / (sign + forward.z);
+    BC_PRECISE real b = forward.x * forward.y * a;
+    BC_PRECISE real rx = real(1) + sign * forward.x * forward.x * a;
+    BC_PRECISE real uy = sign + forward.y * forward.y * a;
+    right = vec3(rx, sign * b, -sign * forward.x);
+    up = vec3(b, uy, -forward.y);
 }
 
 // First step of the fit, from the sums over the cluster's pixels.
@@ -84,7 +86,8 @@ BC_FN VirtualViewFit virtual_view_begin(BC_IN(ClusterSums) sums, real tan_half_f
     if (!bc_finite(length2) || !bc_finite(f.origin.x) || !bc_finite(f.origin.y) || !bc_finite(f.origin.z))
         f.flags |= BC_VIEW_NOT_FINITE;
     if (sums.count == 0u || !(length2 > bc_tiny())) f.flags |= BC_VIEW_EMPTY;
-    f.forward = (f.flags & (BC_VIEW_EMPTY | BC_VIEW_NOT_FINITE)) == 0 ? sums.direction / sqrt(length2) : vec3(real(0), real(0), real(1));
+    bool has_axis = (f.flags & (BC_VIEW_EMPTY | BC_VIEW_NOT_FINITE)) == 0;
+    f.forward = has_axis ? sums.direction / sqrt(length2) : vec3(real(0), real(0), real(1));
     virtual_view_basis(f.forward, f.right, f.up);
     return f;
 }
