@@ -362,6 +362,48 @@ TEST_CASE_TEMPLATE("virtual viewpoints contain their clusters with the smallest 
     CHECK(outside_flagged > 100);
 }
 
+TEST_CASE_TEMPLATE("along its facet's normal, a field of view of 74.76 degrees holds every direction of the facet", Real,
+                   float, double) {
+    using K = kernel<Real>;
+    using V = typename K::vec3;
+    Rng rng(0xface7ull);
+    auto tan_deg = [](double degrees) { return static_cast<Real>(std::tan(degrees * 3.14159265358979323846 / 180.0)); };
+    std::array<std::vector<V>, 12> by_facet;
+    for (int i = 0; i < 200000; ++i) {
+        V d = to_vec3<Real>(random_unit(rng));
+        by_facet[static_cast<std::size_t>(K::dodecahedron_facet(d))].push_back(d);
+    }
+    for (int facet = 0; facet < 12; ++facet) {
+        CAPTURE(facet);
+        const std::vector<V>& d = by_facet[static_cast<std::size_t>(facet)];
+        REQUIRE(d.size() > 1000);
+        typename K::ClusterSums sums = K::cluster_sums_empty();
+        std::vector<V> p;
+        for (const V& q : d) {
+            p.push_back(q);  // positions on the unit sphere, like a mirror ball's
+            sums = K::cluster_sums_add(sums, q, q);
+        }
+        V normal = K::dodecahedron_normal(facet);
+        auto fit_along = [&](Real tan_half) {
+            typename K::VirtualViewFit f = K::virtual_view_begin_along(sums, normal, tan_half, Real(0.01));
+            for (std::size_t i = 0; i < d.size(); ++i) f = K::virtual_view_add(f, p[i], d[i]);
+            return K::virtual_view_finish(f);
+        };
+        CHECK(fit_along(tan_deg(37.38)).flags == BC_VIEW_OK);
+        // Below the facet's inscribed radius (31.72 degrees) the square cannot hold it.
+        CHECK((fit_along(tan_deg(30.0)).flags & BC_VIEW_DIRECTION_OUTSIDE) != 0);
+        typename K::VirtualView v = fit_along(tan_deg(40.0));
+        CHECK(K::dot(v.forward, normal) >= 1 - 4 * std::numeric_limits<Real>::epsilon());
+    }
+    // Mean direction and begin_along(mean) are the same fit.
+    typename K::ClusterSums s = K::cluster_sums_add(K::cluster_sums_empty(), V(1, 2, 3), V(0, Real(0.6), Real(0.8)));
+    typename K::VirtualViewFit a = K::virtual_view_begin(s, Real(1), Real(0.1));
+    typename K::VirtualViewFit b = K::virtual_view_begin_along(s, s.direction, Real(1), Real(0.1));
+    CHECK(a.forward == b.forward);
+    CHECK(a.right == b.right);
+    CHECK((K::virtual_view_begin_along(s, V(0), Real(1), Real(0.1)).flags & BC_VIEW_EMPTY) != 0);
+}
+
 TEST_CASE_TEMPLATE("virtual viewpoint failures are flags, not hangs", Real, float, double) {
     using K = kernel<Real>;
     using V = typename K::vec3;

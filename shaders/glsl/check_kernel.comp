@@ -21,7 +21,8 @@ float check_secondary_rays(vec3 d, vec3 p) {
     vec3 up;
     virtual_view_basis(normal, right, up);
     VirtualViewFit fit = virtual_view_begin(sums, values[50], values[51]);
-    float backoff = virtual_view_point_backoff(fit, p);
+    VirtualViewFit along = virtual_view_begin_along(sums, normal, values[50], values[51]);
+    float backoff = virtual_view_point_backoff(fit, p) + virtual_view_point_backoff(along, d);
     bool inside = virtual_view_direction_inside(normal, right, up, values[50], d);
     VirtualView view = virtual_view_finish(virtual_view_add(fit, p, normal));
     LayerView layer = layer_view_from(view, values[52], 16);

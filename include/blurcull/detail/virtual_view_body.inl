@@ -67,11 +67,14 @@ BC_FN void virtual_view_basis(vec3 forward, BC_OUT(vec3) right, BC_OUT(vec3) up)
     up = vec3(b, uy, -forward.y);
 }
 
-// First step of the fit, from the sums over the cluster's pixels.
-// tan_half_fov = tan(fov / 2), fov in (0, 180) degrees (the paper: 80);
-// min_near > 0 (scene units) keeps the eye at least that far behind every
-// pixel, so the near plane is never at zero.
-BC_FN VirtualViewFit virtual_view_begin(BC_IN(ClusterSums) sums, real tan_half_fov, real min_near) {
+// First step of a fit along a given view axis (any length, normalised here)
+// instead of the mean direction: e.g. the facet's normal (dodecahedron_normal)
+// when the mean direction leaves some ray outside. Every direction of one
+// facet is within 37.38 degrees of its normal, so along the normal a field of
+// view of at least 74.76 degrees contains them all. Parameters and flags as
+// in virtual_view_begin; a zero or non-finite axis gives BC_VIEW_EMPTY or
+// BC_VIEW_NOT_FINITE.
+BC_FN VirtualViewFit virtual_view_begin_along(BC_IN(ClusterSums) sums, vec3 axis, real tan_half_fov, real min_near) {
     VirtualViewFit f;
     f.flags = BC_VIEW_OK;
     f.origin = cluster_mean_position(sums);
@@ -82,14 +85,22 @@ BC_FN VirtualViewFit virtual_view_begin(BC_IN(ClusterSums) sums, real tan_half_f
     f.magnitude = real(0);
     if (!(tan_half_fov > real(0)) || !bc_finite(tan_half_fov) || !(min_near > real(0)) || !bc_finite(min_near))
         f.flags |= BC_VIEW_BAD_PARAMETERS;
-    real length2 = bc_dot3(sums.direction, sums.direction);
+    real length2 = bc_dot3(axis, axis);
     if (!bc_finite(length2) || !bc_finite(f.origin.x) || !bc_finite(f.origin.y) || !bc_finite(f.origin.z))
         f.flags |= BC_VIEW_NOT_FINITE;
     if (sums.count == 0u || !(length2 > bc_tiny())) f.flags |= BC_VIEW_EMPTY;
     bool has_axis = (f.flags & (BC_VIEW_EMPTY | BC_VIEW_NOT_FINITE)) == 0;
-    f.forward = has_axis ? sums.direction / sqrt(length2) : vec3(real(0), real(0), real(1));
+    f.forward = has_axis ? axis / sqrt(length2) : vec3(real(0), real(0), real(1));
     virtual_view_basis(f.forward, f.right, f.up);
     return f;
+}
+
+// First step of the fit, from the sums over the cluster's pixels: the view
+// axis is their mean specular direction. tan_half_fov = tan(fov / 2), fov in
+// (0, 180) degrees (the paper: 80); min_near > 0 (scene units) keeps the eye
+// at least that far behind every pixel, so the near plane is never at zero.
+BC_FN VirtualViewFit virtual_view_begin(BC_IN(ClusterSums) sums, real tan_half_fov, real min_near) {
+    return virtual_view_begin_along(sums, sums.direction, tan_half_fov, min_near);
 }
 
 // The back-off t_i at which `position` enters the frustum and is min_near in
