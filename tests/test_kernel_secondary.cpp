@@ -630,6 +630,13 @@ TEST_CASE_TEMPLATE("layer_trace: misses, depth intervals and empty segments", Re
     CHECK(K::layer_step_count(v, out) == 0);
     CHECK(trace_layers<Real>(v, out, 2, Real(0.5), fetch).steps == 0);
     CHECK(K::layer_segment(v, o, d, Real(100), V2(Real(5), Real(4))).empty);
+    // An unbounded ray is bounded by the far plane; a zero direction unbounded is empty.
+    typename K::LayerHit unbounded = trace_layers<Real>(
+        v, K::layer_segment(v, o, d, std::numeric_limits<Real>::infinity(), V2(0, huge)), 2, Real(0.5), fetch);
+    CHECK(unbounded.hit);
+    CHECK(unbounded.s == full.s);
+    CHECK(K::layer_segment(v, o, V(0), std::numeric_limits<Real>::infinity(), V2(0, huge)).empty);
+    CHECK(!K::layer_segment(v, o, V(0), Real(1), V2(0, huge)).empty);
     // A NaN ray is empty, not a hang.
     Real nan = std::numeric_limits<Real>::quiet_NaN();
     CHECK(K::layer_segment(v, V(nan, 0, 0), d, Real(100), V2(0, huge)).empty);

@@ -99,7 +99,10 @@ BC_FN vec2 bc_clip_linear(vec2 range, real a, real b) {
 // frustum and to view depths [max(near, depth_range.x), min(far,
 // depth_range.y)] (the interval of a min/max depth pyramid over the
 // footprint; pass (0, huge) for none), then projected. The direction need
-// not be unit length; s is in its units.
+// not be unit length; s is in its units. s_max may be +infinity (the frustum
+// and the far plane bound the ray, unless the direction is zero). Fallback:
+// a NaN or infinite origin, direction or interval, a NaN s_max, or nothing
+// left after clipping gives an empty segment.
 BC_FN LayerSegment layer_segment(BC_IN(LayerView) v, vec3 origin, vec3 direction, real s_max, vec2 depth_range) {
     vec3 q = origin - v.eye;
     real ox = bc_dot3(q, v.right);
@@ -123,7 +126,7 @@ BC_FN LayerSegment layer_segment(BC_IN(LayerView) v, vec3 origin, vec3 direction
     seg.s1 = r.y;
     // NaN or infinite input anywhere makes the sum non-finite (the clips
     // above may have dropped it: max and min ignore a NaN operand).
-    real input_sum = abs(ox) + abs(oy) + abs(oz) + abs(dx) + abs(dy) + abs(dz) + abs(s_max) + abs(z_lo) + abs(z_hi);
+    real input_sum = abs(ox) + abs(oy) + abs(oz) + abs(dx) + abs(dy) + abs(dz) + abs(z_lo) + abs(z_hi);
     seg.empty = !(r.x <= r.y) || !bc_finite(r.x) || !bc_finite(r.y) || !bc_finite(input_sum) || !(z_lo > real(0)) ||
                 v.size < 1;
     // Rounding may put an end a hair outside [z_lo, z_hi]; the depth must stay
