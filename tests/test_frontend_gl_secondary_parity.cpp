@@ -24,7 +24,7 @@
 #include <blurcull/glsl/kernel_glsl.hpp>
 #include <blurcull/layer_trace.hpp>
 #include <blurcull/secondary_clusters.hpp>
-#include <gl/gl_context.hpp>
+#include "render/gl/gl_context.hpp"
 
 #include <doctest/doctest.h>
 
@@ -151,9 +151,9 @@ void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= count) return;
     vec3 d = vec3(dir_in[3u * i], dir_in[3u * i + 1u], dir_in[3u * i + 2u]);
-    out_[i] = uint(dodecahedron_facet(d));
+    out_[i] = uint(bc_dodecahedron_facet(d));
     if (i < 12u) {
-        vec3 n = dodecahedron_normal(int(i));
+        vec3 n = bc_dodecahedron_normal(int(i));
         out_[count + 3u * i] = floatBitsToUint(n.x);
         out_[count + 3u * i + 1u] = floatBitsToUint(n.y);
         out_[count + 3u * i + 2u] = floatBitsToUint(n.z);
@@ -181,11 +181,11 @@ void main() {
     if (c >= count) return;
     uint o = cl[2u * c];
     uint n = cl[2u * c + 1u];
-    ClusterSums s = cluster_sums_empty();
-    for (uint i = 0u; i < n; ++i) s = cluster_sums_add(s, P(o + i), D(o + i));
-    VirtualViewFit f = virtual_view_begin(s, param[0], param[1]);
-    for (uint i = 0u; i < n; ++i) f = virtual_view_add(f, P(o + i), D(o + i));
-    VirtualView v = virtual_view_finish(f);
+    ClusterSums s = bc_cluster_sums_empty();
+    for (uint i = 0u; i < n; ++i) s = bc_cluster_sums_add(s, P(o + i), D(o + i));
+    VirtualViewFit f = bc_virtual_view_begin(s, param[0], param[1]);
+    for (uint i = 0u; i < n; ++i) f = bc_virtual_view_add(f, P(o + i), D(o + i));
+    VirtualView v = bc_virtual_view_finish(f);
     uint at = c * STRIDE;
     put3(at, v.eye);
     put3(at + 3u, v.forward);
@@ -194,15 +194,15 @@ void main() {
     out_[at + 12u] = floatBitsToUint(v.near);
     out_[at + 13u] = floatBitsToUint(v.backoff);
     out_[at + 14u] = uint(v.flags);
-    out_[at + 15u] = clusters_for_facet(n, cluster_target_size(n * 7u, 24u), 3u) * 1000u +
-                     kmeans_first_centre(n, 7u, int(c % 12u));
+    out_[at + 15u] = bc_clusters_for_facet(n, bc_cluster_target_size(n * 7u, 24u), 3u) * 1000u +
+                     bc_kmeans_first_centre(n, 7u, int(c % 12u));
     // The nearest of the cluster's first three points, for its first 16
     // points: 2 bits each.
     vec3 centres[BC_CLUSTERS_PER_FACET_MAX] =
         vec3[BC_CLUSTERS_PER_FACET_MAX](P(o), P(o + min(1u, n - 1u)), P(o + min(2u, n - 1u)));
     uint mask = 0u;
     for (uint i = 0u; i < min(n, 16u); ++i)
-        mask |= uint(kmeans_nearest(P(o + i), centres, int(min(n, 3u)))) << (2u * i);
+        mask |= uint(bc_kmeans_nearest(P(o + i), centres, int(min(n, 3u)))) << (2u * i);
     out_[at + 16u] = mask;
 }
 )glsl";
@@ -230,18 +230,18 @@ void main() {
     int scene = int(r / uint(view_in[4]));
     vec3 o = vec3(ray_in[6u * r], ray_in[6u * r + 1u], ray_in[6u * r + 2u]);
     vec3 d = vec3(ray_in[6u * r + 3u], ray_in[6u * r + 4u], ray_in[6u * r + 5u]);
-    LayerSegment seg = layer_segment(v, o, d, 1000.0, vec2(0.0, bc_huge()));
+    LayerSegment seg = bc_layer_segment(v, o, d, 1000.0, vec2(0.0, bc_huge()));
     // The loop of include/blurcull/layer_trace.hpp, reading this shader's buffer.
-    LayerTrace t = layer_trace_begin(v, seg, 2, 0.5);
+    LayerTrace t = bc_layer_trace_begin(v, seg, 2, 0.5);
     for (int k = 0; k < t.steps; ++k) {
         if (t.done) break;
         float depths[BC_LAYERS_MAX];
         for (int l = 0; l < BC_LAYERS_MAX; ++l)
             depths[l] = l < t.layers ? depth_in[((scene * 2 + l) * v.size + t.y) * v.size + t.x] : 0.0;
-        t = layer_trace_step(v, seg, t, depths);
+        t = bc_layer_trace_step(v, seg, t, depths);
     }
     LayerHit h = t.hit;
-    vec4 box = layer_footprint(v, seg);
+    vec4 box = bc_layer_footprint(v, seg);
     uint at = r * STRIDE;
     out_[at] = (seg.empty ? 1u : 0u) | (h.hit ? 2u : 0u);
     out_[at + 1u] = uint(h.layer + 1);
@@ -257,7 +257,7 @@ void main() {
     out_[at + 11u] = floatBitsToUint(h.image.x);
     out_[at + 12u] = floatBitsToUint(h.image.y);
     out_[at + 13u] = floatBitsToUint(box.x) ^ floatBitsToUint(box.w);
-    vec3 q = layer_project(v, o + d);
+    vec3 q = bc_layer_project(v, o + d);
     out_[at + 14u] = floatBitsToUint(q.x);
     out_[at + 15u] = floatBitsToUint(q.z);
 }
@@ -275,13 +275,13 @@ void main() {
     if (i >= count) return;
     vec3 p = vec3(pt[6u * i], pt[6u * i + 1u], pt[6u * i + 2u]);
     vec3 d = vec3(pt[6u * i + 3u], pt[6u * i + 4u], pt[6u * i + 5u]);
-    int face = dodecahedron_facet(d);
+    int face = bc_dodecahedron_facet(d);
     vec3 c[BC_CLUSTERS_PER_FACET_MAX];
     for (int k = 0; k < BC_CLUSTERS_PER_FACET_MAX; ++k) {
         int at = 3 * (face * BC_CLUSTERS_PER_FACET_MAX + k);
         c[k] = vec3(ce[at], ce[at + 1], ce[at + 2]);
     }
-    out_[i] = uint(face * 4 + kmeans_nearest(p, c, k_in[face]));
+    out_[i] = uint(face * 4 + bc_kmeans_nearest(p, c, k_in[face]));
 }
 )glsl";
 
