@@ -5,8 +5,8 @@
 // and the image-space tracing step on its 8 x 2000 rays through two layered
 // planes, on a headless Mesa context; the host runs kernel<float> on the same
 // float inputs. Facets, flags, counts and decisions must agree exactly, every
-// value bit for bit (the functions use + - * / sqrt floor, min, max, abs and
-// comparisons only, which llvmpipe rounds like the host; BC_PRECISE where an
+// value bit for bit (the functions use + - * / sqrt floor ceil clamp min max
+// abs and comparisons only, which llvmpipe rounds like the host; BC_PRECISE where an
 // expression could be reassociated). docs/glsl.md, "Parity".
 //
 // No GL context (no Mesa): fails when CI=true, else skips with a message.
