@@ -23,7 +23,7 @@ struct Tally {
     std::uint64_t configs = 0;
     std::uint64_t samples = 0;
     std::uint64_t covered = 0;
-    MethodTally methods[4];  // indexed by BC_CULL_*
+    MethodTally methods[method_count];  // indexed by BC_CULL_*
 };
 
 template <class Real>
@@ -37,8 +37,8 @@ struct Judge {
         Kd::MovingTriangle tri_d = to_double<Real>(tri);
         Real near = static_cast<Real>(cfg.near);
         typename K::vec2 lo(cfg.s_lo), hi(cfg.s_hi);
-        typename K::ScreenBound screen[4];
-        typename K::SampleBounds bounds[4];
+        typename K::ScreenBound screen[method_count];
+        typename K::SampleBounds bounds[method_count];
         for (int method : all_methods) {
             screen[method] = K::screen_bound(tri, near, method);
             bounds[method] = K::sample_bounds(tri, lo, hi, method);

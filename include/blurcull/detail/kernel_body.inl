@@ -13,6 +13,7 @@
 #define BC_CULL_HULL 1
 #define BC_CULL_DUALSPACE 2
 #define BC_CULL_CLIP2 3
+#define BC_CULL_EDGES 4  // the two-stage bounds and per-edge planes (edge_bounds_body.inl)
 
 #define BC_NEEDS_MOTION 1
 #define BC_NEEDS_DEFOCUS 2
@@ -38,6 +39,9 @@ struct ScreenBound {
     vec3 hull_edge[BC_HULL_MAX];  // inside when dot(edge.xy, s) + edge.z >= 0
 };
 
+// TEMPORARY until the kernel split lands: the edge body goes between two_stage and sample_bounds.
+#include "edge_bounds_body.inl"
+
 struct SampleBounds {
     bool empty;    // no sample of the footprint can be covered
     vec2 u_range;  // lens u in [u_range.x, u_range.y]
@@ -46,6 +50,7 @@ struct SampleBounds {
     vec4 tx2;      // a second pair of lines in (u, t), same form
     vec4 ty;       // t >= ty.x + ty.y v  and  t <= ty.z + ty.w v
     vec4 ty2;
+    BcEdgePlanes edges;  // BC_CULL_EDGES: the edges' planes in (u, v, t)
 };
 
 BC_FN real bc_err(real magnitude) {
@@ -330,7 +335,7 @@ BC_FN ScreenBound screen_bound(BC_IN(MovingTriangle) tri, real near, int method)
     b.lo = vec2(ex.x, ey.x);
     b.hi = vec2(ex.y, ey.y);
     b.empty = ex.x > ex.y || ey.x > ey.y;
-    if ((method == BC_CULL_HULL || method == BC_CULL_CLIP2) && !b.empty) bc_build_hull(tri, near, b);
+    if ((method == BC_CULL_HULL || method == BC_CULL_CLIP2 || method == BC_CULL_EDGES) && !b.empty) bc_build_hull(tri, near, b);
     return b;
 }
 
@@ -807,6 +812,7 @@ BC_FN SampleBounds no_sample_bounds() {
     r.tx2 = r.tx;
     r.ty = r.tx;
     r.ty2 = r.tx;
+    r.edges = bc_no_edge_planes();
     return r;
 }
 
@@ -815,7 +821,7 @@ BC_FN SampleBounds no_sample_bounds() {
 // BC_CULL_BBOX and BC_CULL_HULL bound only the screen (see screen_bound).
 BC_FN SampleBounds sample_bounds(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi, int method) {
     SampleBounds r = no_sample_bounds();
-    if (method != BC_CULL_DUALSPACE && method != BC_CULL_CLIP2) return r;
+    if (method != BC_CULL_DUALSPACE && method != BC_CULL_CLIP2 && method != BC_CULL_EDGES) return r;
     if (!bc_triangle_boundable(tri)) return r;
     // The caller's sample positions were rounded too.
     vec2 pad = vec2(bc_err(max(real(1), max(abs(s_lo.x), abs(s_hi.x)))),
@@ -865,6 +871,14 @@ BC_FN SampleBounds sample_bounds(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi
             r.ty2 = lines2;
         }
     }
+    if (method == BC_CULL_EDGES) {
+        vec2 times = sample_time_range(r);
+        if (times.x > times.y) {
+            r.empty = true;
+            return r;
+        }
+        r.edges = bc_edge_planes(tri, s_lo, s_hi, r.u_range, r.v_range, times);
+    }
     return r;
 }
 
@@ -895,5 +909,5 @@ BC_FN bool sample_passes(BC_IN(SampleBounds) b, vec2 uv, real t) {
     if (t < b.ty.x + b.ty.y * uv.y || t > b.ty.z + b.ty.w * uv.y) return false;
     if (t < b.tx2.x + b.tx2.y * uv.x || t > b.tx2.z + b.tx2.w * uv.x) return false;
     if (t < b.ty2.x + b.ty2.y * uv.y || t > b.ty2.z + b.ty2.w * uv.y) return false;
-    return true;
+    return bc_edge_planes_pass(b.edges, uv, t);
 }
