@@ -229,8 +229,8 @@ bool bounds_finite(const typename K::ScreenBound& sb, const typename K::SampleBo
         for (const typename K::vec4& line : {b.tx, b.tx2, b.ty, b.ty2}) {
             if (!f_or(line.x, -inf) || !f(line.y) || !f_or(line.z, inf) || !f(line.w)) return false;
         }
-        const typename K::BcEdgePlanes& e = b.edges;
-        if (e.mode != BC_EDGE_NONE) {
+        for (const typename K::BcEdgePlanes& e : b.edges.piece) {
+            if (e.mode == BC_EDGE_NONE) continue;
             if (!f(e.time.x) || !f(e.time.y)) return false;
             for (int k = 0; k < 3; ++k) {
                 if (!f(e.du[k]) || !f(e.dv[k]) || !f(e.dt[k]) || !f(e.hi[k]) || !f(e.lo[k])) return false;
@@ -248,7 +248,7 @@ bool is_documented_fallback(const typename K::ScreenBound& sb, const typename K:
     const real huge = std::numeric_limits<real>::max();
     return !sb.empty && sb.hull_count == 0 && sb.lo == typename K::vec2(-huge) && sb.hi == typename K::vec2(huge) &&
            b.empty == none.empty && b.u_range == none.u_range && b.v_range == none.v_range && b.tx == none.tx &&
-           b.tx2 == none.tx2 && b.ty == none.ty && b.ty2 == none.ty2 && b.edges.mode == BC_EDGE_NONE;
+           b.tx2 == none.tx2 && b.ty == none.ty && b.ty2 == none.ty2 && b.edges.piece[0].mode == BC_EDGE_NONE;
 }
 
 template <class Real>

@@ -2,97 +2,143 @@
 //
 // Per edge of the sheared, moving triangle, its edge function at the
 // footprint's rays as a function of the lens position and time jointly: a
-// plane in (u, v, t) with a radius that holds the rest of the function over a
-// box of (u, v, t) and the whole footprint (docs/kernel.md, "Edge bounds").
-// A covered sample has every edge function of the sign of the triangle's
-// determinant, so a sample whose plane lies below minus its radius is culled.
-// The box is the two-stage bounds' range; the per-sample test is three
-// planes.
+// polynomial in (u, v, t), computed exactly, whose linear part becomes a
+// plane and whose other terms (and the rounding) a radius, over a box of
+// (u, v, t) (docs/kernel.md, "Edge bounds"). A covered sample has every edge
+// function of the sign of the triangle's determinant, so a sample below a
+// plane by more than its radius is culled. The box is the two-stage bounds'
+// range; the per-sample test is three planes.
 
 #define BC_EDGE_NONE 0       // no edge planes: the two-stage bounds alone
 #define BC_EDGE_ONE_SIDED 1  // the determinant keeps one sign on the box
 #define BC_EDGE_TWO_SIDED 2  // it may change sign: every edge one way or every edge the other
+#define BC_EDGE_PIECES 4     // planes per footprint, each over a quarter of the shutter range
 
 // The oracle is double: its rounding of an edge function is at most about
 // 20 double epsilons of (sum |ray|) (sum |V_i|) (sum |V_j|); a bound in any
 // precision leaves it BC_MARGIN of them (docs/kernel.md, "Edge bounds").
 #define BC_ORACLE_EPSILON 2.220446049250313e-16
 
-// An affine form over the box: a.x + a.y xi_u + a.z xi_v + a.w xi_t with
-// every xi in [-1, 1], plus anything within +- r. Products keep their linear
-// part and move the rest into r (interval arithmetic on the non-linear terms).
-struct BcAffine {
-    vec4 a;
+// A polynomial in the box's coordinates xi_u, xi_v, xi_t (each in [-1, 1]):
+// k[a + 2 b + 4 c] is the coefficient of xi_u^a xi_v^b xi_t^c (a, b <= 1,
+// c <= 3), and r bounds its distance from the exact function it stands for
+// (the rounding so far). Edge functions have degree 1 in u and in v and 2 in
+// t, the determinant 3 in t. Terms that cancel between products cancel here.
+struct BcPoly {
+    real k[16];
     real r;
 };
 
-BC_FN BcAffine bc_affine(vec4 a, real r) {
-    BcAffine x;
-    x.a = a;
-    x.r = r;
-    return x;
+BC_FN BcPoly bc_poly_zero() {
+    BcPoly p;
+    for (int n = 0; n < 16; ++n) p.k[n] = real(0);
+    p.r = real(0);
+    return p;
 }
 
-// Largest |linear part - constant| over the box.
-BC_FN real bc_affine_span(BcAffine x) {
-    return abs(x.a.y) + abs(x.a.z) + abs(x.a.w);
+// Sum of |coefficients|: a bound on |p| over the box (rounding aside).
+BC_FN real bc_poly_norm(BC_IN(BcPoly) p) {
+    real sum = real(0);
+    for (int n = 0; n < 16; ++n) sum = sum + abs(p.k[n]);
+    return sum;
 }
 
-// A bound on |x| over the box.
-BC_FN real bc_affine_bound(BcAffine x) {
-    return abs(x.a.x) + bc_affine_span(x) + x.r;
+BC_FN BcPoly bc_poly_add(BC_IN(BcPoly) p, BC_IN(BcPoly) q, real sign) {
+    BcPoly out;
+    for (int n = 0; n < 16; ++n) out.k[n] = p.k[n] + sign * q.k[n];
+    out.r = p.r + q.r + bc_err(bc_poly_norm(p) + bc_poly_norm(q));
+    return out;
 }
 
-BC_FN BcAffine bc_affine_add(BcAffine x, BcAffine y, real sign) {
-    // Each coefficient rounds once; the sum of their errors over the box is
-    // below the margin of the magnitudes.
-    return bc_affine(x.a + sign * y.a, x.r + y.r + bc_err(bc_affine_bound(x) + bc_affine_bound(y)));
+BC_FN BcPoly bc_poly_scale(BC_IN(BcPoly) p, real factor) {
+    BcPoly out;
+    for (int n = 0; n < 16; ++n) out.k[n] = p.k[n] * factor;
+    out.r = p.r * abs(factor) + bc_err(bc_poly_norm(p) * abs(factor));
+    return out;
 }
 
-// x y = x0 y0 + x0 Y + y0 X + X Y (+ the radii's terms), X and Y the linear
-// parts. X Y = sum_i x_i y_i xi_i^2 + sum_{i != j} x_i y_j xi_i xi_j: the first
-// sum lies in its half plus or minus half its magnitude (xi^2 in [0, 1]), the
-// second within (sum |x_i|)(sum |y_j|) - sum |x_i y_i|.
-BC_FN BcAffine bc_affine_mul(BcAffine x, BcAffine y) {
-    vec3 xs = vec3(x.a.y, x.a.z, x.a.w);
-    vec3 ys = vec3(y.a.y, y.a.z, y.a.w);
-    real sx = bc_affine_span(x);
-    real sy = bc_affine_span(y);
-    vec3 diag = xs * ys;
-    real diag_sum = diag.x + diag.y + diag.z;
-    real diag_abs = abs(diag.x) + abs(diag.y) + abs(diag.z);
-    vec3 linear = x.a.x * ys + y.a.x * xs;
-    real centre = x.a.x * y.a.x + real(0.5) * diag_sum;
-    real r = sx * sy - real(0.5) * diag_abs + (abs(x.a.x) + sx) * y.r + (abs(y.a.x) + sy) * x.r + x.r * y.r;
-    real rounding = bc_err(abs(x.a.x * y.a.x) + diag_abs + abs(x.a.x) * sy + abs(y.a.x) * sx + sx * sy + r);
-    return bc_affine(vec4(centre, linear), r + rounding);
+// p (w0 + w1 xi_t), p of degree <= 2 in t; w_error bounds w's own error.
+BC_FN BcPoly bc_poly_times_t(BC_IN(BcPoly) p, vec2 w, real w_error) {
+    BcPoly out = bc_poly_zero();
+    for (int n = 0; n < 12; ++n) {
+        out.k[n] = out.k[n] + p.k[n] * w.x;
+        out.k[n + 4] = out.k[n + 4] + p.k[n] * w.y;
+    }
+    real norm_p = bc_poly_norm(p);
+    real norm_w = abs(w.x) + abs(w.y);
+    out.r = p.r * (norm_w + w_error) + norm_p * w_error + bc_err(real(2) * norm_p * norm_w);
+    return out;
 }
 
-// (1 - t) f0 + t f1 for t = t_m + rho_t xi_t; `error` bounds the rounding of
-// f0 and f1 themselves.
-BC_FN BcAffine bc_affine_lerp(real f0, real f1, vec2 t_box, real error) {
-    real d = f1 - f0;
-    return bc_affine(vec4(f0 + d * t_box.x, real(0), real(0), d * t_box.y),
-                     error + bc_err(abs(f0) + abs(f1)));
+// (x0 + x1 u + x2 t + x3 u t)(y0 + y1 v + y2 t + y3 v t), x_error and
+// y_error the factors' own errors.
+BC_FN BcPoly bc_poly_times_uv(vec4 x, real x_error, vec4 y, real y_error) {
+    BcPoly out = bc_poly_zero();
+    out.k[0] = x.x * y.x;              // 1
+    out.k[1] = x.y * y.x;              // u
+    out.k[2] = x.x * y.y;              // v
+    out.k[3] = x.y * y.y;              // u v
+    out.k[4] = x.z * y.x + x.x * y.z;  // t
+    out.k[5] = x.w * y.x + x.y * y.z;  // u t
+    out.k[6] = x.x * y.w + x.z * y.y;  // v t
+    out.k[7] = x.y * y.w + x.w * y.y;  // u v t
+    out.k[8] = x.z * y.z;              // t^2
+    out.k[9] = x.w * y.z;              // u t^2
+    out.k[10] = x.z * y.w;             // v t^2
+    out.k[11] = x.w * y.w;             // u v t^2
+    real nx = abs(x.x) + abs(x.y) + abs(x.z) + abs(x.w);
+    real ny = abs(y.x) + abs(y.y) + abs(y.z) + abs(y.w);
+    out.r = x_error * (ny + y_error) + nx * y_error + bc_err(real(2) * nx * ny);
+    return out;
 }
 
-// The planes of the three edges over the footprint [s_lo, s_hi] (already
-// padded for the caller's rounding) and the box u in u_range, v in v_range,
-// t in t_range. Edge k joins vertices k+1 and k+2; with d_i the offset of
-// vertex i from the footprint centre's ray, (X_i - s_x W_i, Y_i - s_y W_i),
-// its function at the ray (s_c + delta, 1) is
-//   E_k = d_i x d_j + delta_x (d_iy W_j - d_jy W_i) + delta_y (d_jx W_i - d_ix W_j),
-// and the determinant is W_0 E_0 + W_1 E_1 + W_2 E_2 at the centre.
-// Returns the planes as (coefficients of u, v, t per edge; constant + radius
-// and constant - radius per edge), times the determinant's sign when it has one.
+// The factor x0 + x1 xi_a + x2 xi_t + x3 xi_a xi_t as a polynomial, with
+// `a` the index of xi_a (1 for u, 2 for v).
+BC_FN BcPoly bc_poly_factor(vec4 x, int a, real error) {
+    BcPoly p = bc_poly_zero();
+    p.k[0] = x.x;
+    p.k[a] = x.y;
+    p.k[4] = x.z;
+    p.k[4 + a] = x.w;
+    p.r = error;
+    return p;
+}
+
+// The plane kept of p: p = c0 + cu xi_u + cv xi_v + ct xi_t + rest with
+// |rest| <= radius over the box. xi_t^2 lies in [0, 1], so its terms give
+// half of themselves to the linear part (u t^2 = u / 2 + u (t^2 - 1/2), the
+// rest within 1/2); t^3 gives 3/4 t (Chebyshev: |t^3 - 3t/4| <= 1/4); every
+// other product of coordinates lies in [-1, 1].
+BC_FN vec4 bc_poly_plane(BC_IN(BcPoly) p, BC_OUT(real) radius) {
+    vec4 plane = vec4(p.k[0] + real(0.5) * p.k[8], p.k[1] + real(0.5) * p.k[9], p.k[2] + real(0.5) * p.k[10],
+                      p.k[4] + real(0.75) * p.k[12]);
+    real rest = real(0.5) * (abs(p.k[8]) + abs(p.k[9]) + abs(p.k[10])) + real(0.25) * abs(p.k[12]);
+    rest = rest + abs(p.k[3]) + abs(p.k[5]) + abs(p.k[6]) + abs(p.k[7]) + abs(p.k[11]);
+    rest = rest + abs(p.k[13]) + abs(p.k[14]) + abs(p.k[15]);
+    radius = rest + p.r + bc_err(bc_poly_norm(p));
+    return plane;
+}
+
+// +1 or -1 where p keeps that strict sign over the box with `margin` to
+// spare, else 0.
+BC_FN real bc_poly_sign(BC_IN(BcPoly) p, real margin) {
+    real radius = real(0);
+    vec4 plane = bc_poly_plane(p, radius);
+    real spread = abs(plane.y) + abs(plane.z) + abs(plane.w) + radius + margin;
+    if (plane.x > spread) return real(1);
+    if (plane.x < -spread) return real(-1);
+    return real(0);
+}
+
+// The planes of the three edges over one box; see bc_edge_piece.
 struct BcEdgePlanes {
-    int mode;        // BC_EDGE_*
-    vec2 time;       // the box's shutter range: the planes hold only inside it
-    vec3 du;         // per edge: coefficient of u
-    vec3 dv;         // of v
-    vec3 dt;         // of t
-    vec3 hi;         // constant + radius: a covered sample has du u + dv v + dt t + hi >= 0 ...
-    vec3 lo;         // constant - radius: ... or (two-sided) every edge <= 0 with this one
+    int mode;  // BC_EDGE_*
+    vec2 time; // the box's shutter range: the planes hold only inside it
+    vec3 du;   // per edge: coefficient of u
+    vec3 dv;   // of v
+    vec3 dt;   // of t
+    vec3 hi;   // constant + radius: a covered sample has du u + dv v + dt t + hi >= 0 for every edge ...
+    vec3 lo;   // constant - radius: ... or (two-sided only) <= 0 with lo for every edge
 };
 
 BC_FN BcEdgePlanes bc_no_edge_planes() {
@@ -113,23 +159,25 @@ BC_FN vec2 bc_box_axis(real lo, real hi) {
     return vec2(real(0.5) * (lo + hi), real(0.5) * (hi - lo) + bc_err(abs(lo) + abs(hi)));
 }
 
-// The offsets (d_x, d_y) of vertex i from the ray through the footprint
-// centre, and its depth W, as affine forms over the box.
-BC_FN void bc_edge_vertex(BC_IN(MovingTriangle) tri, int i, vec2 centre, vec2 u_box, vec2 v_box, vec2 t_box,
-                          BC_OUT(BcAffine) dx, BC_OUT(BcAffine) dy, BC_OUT(BcAffine) w) {
+// (1 - t) f0 + t f1 at t = t_box.x + t_box.y xi_t, as (constant, coefficient of xi_t).
+BC_FN vec2 bc_lerp_t(real f0, real f1, vec2 t_box) {
+    real d = f1 - f0;
+    return vec2(f0 + d * t_box.x, d * t_box.y);
+}
+
+// Vertex i's offset along one axis from the ray through the footprint
+// centre, d = (x - s w) + u c at lens u = box.x + box.y xi and time t, as
+// (1, xi, xi_t, xi xi_t) coefficients; its error bound goes to `error`.
+BC_FN vec4 bc_edge_offset(BC_IN(MovingTriangle) tri, int i, int axis, real s, vec2 box, vec2 t_box,
+                          BC_OUT(real) error) {
     vec3 p0 = tri.p[i];
     vec3 p1 = tri.p[i + 3];
-    BcAffine u = bc_affine(vec4(u_box.x, u_box.y, real(0), real(0)), real(0));
-    BcAffine v = bc_affine(vec4(v_box.x, real(0), v_box.y, real(0)), real(0));
-    BcAffine ex = bc_affine_lerp(p0.x - centre.x * p0.z, p1.x - centre.x * p1.z, t_box,
-                                 bc_err(abs(p0.x) + abs(centre.x * p0.z) + abs(p1.x) + abs(centre.x * p1.z)));
-    BcAffine ey = bc_affine_lerp(p0.y - centre.y * p0.z, p1.y - centre.y * p1.z, t_box,
-                                 bc_err(abs(p0.y) + abs(centre.y * p0.z) + abs(p1.y) + abs(centre.y * p1.z)));
-    BcAffine cx = bc_affine_lerp(tri.c[i].x, tri.c[i + 3].x, t_box, real(0));
-    BcAffine cy = bc_affine_lerp(tri.c[i].y, tri.c[i + 3].y, t_box, real(0));
-    dx = bc_affine_add(ex, bc_affine_mul(u, cx), real(1));
-    dy = bc_affine_add(ey, bc_affine_mul(v, cy), real(1));
-    w = bc_affine_lerp(p0.z, p1.z, t_box, real(0));
+    vec2 e = bc_lerp_t(p0[axis] - s * p0.z, p1[axis] - s * p1.z, t_box);
+    vec2 c = bc_lerp_t(tri.c[i][axis], tri.c[i + 3][axis], t_box);
+    real c_size = abs(tri.c[i][axis]) + abs(tri.c[i + 3][axis]);
+    error = bc_err(real(2) * (abs(p0[axis]) + abs(s * p0.z) + abs(p1[axis]) + abs(s * p1.z)) +
+                   real(2) * c_size * (abs(box.x) + box.y));
+    return vec4(e.x + box.x * c.x, box.y * c.x, e.y + box.x * c.y, box.y * c.y);
 }
 
 // Sum of |x| + |c| over both ends of vertex i, per axis: a bound on the
@@ -141,72 +189,149 @@ BC_FN real bc_vertex_magnitude(BC_IN(MovingTriangle) tri, int i) {
     return p0.x + p0.y + p0.z + p1.x + p1.y + p1.z + c.x + c.y;
 }
 
-BC_FN BcEdgePlanes bc_edge_planes(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi, vec2 u_range, vec2 v_range,
-                                  vec2 t_range) {
+// f + h |n| over the box (h >= 0): where n keeps one sign, exactly
+// f + (h sign n) n; elsewhere f with its error grown by h max |n|.
+BC_FN BcPoly bc_poly_add_abs(BC_IN(BcPoly) f, BC_IN(BcPoly) n, real h, bool follow_sign) {
+    real sign = follow_sign ? bc_poly_sign(n, real(0)) : real(0);
+    if (sign != real(0)) return bc_poly_add(f, bc_poly_scale(n, h * sign), real(1));
+    BcPoly out = f;
+    real term = h * (bc_poly_norm(n) + n.r);
+    out.r = out.r + term + bc_err(term);
+    return out;
+}
+
+// Edge k's plane in (u, v, t) from its polynomial over the box (xi =
+// (u - centre) / half-width per axis), into slot k of e, its radius grown by
+// `extra`. False if not finite.
+BC_FN bool bc_edge_plane(BC_IN(BcPoly) f, real extra, vec2 u_box, vec2 v_box, vec2 t_box, int k,
+                         BC_INOUT(BcEdgePlanes) e) {
+    real radius = real(0);
+    vec4 a = bc_poly_plane(f, radius);
+    real cu = a.y / u_box.y;
+    real cv = a.z / v_box.y;
+    real ct = a.w / t_box.y;
+    real constant = a.x - cu * u_box.x - cv * v_box.x - ct * t_box.x;
+    // Rounding of the conversion and of the caller's evaluation.
+    real slack = bc_err(abs(a.x) + real(2) * (abs(cu) * (abs(u_box.x) + u_box.y) + abs(cv) * (abs(v_box.x) + v_box.y) +
+                                             abs(ct) * (abs(t_box.x) + t_box.y)) + radius + extra);
+    real r = radius + extra + slack;
+    e.du[k] = cu;
+    e.dv[k] = cv;
+    e.dt[k] = ct;
+    e.hi[k] = constant + r;
+    e.lo[k] = constant - r;
+    return bc_finite(cu) && bc_finite(cv) && bc_finite(ct) && bc_finite(e.hi[k]) && bc_finite(e.lo[k]);
+}
+
+// The planes over the footprint [s_lo, s_hi] (padded for the caller's
+// rounding already) and the box u in u_range, v in v_range, t in t_range.
+// Edge k joins vertices i = k+1 and j = k+2; with d the vertices' offsets
+// from the ray through the footprint centre s_c, its function at the ray
+// (s_c + delta, 1) is
+//   E_k = d_i x d_j + delta_x n_x + delta_y n_y,
+//   n_x = d_iy W_j - d_jy W_i,  n_y = d_jx W_i - d_ix W_j,
+// and the determinant is W_0 E_0 + W_1 E_1 + W_2 E_2 (E at the centre).
+// With the determinant's sign known on the box, each edge function times it
+// must reach >= 0 somewhere on the footprint: its largest value there,
+// sign E_c + h_x |n_x| + h_y |n_y|, is kept exactly where n_x and n_y keep
+// their signs. Otherwise (two-sided) the footprint only widens the radius.
+BC_FN BcEdgePlanes bc_edge_piece(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi, vec2 u_range, vec2 v_range,
+                                 vec2 t_range) {
     BcEdgePlanes e = bc_no_edge_planes();
     vec2 u_box = bc_box_axis(u_range.x, u_range.y);
     vec2 v_box = bc_box_axis(v_range.x, v_range.y);
     vec2 t_box = bc_box_axis(t_range.x, t_range.y);
     vec2 sx = bc_box_axis(s_lo.x, s_hi.x);
     vec2 sy = bc_box_axis(s_lo.y, s_hi.y);
-    vec2 centre = vec2(sx.x, sy.x);
-    BcAffine dx[3];
-    BcAffine dy[3];
-    BcAffine w[3];
+    vec4 dx[3];
+    vec4 dy[3];
+    vec2 w[3];
+    vec3 dx_error = vec3(real(0));
+    vec3 dy_error = vec3(real(0));
     real m[3];
     for (int i = 0; i < 3; ++i) {
-        bc_edge_vertex(tri, i, centre, u_box, v_box, t_box, dx[i], dy[i], w[i]);
+        real ex = real(0);
+        real ey = real(0);
+        dx[i] = bc_edge_offset(tri, i, 0, sx.x, u_box, t_box, ex);
+        dy[i] = bc_edge_offset(tri, i, 1, sy.x, v_box, t_box, ey);
+        dx_error[i] = ex;
+        dy_error[i] = ey;
+        w[i] = bc_lerp_t(tri.p[i].z, tri.p[i + 3].z, t_box);
         m[i] = bc_vertex_magnitude(tri, i);
     }
     real ray = real(1) + max(abs(s_lo.x), abs(s_hi.x)) + max(abs(s_lo.y), abs(s_hi.y));
     real oracle = real(BC_MARGIN) * real(BC_ORACLE_EPSILON);
-    BcAffine det = bc_affine(vec4(real(0)), real(0));
-    BcAffine edge[3];
-    real radius[3];
+    BcPoly det = bc_poly_zero();
+    BcPoly edge[3];
     for (int k = 0; k < 3; ++k) {
         int i = (k + 1) % 3;
         int j = (k + 2) % 3;
-        edge[k] = bc_affine_add(bc_affine_mul(dx[i], dy[j]), bc_affine_mul(dy[i], dx[j]), real(-1));
-        BcAffine nx = bc_affine_add(bc_affine_mul(dy[i], w[j]), bc_affine_mul(dy[j], w[i]), real(-1));
-        BcAffine ny = bc_affine_add(bc_affine_mul(dx[j], w[i]), bc_affine_mul(dx[i], w[j]), real(-1));
-        real footprint = sx.y * bc_affine_bound(nx) + sy.y * bc_affine_bound(ny);
-        radius[k] = edge[k].r + footprint + bc_err(footprint) + oracle * ray * m[i] * m[j];
-        det = bc_affine_add(det, bc_affine_mul(w[k], edge[k]), real(1));
+        edge[k] = bc_poly_add(bc_poly_times_uv(dx[i], dx_error[i], dy[j], dy_error[j]),
+                              bc_poly_times_uv(dx[j], dx_error[j], dy[i], dy_error[i]), real(-1));
+        real w_error = bc_err(abs(tri.p[k].z) + abs(tri.p[k + 3].z));
+        det = bc_poly_add(det, bc_poly_times_t(edge[k], w[k], w_error), real(1));
     }
-    real det_margin = bc_affine_span(det) + det.r + oracle * m[0] * m[1] * m[2];
-    real sign = real(0);
-    if (det.a.x > det_margin) sign = real(1);
-    if (det.a.x < -det_margin) sign = real(-1);
-    real flip = sign < real(0) ? real(-1) : real(1);
+    real sign = bc_poly_sign(det, oracle * m[0] * m[1] * m[2]);
+    bool one_sided = sign != real(0);
     for (int k = 0; k < 3; ++k) {
-        // The plane in (u, v, t): xi = (u - centre) / half-width per axis.
-        vec4 a = flip * edge[k].a;
-        real cu = a.y / u_box.y;
-        real cv = a.z / v_box.y;
-        real ct = a.w / t_box.y;
-        real constant = a.x - cu * u_box.x - cv * v_box.x - ct * t_box.x;
-        // Rounding of the conversion and of the caller's evaluation.
-        real slack = bc_err(abs(a.x) + real(2) * (abs(cu) * (abs(u_box.x) + u_box.y) + abs(cv) * (abs(v_box.x) + v_box.y) +
-                                                 abs(ct) * (abs(t_box.x) + t_box.y)) + radius[k]);
-        real r = radius[k] + slack;
-        e.du[k] = cu;
-        e.dv[k] = cv;
-        e.dt[k] = ct;
-        e.hi[k] = constant + r;
-        e.lo[k] = constant - r;
-        bool finite = bc_finite(cu) && bc_finite(cv) && bc_finite(ct) && bc_finite(e.hi[k]) && bc_finite(e.lo[k]);
-        if (!finite) return bc_no_edge_planes();
+        int i = (k + 1) % 3;
+        int j = (k + 2) % 3;
+        real wi_error = bc_err(abs(tri.p[i].z) + abs(tri.p[i + 3].z));
+        real wj_error = bc_err(abs(tri.p[j].z) + abs(tri.p[j + 3].z));
+        BcPoly nx = bc_poly_add(bc_poly_times_t(bc_poly_factor(dy[i], 2, dy_error[i]), w[j], wj_error),
+                                bc_poly_times_t(bc_poly_factor(dy[j], 2, dy_error[j]), w[i], wi_error), real(-1));
+        BcPoly ny = bc_poly_add(bc_poly_times_t(bc_poly_factor(dx[j], 1, dx_error[j]), w[i], wi_error),
+                                bc_poly_times_t(bc_poly_factor(dx[i], 1, dx_error[i]), w[j], wj_error), real(-1));
+        BcPoly f = one_sided ? bc_poly_scale(edge[k], sign) : edge[k];
+        f = bc_poly_add_abs(f, nx, sx.y, one_sided);
+        f = bc_poly_add_abs(f, ny, sy.y, one_sided);
+        if (!bc_edge_plane(f, oracle * ray * m[i] * m[j], u_box, v_box, t_box, k, e)) return bc_no_edge_planes();
     }
-    if (!bc_finite(det_margin) || !bc_finite(det.a.x)) sign = real(0);
-    e.mode = sign != real(0) ? BC_EDGE_ONE_SIDED : BC_EDGE_TWO_SIDED;
-    e.time = vec2(t_box.x - t_box.y, t_box.x + t_box.y);
+    e.mode = one_sided ? BC_EDGE_ONE_SIDED : BC_EDGE_TWO_SIDED;
+    e.time = t_range;
     return e;
 }
 
-// Whether a sample at lens uv and time t can be covered by the edges' account.
-BC_FN bool bc_edge_planes_pass(BC_IN(BcEdgePlanes) e, vec2 uv, real t) {
-    if (e.mode == BC_EDGE_NONE) return true;
-    if (t < e.time.x || t > e.time.y) return false;
+// The shutter range of the two-stage bounds cut into BC_EDGE_PIECES equal
+// pieces, each with its own planes: the terms in t^2 that a plane cannot
+// follow shrink with the square of a piece's length. Neighbouring pieces
+// share their end exactly, so every time in the range has a piece.
+struct BcEdgeBounds {
+    BcEdgePlanes piece[BC_EDGE_PIECES];
+};
+
+BC_FN BcEdgeBounds bc_no_edge_bounds() {
+    BcEdgeBounds b;
+    for (int k = 0; k < BC_EDGE_PIECES; ++k) b.piece[k] = bc_no_edge_planes();
+    return b;
+}
+
+BC_FN BcEdgeBounds bc_edge_bounds(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi, vec2 u_range, vec2 v_range,
+                                  vec2 t_range) {
+    BcEdgeBounds b;
+    real step = (t_range.y - t_range.x) / real(BC_EDGE_PIECES);
+    real start = t_range.x;
+    for (int k = 0; k < BC_EDGE_PIECES; ++k) {
+        real end = k + 1 == BC_EDGE_PIECES ? t_range.y : min(t_range.y, t_range.x + real(k + 1) * step);
+        b.piece[k] = bc_edge_piece(tri, s_lo, s_hi, u_range, v_range, vec2(start, end));
+        if (b.piece[k].mode == BC_EDGE_NONE) return bc_no_edge_bounds();
+        start = end;
+    }
+    return b;
+}
+
+// Whether a sample at lens uv and time t can be covered by the edges' account:
+// the planes of the piece whose shutter range holds t.
+BC_FN bool bc_edge_bounds_pass(BC_IN(BcEdgeBounds) b, vec2 uv, real t) {
+    if (b.piece[0].mode == BC_EDGE_NONE) return true;
+    if (t < b.piece[0].time.x) return false;
+    int k = 0;
+    while (k + 1 < BC_EDGE_PIECES) {
+        if (t <= b.piece[k].time.y) break;
+        k = k + 1;
+    }
+    BcEdgePlanes e = b.piece[k];
+    if (t > e.time.y) return false;
     vec3 value = e.du * uv.x + e.dv * uv.y + e.dt * t;
     vec3 hi = value + e.hi;
     if (min(hi.x, min(hi.y, hi.z)) >= real(0)) return true;

@@ -50,7 +50,7 @@ struct SampleBounds {
     vec4 tx2;      // a second pair of lines in (u, t), same form
     vec4 ty;       // t >= ty.x + ty.y v  and  t <= ty.z + ty.w v
     vec4 ty2;
-    BcEdgePlanes edges;  // BC_CULL_EDGES: the edges' planes in (u, v, t)
+    BcEdgeBounds edges;  // BC_CULL_EDGES: the edges' planes in (u, v, t)
 };
 
 BC_FN real bc_err(real magnitude) {
@@ -812,7 +812,7 @@ BC_FN SampleBounds no_sample_bounds() {
     r.tx2 = r.tx;
     r.ty = r.tx;
     r.ty2 = r.tx;
-    r.edges = bc_no_edge_planes();
+    r.edges = bc_no_edge_bounds();
     return r;
 }
 
@@ -877,7 +877,7 @@ BC_FN SampleBounds sample_bounds(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi
             r.empty = true;
             return r;
         }
-        r.edges = bc_edge_planes(tri, s_lo, s_hi, r.u_range, r.v_range, times);
+        r.edges = bc_edge_bounds(tri, s_lo, s_hi, r.u_range, r.v_range, times);
     }
     return r;
 }
@@ -909,5 +909,5 @@ BC_FN bool sample_passes(BC_IN(SampleBounds) b, vec2 uv, real t) {
     if (t < b.ty.x + b.ty.y * uv.y || t > b.ty.z + b.ty.w * uv.y) return false;
     if (t < b.tx2.x + b.tx2.y * uv.x || t > b.tx2.z + b.tx2.w * uv.x) return false;
     if (t < b.ty2.x + b.ty2.y * uv.y || t > b.ty2.z + b.ty2.w * uv.y) return false;
-    return bc_edge_planes_pass(b.edges, uv, t);
+    return bc_edge_bounds_pass(b.edges, uv, t);
 }
