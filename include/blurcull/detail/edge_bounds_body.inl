@@ -22,21 +22,26 @@
 // A polynomial in the box's coordinates xi_u, xi_v, xi_t (each in [-1, 1]):
 // k[a + 2 b + 4 c] is the coefficient of xi_u^a xi_v^b xi_t^c (a, b <= 1,
 // c <= 3), and r bounds its distance from the exact function it stands for
-// (the rounding so far). Edge functions have degree 1 in u and in v and 2 in
-// t, the determinant 3 in t. Terms that cancel between products cancel here.
+// (the rounding so far); m bounds the sum of |k|, so that rounding errors
+// are bounded without summing the coefficients again. Edge functions have
+// degree 1 in u and in v and 2 in t, the determinant 3 in t. Terms that
+// cancel between products cancel here.
 struct BcPoly {
     real k[16];
     real r;
+    real m;
 };
 
 BC_FN BcPoly bc_poly_zero() {
     BcPoly p;
     for (int n = 0; n < 16; ++n) p.k[n] = real(0);
     p.r = real(0);
+    p.m = real(0);
     return p;
 }
 
-// Sum of |coefficients|: a bound on |p| over the box (rounding aside).
+// Sum of |coefficients| (<= m, which also counts what cancelled): a bound
+// on |p| over the box, rounding aside.
 BC_FN real bc_poly_norm(BC_IN(BcPoly) p) {
     real sum = real(0);
     for (int n = 0; n < 16; ++n) sum = sum + abs(p.k[n]);
@@ -44,52 +49,55 @@ BC_FN real bc_poly_norm(BC_IN(BcPoly) p) {
 }
 
 BC_FN BcPoly bc_poly_add(BC_IN(BcPoly) p, BC_IN(BcPoly) q, real sign) {
-    BcPoly out;
-    for (int n = 0; n < 16; ++n) out.k[n] = p.k[n] + sign * q.k[n];
-    out.r = p.r + q.r + bc_err(bc_poly_norm(p) + bc_poly_norm(q));
-    return out;
+    BcPoly result;
+    for (int n = 0; n < 16; ++n) result.k[n] = p.k[n] + sign * q.k[n];
+    result.m = p.m + q.m;
+    result.r = p.r + q.r + bc_err(result.m);
+    return result;
 }
 
 BC_FN BcPoly bc_poly_scale(BC_IN(BcPoly) p, real factor) {
-    BcPoly out;
-    for (int n = 0; n < 16; ++n) out.k[n] = p.k[n] * factor;
-    out.r = p.r * abs(factor) + bc_err(bc_poly_norm(p) * abs(factor));
-    return out;
+    BcPoly result;
+    for (int n = 0; n < 16; ++n) result.k[n] = p.k[n] * factor;
+    result.m = p.m * abs(factor);
+    result.r = p.r * abs(factor) + bc_err(result.m);
+    return result;
 }
 
 // p (w0 + w1 xi_t), p of degree <= 2 in t; w_error bounds w's own error.
 BC_FN BcPoly bc_poly_times_t(BC_IN(BcPoly) p, vec2 w, real w_error) {
-    BcPoly out = bc_poly_zero();
+    BcPoly result = bc_poly_zero();
     for (int n = 0; n < 12; ++n) {
-        out.k[n] = out.k[n] + p.k[n] * w.x;
-        out.k[n + 4] = out.k[n + 4] + p.k[n] * w.y;
+        result.k[n] = result.k[n] + p.k[n] * w.x;
+        result.k[n + 4] = result.k[n + 4] + p.k[n] * w.y;
     }
-    real norm_p = bc_poly_norm(p);
     real norm_w = abs(w.x) + abs(w.y);
-    out.r = p.r * (norm_w + w_error) + norm_p * w_error + bc_err(real(2) * norm_p * norm_w);
-    return out;
+    result.m = p.m * norm_w;
+    result.r = p.r * (norm_w + w_error) + p.m * w_error + bc_err(real(2) * result.m);
+    return result;
 }
 
 // (x0 + x1 u + x2 t + x3 u t)(y0 + y1 v + y2 t + y3 v t), x_error and
 // y_error the factors' own errors.
 BC_FN BcPoly bc_poly_times_uv(vec4 x, real x_error, vec4 y, real y_error) {
-    BcPoly out = bc_poly_zero();
-    out.k[0] = x.x * y.x;              // 1
-    out.k[1] = x.y * y.x;              // u
-    out.k[2] = x.x * y.y;              // v
-    out.k[3] = x.y * y.y;              // u v
-    out.k[4] = x.z * y.x + x.x * y.z;  // t
-    out.k[5] = x.w * y.x + x.y * y.z;  // u t
-    out.k[6] = x.x * y.w + x.z * y.y;  // v t
-    out.k[7] = x.y * y.w + x.w * y.y;  // u v t
-    out.k[8] = x.z * y.z;              // t^2
-    out.k[9] = x.w * y.z;              // u t^2
-    out.k[10] = x.z * y.w;             // v t^2
-    out.k[11] = x.w * y.w;             // u v t^2
+    BcPoly result = bc_poly_zero();
+    result.k[0] = x.x * y.x;              // 1
+    result.k[1] = x.y * y.x;              // u
+    result.k[2] = x.x * y.y;              // v
+    result.k[3] = x.y * y.y;              // u v
+    result.k[4] = x.z * y.x + x.x * y.z;  // t
+    result.k[5] = x.w * y.x + x.y * y.z;  // u t
+    result.k[6] = x.x * y.w + x.z * y.y;  // v t
+    result.k[7] = x.y * y.w + x.w * y.y;  // u v t
+    result.k[8] = x.z * y.z;              // t^2
+    result.k[9] = x.w * y.z;              // u t^2
+    result.k[10] = x.z * y.w;             // v t^2
+    result.k[11] = x.w * y.w;             // u v t^2
     real nx = abs(x.x) + abs(x.y) + abs(x.z) + abs(x.w);
     real ny = abs(y.x) + abs(y.y) + abs(y.z) + abs(y.w);
-    out.r = x_error * (ny + y_error) + nx * y_error + bc_err(real(2) * nx * ny);
-    return out;
+    result.m = nx * ny;
+    result.r = x_error * (ny + y_error) + nx * y_error + bc_err(real(2) * result.m);
+    return result;
 }
 
 // The factor x0 + x1 xi_a + x2 xi_t + x3 xi_a xi_t as a polynomial, with
@@ -101,6 +109,7 @@ BC_FN BcPoly bc_poly_factor(vec4 x, int a, real error) {
     p.k[4] = x.z;
     p.k[4 + a] = x.w;
     p.r = error;
+    p.m = abs(x.x) + abs(x.y) + abs(x.z) + abs(x.w);
     return p;
 }
 
@@ -115,7 +124,7 @@ BC_FN vec4 bc_poly_plane(BC_IN(BcPoly) p, BC_OUT(real) radius) {
     real rest = real(0.5) * (abs(p.k[8]) + abs(p.k[9]) + abs(p.k[10])) + real(0.25) * abs(p.k[12]);
     rest = rest + abs(p.k[3]) + abs(p.k[5]) + abs(p.k[6]) + abs(p.k[7]) + abs(p.k[11]);
     rest = rest + abs(p.k[13]) + abs(p.k[14]) + abs(p.k[15]);
-    radius = rest + p.r + bc_err(bc_poly_norm(p));
+    radius = rest + p.r + bc_err(p.m);
     return plane;
 }
 
@@ -130,7 +139,7 @@ BC_FN real bc_poly_sign(BC_IN(BcPoly) p, real margin) {
     return real(0);
 }
 
-// The planes of the three edges over one box; see bc_edge_piece.
+// The planes of the three edges over one piece of the box (bc_edge_bounds).
 struct BcEdgePlanes {
     int mode;  // BC_EDGE_*
     vec2 time; // the box's shutter range: the planes hold only inside it
@@ -194,10 +203,10 @@ BC_FN real bc_vertex_magnitude(BC_IN(MovingTriangle) tri, int i) {
 BC_FN BcPoly bc_poly_add_abs(BC_IN(BcPoly) f, BC_IN(BcPoly) n, real h, bool follow_sign) {
     real sign = follow_sign ? bc_poly_sign(n, real(0)) : real(0);
     if (sign != real(0)) return bc_poly_add(f, bc_poly_scale(n, h * sign), real(1));
-    BcPoly out = f;
-    real term = h * (bc_poly_norm(n) + n.r);
-    out.r = out.r + term + bc_err(term);
-    return out;
+    BcPoly result = f;
+    real term = h * (bc_poly_norm(n) + bc_err(n.m) + n.r);
+    result.r = result.r + term + bc_err(term);
+    return result;
 }
 
 // Edge k's plane in (u, v, t) from its polynomial over the box (xi =
@@ -223,8 +232,18 @@ BC_FN bool bc_edge_plane(BC_IN(BcPoly) f, real extra, vec2 u_box, vec2 v_box, ve
     return bc_finite(cu) && bc_finite(cv) && bc_finite(ct) && bc_finite(e.hi[k]) && bc_finite(e.lo[k]);
 }
 
-// The planes over the footprint [s_lo, s_hi] (padded for the caller's
-// rounding already) and the box u in u_range, v in v_range, t in t_range.
+// The three edges' functions over the footprint [s_lo, s_hi] (padded for
+// the caller's rounding already) and the box u in u_range, v in v_range,
+// t in t_range, as polynomials in the box's coordinates; see bc_edge_functions.
+struct BcEdgeFunctions {
+    BcPoly f[3];    // per edge: the function to keep >= 0 (one-sided) or its centre (two-sided)
+    vec3 extra;     // per edge: the oracle's rounding, added to the radius
+    int mode;       // BC_EDGE_ONE_SIDED or BC_EDGE_TWO_SIDED
+    vec2 u_box;     // the box: centre and half-width per axis
+    vec2 v_box;
+    vec2 t_box;
+};
+
 // Edge k joins vertices i = k+1 and j = k+2; with d the vertices' offsets
 // from the ray through the footprint centre s_c, its function at the ray
 // (s_c + delta, 1) is
@@ -235,12 +254,12 @@ BC_FN bool bc_edge_plane(BC_IN(BcPoly) f, real extra, vec2 u_box, vec2 v_box, ve
 // must reach >= 0 somewhere on the footprint: its largest value there,
 // sign E_c + h_x |n_x| + h_y |n_y|, is kept exactly where n_x and n_y keep
 // their signs. Otherwise (two-sided) the footprint only widens the radius.
-BC_FN BcEdgePlanes bc_edge_piece(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi, vec2 u_range, vec2 v_range,
-                                 vec2 t_range) {
-    BcEdgePlanes e = bc_no_edge_planes();
-    vec2 u_box = bc_box_axis(u_range.x, u_range.y);
-    vec2 v_box = bc_box_axis(v_range.x, v_range.y);
-    vec2 t_box = bc_box_axis(t_range.x, t_range.y);
+BC_FN BcEdgeFunctions bc_edge_functions(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi, vec2 u_range,
+                                        vec2 v_range, vec2 t_range) {
+    BcEdgeFunctions result;
+    result.u_box = bc_box_axis(u_range.x, u_range.y);
+    result.v_box = bc_box_axis(v_range.x, v_range.y);
+    result.t_box = bc_box_axis(t_range.x, t_range.y);
     vec2 sx = bc_box_axis(s_lo.x, s_hi.x);
     vec2 sy = bc_box_axis(s_lo.y, s_hi.y);
     vec4 dx[3];
@@ -248,73 +267,112 @@ BC_FN BcEdgePlanes bc_edge_piece(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi
     vec2 w[3];
     vec3 dx_error = vec3(real(0));
     vec3 dy_error = vec3(real(0));
+    vec3 w_error = vec3(real(0));
     real m[3];
     for (int i = 0; i < 3; ++i) {
         real ex = real(0);
         real ey = real(0);
-        dx[i] = bc_edge_offset(tri, i, 0, sx.x, u_box, t_box, ex);
-        dy[i] = bc_edge_offset(tri, i, 1, sy.x, v_box, t_box, ey);
+        dx[i] = bc_edge_offset(tri, i, 0, sx.x, result.u_box, result.t_box, ex);
+        dy[i] = bc_edge_offset(tri, i, 1, sy.x, result.v_box, result.t_box, ey);
         dx_error[i] = ex;
         dy_error[i] = ey;
-        w[i] = bc_lerp_t(tri.p[i].z, tri.p[i + 3].z, t_box);
+        w[i] = bc_lerp_t(tri.p[i].z, tri.p[i + 3].z, result.t_box);
+        w_error[i] = bc_err(abs(tri.p[i].z) + abs(tri.p[i + 3].z));
         m[i] = bc_vertex_magnitude(tri, i);
     }
     real ray = real(1) + max(abs(s_lo.x), abs(s_hi.x)) + max(abs(s_lo.y), abs(s_hi.y));
     real oracle = real(BC_MARGIN) * real(BC_ORACLE_EPSILON);
     BcPoly det = bc_poly_zero();
-    BcPoly edge[3];
     for (int k = 0; k < 3; ++k) {
         int i = (k + 1) % 3;
         int j = (k + 2) % 3;
-        edge[k] = bc_poly_add(bc_poly_times_uv(dx[i], dx_error[i], dy[j], dy_error[j]),
-                              bc_poly_times_uv(dx[j], dx_error[j], dy[i], dy_error[i]), real(-1));
-        real w_error = bc_err(abs(tri.p[k].z) + abs(tri.p[k + 3].z));
-        det = bc_poly_add(det, bc_poly_times_t(edge[k], w[k], w_error), real(1));
+        result.f[k] = bc_poly_add(bc_poly_times_uv(dx[i], dx_error[i], dy[j], dy_error[j]),
+                               bc_poly_times_uv(dx[j], dx_error[j], dy[i], dy_error[i]), real(-1));
+        det = bc_poly_add(det, bc_poly_times_t(result.f[k], w[k], w_error[k]), real(1));
+        result.extra[k] = oracle * ray * m[i] * m[j];
     }
     real sign = bc_poly_sign(det, oracle * m[0] * m[1] * m[2]);
     bool one_sided = sign != real(0);
+    result.mode = one_sided ? BC_EDGE_ONE_SIDED : BC_EDGE_TWO_SIDED;
     for (int k = 0; k < 3; ++k) {
         int i = (k + 1) % 3;
         int j = (k + 2) % 3;
-        real wi_error = bc_err(abs(tri.p[i].z) + abs(tri.p[i + 3].z));
-        real wj_error = bc_err(abs(tri.p[j].z) + abs(tri.p[j + 3].z));
-        BcPoly nx = bc_poly_add(bc_poly_times_t(bc_poly_factor(dy[i], 2, dy_error[i]), w[j], wj_error),
-                                bc_poly_times_t(bc_poly_factor(dy[j], 2, dy_error[j]), w[i], wi_error), real(-1));
-        BcPoly ny = bc_poly_add(bc_poly_times_t(bc_poly_factor(dx[j], 1, dx_error[j]), w[i], wi_error),
-                                bc_poly_times_t(bc_poly_factor(dx[i], 1, dx_error[i]), w[j], wj_error), real(-1));
-        BcPoly f = one_sided ? bc_poly_scale(edge[k], sign) : edge[k];
-        f = bc_poly_add_abs(f, nx, sx.y, one_sided);
-        f = bc_poly_add_abs(f, ny, sy.y, one_sided);
-        if (!bc_edge_plane(f, oracle * ray * m[i] * m[j], u_box, v_box, t_box, k, e)) return bc_no_edge_planes();
+        BcPoly nx = bc_poly_add(bc_poly_times_t(bc_poly_factor(dy[i], 2, dy_error[i]), w[j], w_error[j]),
+                                bc_poly_times_t(bc_poly_factor(dy[j], 2, dy_error[j]), w[i], w_error[i]), real(-1));
+        BcPoly ny = bc_poly_add(bc_poly_times_t(bc_poly_factor(dx[j], 1, dx_error[j]), w[i], w_error[i]),
+                                bc_poly_times_t(bc_poly_factor(dx[i], 1, dx_error[i]), w[j], w_error[j]), real(-1));
+        if (one_sided) result.f[k] = bc_poly_scale(result.f[k], sign);
+        result.f[k] = bc_poly_add_abs(result.f[k], nx, sx.y, one_sided);
+        result.f[k] = bc_poly_add_abs(result.f[k], ny, sy.y, one_sided);
     }
-    e.mode = one_sided ? BC_EDGE_ONE_SIDED : BC_EDGE_TWO_SIDED;
-    e.time = t_range;
-    return e;
+    return result;
+}
+
+// p on the part xi_t = centre + half_width xi' of the box, as a polynomial in xi'
+// (|centre| + half_width <= 1 + a rounding pad): (centre + half_width xi')^c expanded.
+BC_FN BcPoly bc_poly_recentre_t(BC_IN(BcPoly) p, real centre, real half_width) {
+    BcPoly result;
+    for (int g = 0; g < 4; ++g) {
+        real k0 = p.k[g];
+        real k1 = p.k[g + 4];
+        real k2 = p.k[g + 8];
+        real k3 = p.k[g + 12];
+        result.k[g] = k0 + centre * (k1 + centre * (k2 + centre * k3));
+        result.k[g + 4] = half_width * (k1 + centre * (real(2) * k2 + real(3) * centre * k3));
+        result.k[g + 8] = half_width * half_width * (k2 + real(3) * centre * k3);
+        result.k[g + 12] = half_width * half_width * half_width * k3;
+    }
+    real reach = max(real(1), abs(centre) + half_width);  // bounds |centre + half_width xi'|^c, c <= 3
+    result.m = p.m * reach * reach * reach;
+    result.r = p.r + bc_err(real(8) * result.m);
+    return result;
 }
 
 // The shutter range of the two-stage bounds cut into BC_EDGE_PIECES equal
-// pieces, each with its own planes: the terms in t^2 that a plane cannot
+// pieces, each with planes of its own, from the edge functions over the
+// whole range re-centred on the piece: the terms in t^2 that a plane cannot
 // follow shrink with the square of a piece's length. Neighbouring pieces
 // share their end exactly, so every time in the range has a piece.
+// A triangle that does not move gets one piece: its functions are constant in t.
 struct BcEdgeBounds {
+    int pieces;  // pieces in use, 1 or BC_EDGE_PIECES
     BcEdgePlanes piece[BC_EDGE_PIECES];
 };
 
 BC_FN BcEdgeBounds bc_no_edge_bounds() {
     BcEdgeBounds b;
+    b.pieces = 1;
     for (int k = 0; k < BC_EDGE_PIECES; ++k) b.piece[k] = bc_no_edge_planes();
     return b;
 }
 
 BC_FN BcEdgeBounds bc_edge_bounds(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi, vec2 u_range, vec2 v_range,
                                   vec2 t_range) {
-    BcEdgeBounds b;
-    real step = (t_range.y - t_range.x) / real(BC_EDGE_PIECES);
+    BcEdgeBounds b = bc_no_edge_bounds();
+    bool moves = false;
+    for (int j = 0; j < 3; ++j) {
+        if (tri.p[j] != tri.p[j + 3] || tri.c[j] != tri.c[j + 3]) moves = true;
+    }
+    b.pieces = moves ? BC_EDGE_PIECES : 1;
+    BcEdgeFunctions fn = bc_edge_functions(tri, s_lo, s_hi, u_range, v_range, t_range);
+    vec2 t_box = fn.t_box;
+    // A piece's ends are rounded: in box coordinates they can move by this much.
+    real pad = bc_err(abs(t_box.x) + t_box.y) / t_box.y;
+    real half_width = real(1) / real(b.pieces);
     real start = t_range.x;
-    for (int k = 0; k < BC_EDGE_PIECES; ++k) {
-        real end = k + 1 == BC_EDGE_PIECES ? t_range.y : min(t_range.y, t_range.x + real(k + 1) * step);
-        b.piece[k] = bc_edge_piece(tri, s_lo, s_hi, u_range, v_range, vec2(start, end));
-        if (b.piece[k].mode == BC_EDGE_NONE) return bc_no_edge_bounds();
+    for (int q = 0; q < b.pieces; ++q) {
+        real centre = real(-1) + half_width * real(2 * q + 1);
+        real end = q + 1 == b.pieces ? t_range.y : t_box.x + t_box.y * (centre + half_width);
+        end = max(start, min(end, t_range.y));
+        BcEdgePlanes e = bc_no_edge_planes();
+        vec2 piece_box = vec2(t_box.x + t_box.y * centre, t_box.y * (half_width + pad));
+        for (int k = 0; k < 3; ++k) {
+            BcPoly f = bc_poly_recentre_t(fn.f[k], centre, half_width + pad);
+            if (!bc_edge_plane(f, fn.extra[k], fn.u_box, fn.v_box, piece_box, k, e)) return bc_no_edge_bounds();
+        }
+        e.mode = fn.mode;
+        e.time = vec2(start, end);
+        b.piece[q] = e;
         start = end;
     }
     return b;
@@ -326,7 +384,7 @@ BC_FN bool bc_edge_bounds_pass(BC_IN(BcEdgeBounds) b, vec2 uv, real t) {
     if (b.piece[0].mode == BC_EDGE_NONE) return true;
     if (t < b.piece[0].time.x) return false;
     int k = 0;
-    while (k + 1 < BC_EDGE_PIECES) {
+    while (k + 1 < b.pieces) {
         if (t <= b.piece[k].time.y) break;
         k = k + 1;
     }

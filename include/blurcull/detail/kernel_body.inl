@@ -816,6 +816,26 @@ BC_FN SampleBounds no_sample_bounds() {
     return r;
 }
 
+// The shutter interval that holds every sample sample_passes lets through:
+// each time line, linear in u (v), is extremal at an end of the lens range.
+// (lo > hi when the bounds are empty.) Lets a renderer whose samples are
+// sorted by time visit only that interval.
+BC_FN vec2 sample_time_range(BC_IN(SampleBounds) b) {
+    if (b.empty) return vec2(real(1), real(0));
+    vec4 u = vec4(b.u_range.x, b.u_range.y, b.v_range.x, b.v_range.y);
+    real lo = max(max(min(b.tx.x + b.tx.y * u.x, b.tx.x + b.tx.y * u.y),
+                      min(b.tx2.x + b.tx2.y * u.x, b.tx2.x + b.tx2.y * u.y)),
+                  max(min(b.ty.x + b.ty.y * u.z, b.ty.x + b.ty.y * u.w),
+                      min(b.ty2.x + b.ty2.y * u.z, b.ty2.x + b.ty2.y * u.w)));
+    real hi = min(min(max(b.tx.z + b.tx.w * u.x, b.tx.z + b.tx.w * u.y),
+                      max(b.tx2.z + b.tx2.w * u.x, b.tx2.z + b.tx2.w * u.y)),
+                  min(max(b.ty.z + b.ty.w * u.z, b.ty.z + b.ty.w * u.w),
+                      max(b.ty2.z + b.ty2.w * u.z, b.ty2.z + b.ty2.w * u.w)));
+    // A line's value inside the range can round a hair past its ends' values.
+    real pad = bc_err(real(1) + max(abs(lo), abs(hi)));
+    return vec2(max(lo - pad, real(0)), min(hi + pad, real(1)));
+}
+
 // Bounds on the lens and time of every sample in the screen footprint
 // [s_lo, s_hi] (a pixel or a tile) that the triangle can cover.
 // BC_CULL_BBOX and BC_CULL_HULL bound only the screen (see screen_bound).
@@ -880,26 +900,6 @@ BC_FN SampleBounds sample_bounds(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi
         r.edges = bc_edge_bounds(tri, s_lo, s_hi, r.u_range, r.v_range, times);
     }
     return r;
-}
-
-// The shutter interval that holds every sample sample_passes lets through:
-// each time line, linear in u (v), is extremal at an end of the lens range.
-// (lo > hi when the bounds are empty.) Lets a renderer whose samples are
-// sorted by time visit only that interval.
-BC_FN vec2 sample_time_range(BC_IN(SampleBounds) b) {
-    if (b.empty) return vec2(real(1), real(0));
-    vec4 u = vec4(b.u_range.x, b.u_range.y, b.v_range.x, b.v_range.y);
-    real lo = max(max(min(b.tx.x + b.tx.y * u.x, b.tx.x + b.tx.y * u.y),
-                      min(b.tx2.x + b.tx2.y * u.x, b.tx2.x + b.tx2.y * u.y)),
-                  max(min(b.ty.x + b.ty.y * u.z, b.ty.x + b.ty.y * u.w),
-                      min(b.ty2.x + b.ty2.y * u.z, b.ty2.x + b.ty2.y * u.w)));
-    real hi = min(min(max(b.tx.z + b.tx.w * u.x, b.tx.z + b.tx.w * u.y),
-                      max(b.tx2.z + b.tx2.w * u.x, b.tx2.z + b.tx2.w * u.y)),
-                  min(max(b.ty.z + b.ty.w * u.z, b.ty.z + b.ty.w * u.w),
-                      max(b.ty2.z + b.ty2.w * u.z, b.ty2.z + b.ty2.w * u.w)));
-    // A line's value inside the range can round a hair past its ends' values.
-    real pad = bc_err(real(1) + max(abs(lo), abs(hi)));
-    return vec2(max(lo - pad, real(0)), min(hi + pad, real(1)));
 }
 
 BC_FN bool sample_passes(BC_IN(SampleBounds) b, vec2 uv, real t) {
