@@ -15,13 +15,16 @@
 //   build/bench/bench_limit [configs per family, default 4000] [samples per config, default 64]
 //
 // The hull is found numerically: the triangle is clipped against the frustum
-// (near plane and the footprint's four side planes) at 129 times, and each end
-// of the first-to-last hit range is refined by bisection against its missing
-// neighbour. A hit range narrower than 1/128 between two missing grid times
-// is missed (the limit is then a little optimistic); zero-area positions
-// (det = 0, which the oracle never covers) do not count as hits.
+// (near plane and the footprint's four side planes) at 129 times inside the
+// two-stage bounds' time interval at (u, v), and each end of the first-to-last
+// hit range is refined by bisection against its missing neighbour. A hit
+// range narrower than 1/128 of that interval between two missing grid times
+// is missed (the limit is then a little optimistic; the last column counts
+// covered samples outside the hull found); zero-area positions (det = 0,
+// which the oracle never covers) do not count as hits.
 #include "kernel_generators.hpp"
 
+#include <algorithm>
 #include <cinttypes>
 #include <cstdio>
 #include <cstdlib>
@@ -70,13 +73,26 @@ bool meets_frustum(const Kd::MovingTriangle& tri, Kd::vec2 uv, double t, Kd::vec
 }
 
 // The hull [lo, hi] of the times at which the triangle at uv meets the
-// footprint's frustum; lo > hi when it never does.
-Kd::vec2 exact_time_hull(const Config& cfg, Kd::vec2 uv) {
+// footprint's frustum; lo > hi when it never does. Searched inside the
+// two-stage time lines at uv (which never cull a covered sample: the property
+// tests), so a fast triangle's short crossing still spans many grid steps.
+Kd::vec2 exact_time_hull(const Config& cfg, const Kd::SampleBounds& two_stage, Kd::vec2 uv) {
     constexpr int kSteps = 128;
+    const Kd::SampleBounds& b = two_stage;
+    if (b.empty || uv.x < b.u_range.x || uv.x > b.u_range.y || uv.y < b.v_range.x || uv.y > b.v_range.y)
+        return Kd::vec2(1.0, 0.0);
+    double t0 = std::max({0.0, b.tx.x + b.tx.y * uv.x, b.tx2.x + b.tx2.y * uv.x, b.ty.x + b.ty.y * uv.y,
+                          b.ty2.x + b.ty2.y * uv.y});
+    double t1 = std::min({1.0, b.tx.z + b.tx.w * uv.x, b.tx2.z + b.tx2.w * uv.x, b.ty.z + b.ty.w * uv.y,
+                          b.ty2.z + b.ty2.w * uv.y});
+    t0 = std::max(0.0, t0 - 1e-9);
+    t1 = std::min(1.0, t1 + 1e-9);
+    if (t0 > t1) return Kd::vec2(1.0, 0.0);
+    auto at = [&](int k) { return k == kSteps ? t1 : t0 + (t1 - t0) * double(k) / kSteps; };
     auto hit = [&](double t) { return meets_frustum(cfg.tri, uv, t, cfg.s_lo, cfg.s_hi, cfg.near); };
     int first = -1, last = -1;
     for (int k = 0; k <= kSteps; ++k) {
-        if (hit(double(k) / kSteps)) {
+        if (hit(at(k))) {
             if (first < 0) first = k;
             last = k;
         }
@@ -89,8 +105,8 @@ Kd::vec2 exact_time_hull(const Config& cfg, Kd::vec2 uv) {
         }
         return in;
     };
-    double lo = first == 0 ? 0.0 : refine(double(first - 1) / kSteps, double(first) / kSteps);
-    double hi = last == kSteps ? 1.0 : refine(double(last + 1) / kSteps, double(last) / kSteps);
+    double lo = first == 0 ? at(0) : refine(at(first - 1), at(first));
+    double hi = last == kSteps ? at(kSteps) : refine(at(last + 1), at(last));
     return Kd::vec2(lo, hi);
 }
 
@@ -120,7 +136,7 @@ Row run_family(Family family, int configs, int samples, std::uint64_t seed) {
             Kd::vec2 s = glm::clamp(smp.s, cfg.s_lo, cfg.s_hi);
             double depth = 0.0;
             bool covered = Kd::covers(cfg.tri, s, smp.uv, smp.t, cfg.near, depth);
-            Kd::vec2 hull = exact_time_hull(cfg, smp.uv);
+            Kd::vec2 hull = exact_time_hull(cfg, bounds[BC_CULL_CLIP2], smp.uv);
             bool inside = smp.t >= hull.x && smp.t <= hull.y && Kd::screen_contains(screen[BC_CULL_HULL], s);
             ++row.samples;
             row.covered += covered;
