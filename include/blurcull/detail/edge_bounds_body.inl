@@ -100,17 +100,26 @@ BC_FN BcPoly bc_poly_times_uv(vec4 x, real x_error, vec4 y, real y_error) {
     return result;
 }
 
-// The factor x0 + x1 xi_a + x2 xi_t + x3 xi_a xi_t as a polynomial, with
-// `a` the index of xi_a (1 for u, 2 for v).
-BC_FN BcPoly bc_poly_factor(vec4 x, int a, real error) {
-    BcPoly p = bc_poly_zero();
-    p.k[0] = x.x;
-    p.k[a] = x.y;
-    p.k[4] = x.z;
-    p.k[4 + a] = x.w;
-    p.r = error;
-    p.m = abs(x.x) + abs(x.y) + abs(x.z) + abs(x.w);
-    return p;
+// y_i w_j - y_j w_i for factors y = y0 + y1 xi_a + y2 xi_t + y3 xi_a xi_t
+// (`a` the index of xi_a: 1 for u, 2 for v) and depths w = w0 + w1 xi_t,
+// with their errors: the footprint terms n_x, n_y of an edge.
+BC_FN BcPoly bc_poly_cross_w(vec4 yi, real yi_error, vec2 wi, real wi_error, vec4 yj, real yj_error, vec2 wj,
+                             real wj_error, int a) {
+    BcPoly result = bc_poly_zero();
+    result.k[0] = yi.x * wj.x - yj.x * wi.x;                                   // 1
+    result.k[a] = yi.y * wj.x - yj.y * wi.x;                                   // a
+    result.k[4] = (yi.z * wj.x + yi.x * wj.y) - (yj.z * wi.x + yj.x * wi.y);   // t
+    result.k[4 + a] = (yi.w * wj.x + yi.y * wj.y) - (yj.w * wi.x + yj.y * wi.y); // a t
+    result.k[8] = yi.z * wj.y - yj.z * wi.y;                                   // t^2
+    result.k[8 + a] = yi.w * wj.y - yj.w * wi.y;                               // a t^2
+    real ni = abs(yi.x) + abs(yi.y) + abs(yi.z) + abs(yi.w);
+    real nj = abs(yj.x) + abs(yj.y) + abs(yj.z) + abs(yj.w);
+    real mi = abs(wi.x) + abs(wi.y);
+    real mj = abs(wj.x) + abs(wj.y);
+    result.m = ni * mj + nj * mi;
+    result.r = yi_error * (mj + wj_error) + ni * wj_error + yj_error * (mi + wi_error) + nj * wi_error +
+               bc_err(real(2) * result.m);
+    return result;
 }
 
 // The plane kept of p: p = c0 + cu xi_u + cv xi_v + ct xi_t + rest with
@@ -297,10 +306,8 @@ BC_FN BcEdgeFunctions bc_edge_functions(BC_IN(MovingTriangle) tri, vec2 s_lo, ve
     for (int k = 0; k < 3; ++k) {
         int i = (k + 1) % 3;
         int j = (k + 2) % 3;
-        BcPoly nx = bc_poly_add(bc_poly_times_t(bc_poly_factor(dy[i], 2, dy_error[i]), w[j], w_error[j]),
-                                bc_poly_times_t(bc_poly_factor(dy[j], 2, dy_error[j]), w[i], w_error[i]), real(-1));
-        BcPoly ny = bc_poly_add(bc_poly_times_t(bc_poly_factor(dx[j], 1, dx_error[j]), w[i], w_error[i]),
-                                bc_poly_times_t(bc_poly_factor(dx[i], 1, dx_error[i]), w[j], w_error[j]), real(-1));
+        BcPoly nx = bc_poly_cross_w(dy[i], dy_error[i], w[i], w_error[i], dy[j], dy_error[j], w[j], w_error[j], 2);
+        BcPoly ny = bc_poly_cross_w(dx[j], dx_error[j], w[j], w_error[j], dx[i], dx_error[i], w[i], w_error[i], 1);
         if (one_sided) result.f[k] = bc_poly_scale(result.f[k], sign);
         result.f[k] = bc_poly_add_abs(result.f[k], nx, sx.y, one_sided);
         result.f[k] = bc_poly_add_abs(result.f[k], ny, sy.y, one_sided);
