@@ -44,6 +44,8 @@ struct kernel {
 
 #include "detail/sampling_body.inl"
 #include "detail/kernel_body.inl"
+#include "detail/edge_bounds_body.inl"
+#include "detail/sample_bounds_body.inl"
 };
 
 using kernelf = kernel<float>;

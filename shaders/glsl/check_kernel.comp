@@ -31,7 +31,8 @@ void main() {
     int footprint_state = screen_footprint(screen, s - vec2(0.01), s + vec2(0.01));
     SampleBounds none = no_sample_bounds();
     SampleBounds bounds = sample_bounds(tri, s - vec2(0.01), s + vec2(0.01), method);
-    bool passes = sample_passes(bounds, uv, t) || sample_passes(none, uv, t);
+    SampleBounds edge_bounds = sample_bounds(tri, s - vec2(0.01), s + vec2(0.01), BC_CULL_EDGES);
+    bool passes = sample_passes(bounds, uv, t) || sample_passes(none, uv, t) || sample_passes(edge_bounds, uv, t);
     vec2 time_range = sample_time_range(bounds);
     uint px = uint(values[43]);
     uint py = uint(values[44]);

@@ -37,6 +37,7 @@ void main() {
     sb.tx2 = g_tx2;
     sb.ty = g_ty;
     sb.ty2 = g_ty2;
+    sb.edges = bc_no_edge_bounds();  // the per-cell bounds do not carry the edge planes
     if (!sample_passes(sb, s.lens, s.time)) discard;
     vec2 ndc = ndc_lens.xy;
     ScreenBound b;
