@@ -121,7 +121,7 @@ void SceneFlags::add_options(CLI::App& app, bool initial) {
     app.add_option("--scene", scene, "built-in scene name (blurcull scenes) or a .gltf/.glb file")
         ->capture_default_str();
     app.add_option("--cull", cull, start + "culling method")
-        ->check(CLI::IsMember({"bbox", "hull", "dualspace", "clip2"}))
+        ->check(CLI::IsMember({"bbox", "hull", "dualspace", "clip2", "edges"}))
         ->capture_default_str();
     app.add_option("--spp", spp, start + "samples per pixel")->check(CLI::Range(1, 1024))->capture_default_str();
     app.add_option("--size", size, "image size WxH")->capture_default_str();

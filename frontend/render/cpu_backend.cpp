@@ -82,7 +82,7 @@ RenderResult render_cpu_in(const Scene& scene, const RenderSettings& settings, c
     const int block = options.block > footprint ? options.block - options.block % footprint : footprint;
     // Only the per-footprint methods bound lens and time; a static, in-focus
     // triangle has neither to bound, whatever the method.
-    const bool cull_bounds = method == BC_CULL_DUALSPACE || method == BC_CULL_CLIP2;
+    const bool cull_bounds = method == BC_CULL_DUALSPACE || method == BC_CULL_CLIP2 || method == BC_CULL_EDGES;
     const typename K::SampleBounds no_bounds = K::no_sample_bounds();
     // Footprints that tile the work tiles get their samples sorted by time.
     const bool time_sorted = cull_bounds && footprint <= tile_size && tile_size % footprint == 0;

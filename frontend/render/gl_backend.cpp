@@ -221,7 +221,8 @@ RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settin
     sum_buffer.bind_base(4);
     id_buffer.bind_base(5);
     const int method = kernel_cull_method(settings.cull);
-    const bool bounds_samples = method == BC_CULL_DUALSPACE || method == BC_CULL_CLIP2;
+    // The per-cell bounds carry the two-stage part of BC_CULL_EDGES, not its edge planes.
+    const bool bounds_samples = method == BC_CULL_DUALSPACE || method == BC_CULL_CLIP2 || method == BC_CULL_EDGES;
     const int cells_per_triangle = bounds_samples ? cells_max : 1;
     const std::size_t cell_count = moving_list.size() * static_cast<std::size_t>(cells_per_triangle);
     gl::Buffer cell_buffer(gl, GL_SHADER_STORAGE_BUFFER, std::max<std::size_t>(cell_count, 1) * cell_bounds_bytes);

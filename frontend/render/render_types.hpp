@@ -16,7 +16,7 @@
 namespace blurcull::frontend {
 
 // How a rasterizer decides which samples a triangle may cover (see BRIEF.md 3-4).
-enum class CullMethod { bbox, hull, dualspace, clip2 };
+enum class CullMethod { bbox, hull, dualspace, clip2, edges };
 
 inline const char* to_string(CullMethod method) {
     switch (method) {
@@ -24,6 +24,7 @@ inline const char* to_string(CullMethod method) {
         case CullMethod::hull: return "hull";
         case CullMethod::dualspace: return "dualspace";
         case CullMethod::clip2: return "clip2";
+        case CullMethod::edges: return "edges";
     }
     return "unknown";
 }
@@ -35,16 +36,18 @@ inline int kernel_cull_method(CullMethod method) {
         case CullMethod::hull: return BC_CULL_HULL;
         case CullMethod::dualspace: return BC_CULL_DUALSPACE;
         case CullMethod::clip2: return BC_CULL_CLIP2;
+        case CullMethod::edges: return BC_CULL_EDGES;
     }
     return BC_CULL_BBOX;
 }
 
 // Throws std::invalid_argument naming the valid methods when `name` is none of them.
 inline CullMethod parse_cull_method(const std::string& name) {
-    for (CullMethod method : {CullMethod::bbox, CullMethod::hull, CullMethod::dualspace, CullMethod::clip2}) {
+    for (CullMethod method :
+         {CullMethod::bbox, CullMethod::hull, CullMethod::dualspace, CullMethod::clip2, CullMethod::edges}) {
         if (name == to_string(method)) return method;
     }
-    throw std::invalid_argument("unknown cull method '" + name + "' (valid: bbox, hull, dualspace, clip2)");
+    throw std::invalid_argument("unknown cull method '" + name + "' (valid: bbox, hull, dualspace, clip2, edges)");
 }
 
 struct RenderSettings {
