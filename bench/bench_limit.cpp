@@ -81,10 +81,10 @@ Kd::vec2 exact_time_hull(const Config& cfg, const Kd::SampleBounds& two_stage, K
     const Kd::SampleBounds& b = two_stage;
     if (b.empty || uv.x < b.u_range.x || uv.x > b.u_range.y || uv.y < b.v_range.x || uv.y > b.v_range.y)
         return Kd::vec2(1.0, 0.0);
-    double t0 = std::max({0.0, b.tx.x + b.tx.y * uv.x, b.tx2.x + b.tx2.y * uv.x, b.ty.x + b.ty.y * uv.y,
-                          b.ty2.x + b.ty2.y * uv.y});
-    double t1 = std::min({1.0, b.tx.z + b.tx.w * uv.x, b.tx2.z + b.tx2.w * uv.x, b.ty.z + b.ty.w * uv.y,
-                          b.ty2.z + b.ty2.w * uv.y});
+    double t0 = std::max({0.0, b.u_time_a.x + b.u_time_a.y * uv.x, b.u_time_b.x + b.u_time_b.y * uv.x,
+                          b.v_time_a.x + b.v_time_a.y * uv.y, b.v_time_b.x + b.v_time_b.y * uv.y});
+    double t1 = std::min({1.0, b.u_time_a.z + b.u_time_a.w * uv.x, b.u_time_b.z + b.u_time_b.w * uv.x,
+                          b.v_time_a.z + b.v_time_a.w * uv.y, b.v_time_b.z + b.v_time_b.w * uv.y});
     t0 = std::max(0.0, t0 - 1e-9);
     t1 = std::min(1.0, t1 + 1e-9);
     if (t0 > t1) return Kd::vec2(1.0, 0.0);
@@ -136,7 +136,7 @@ Row run_family(Family family, int configs, int samples, std::uint64_t seed) {
             Kd::vec2 s = glm::clamp(smp.s, cfg.s_lo, cfg.s_hi);
             double depth = 0.0;
             bool covered = Kd::covers(cfg.tri, s, smp.uv, smp.t, cfg.near, depth);
-            Kd::vec2 hull = exact_time_hull(cfg, bounds[BC_CULL_CLIP2], smp.uv);
+            Kd::vec2 hull = exact_time_hull(cfg, bounds[BC_CULL_TWO_STAGE], smp.uv);
             bool inside = smp.t >= hull.x && smp.t <= hull.y && Kd::screen_contains(screen[BC_CULL_HULL], s);
             ++row.samples;
             row.covered += covered;
