@@ -30,7 +30,9 @@
 //           box), BC_CULL_HULL 1 (box and convex hull), BC_CULL_DUALSPACE 2
 //           (box, plus the lens and time bounds of Laine et al. 2011),
 //           BC_CULL_TWO_STAGE 3 (box and hull, plus the clip-space two-stage
-//           lens and time bounds of Wu et al. 2015). Switching is this one value.
+//           lens and time bounds of Wu et al. 2015), BC_CULL_EDGES 4 (two-stage,
+//           plus a plane in (u, v, t) per triangle edge; docs/kernel.md, "Edge
+//           bounds"). Switching is this one value.
 //
 // Types
 //   MovingTriangle  p[6]: clip (x, y, w) of vertex i at shutter open (p[i]) and
@@ -96,7 +98,7 @@
 // ScreenBound screen_bound(MovingTriangle tri, real near, int cull)
 //   Where on the screen the triangle can cover anything, over every t and uv:
 //   the box of its part in front of the near plane, grown by the CoC and the
-//   rounding margins, and with cull BC_CULL_HULL or BC_CULL_TWO_STAGE also the
+//   rounding margins, and with cull BC_CULL_HULL, BC_CULL_TWO_STAGE or BC_CULL_EDGES also the
 //   convex hull of the lens-shifted vertices (McGuire et al. 2010) when every
 //   vertex is in front of the near plane (else hull_count = 0, the box alone).
 //   empty = true: never in front of the near plane. Fallback, the whole screen
@@ -122,7 +124,10 @@
 //   footprint [s_lo, s_hi] (NDC, s_lo <= s_hi: a pixel or a tile) that the
 //   triangle can cover, per axis: a lens range, and time between lines in u
 //   (v). BC_CULL_DUALSPACE computes them as in detail/dual_space_body.inl,
-//   BC_CULL_TWO_STAGE as in detail/two_stage_body.inl. empty = true: no sample
+//   BC_CULL_TWO_STAGE as in detail/two_stage_body.inl, BC_CULL_EDGES as
+//   two-stage plus the edge planes of detail/edge_bounds_body.inl over the
+//   lens ranges and shutter interval two-stage leaves (none when a plane is not
+//   finite). empty = true: no sample
 //   of the footprint can be covered. Fallback, no_sample_bounds(): cull
 //   BC_CULL_BBOX or BC_CULL_HULL (they bound only the screen), non-finite input,
 //   a swamped triangle (as for screen_bound). An axis whose bound cannot be
@@ -293,6 +298,7 @@ struct kernel {
 #include "detail/screen_bound_body.inl"
 #include "detail/dual_space_body.inl"
 #include "detail/two_stage_body.inl"
+#include "detail/edge_bounds_body.inl"
 #include "detail/sample_bounds_body.inl"
 #include "detail/raster_body.inl"
 #include "detail/dodecahedron_body.inl"

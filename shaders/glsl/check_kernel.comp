@@ -66,7 +66,8 @@ void main() {
     int footprint_state = bc_screen_footprint(screen, s - vec2(0.01), s + vec2(0.01));
     SampleBounds none = bc_no_sample_bounds();
     SampleBounds bounds = bc_sample_bounds(tri, s - vec2(0.01), s + vec2(0.01), cull);
-    bool passes = bc_sample_passes(bounds, uv, t) || bc_sample_passes(none, uv, t);
+    SampleBounds edge_bounds = bc_sample_bounds(tri, s - vec2(0.01), s + vec2(0.01), BC_CULL_EDGES);
+    bool passes = bc_sample_passes(bounds, uv, t) || bc_sample_passes(none, uv, t) || bc_sample_passes(edge_bounds, uv, t);
     vec2 time_range = bc_sample_time_range(bounds);
     uint px = uint(values[43]);
     uint py = uint(values[44]);
