@@ -2,6 +2,7 @@
 // lens, linear motion and sample pattern (docs/reference-renderer.md).
 #pragma once
 
+#include "render/embree_options.hpp"
 #include "render/render_types.hpp"
 #include "scene/scene.hpp"
 
@@ -12,7 +13,9 @@ namespace blurcull::frontend {
 // image depends only on the scene and settings (not on the thread count).
 // stats.samples_tested = rays traced, stats.samples_hit = rays that hit.
 // Throws std::invalid_argument for bad settings, SceneError for a bad scene
-// (validate_scene), std::runtime_error for Embree failures.
-RenderResult render_embree(const Scene& scene, const RenderSettings& settings);
+// (validate_scene), std::runtime_error for Embree failures. `options` choose
+// how the rays are traced (every choice gives the same image; the defaults
+// are the fastest).
+RenderResult render_embree(const Scene& scene, const RenderSettings& settings, const EmbreeOptions& options = {});
 
 }  // namespace blurcull::frontend
