@@ -57,9 +57,7 @@ void run_config(const Config& cfg, Rng& rng, int batches, bool float_samples, Ta
             t[i] = float(rt[i]);
         }
         const std::uint32_t fast = frontend::may_cover8(setup, sx, sy, u, v, t);
-        const bool was_scalar = frontend::force_scalar_coverage_test(true);
-        const std::uint32_t scalar = frontend::may_cover8(setup, sx, sy, u, v, t);
-        frontend::force_scalar_coverage_test(was_scalar);
+        const std::uint32_t scalar = frontend::may_cover8_scalar(setup, sx, sy, u, v, t);
         if (fast != scalar) ++tally.path_mismatches;
         for (int i = 0; i < 8; ++i) {
             const bool maybe = (fast >> i) & 1u;

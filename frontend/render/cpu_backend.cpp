@@ -1,6 +1,7 @@
 #include "render/cpu_backend.hpp"
 
 #include "render/camera_model.hpp"
+#include "render/cpu/coverage_test.hpp"
 #include "render/moving_triangle.hpp"
 #include "render/progress.hpp"
 #include "render/shading.hpp"
@@ -60,6 +61,38 @@ PixelRect pixel_rect(const CameraModel& model, Vec2 lo, Vec2 hi) {
     return r;
 }
 
+// The NDC box of a pixel rectangle's samples (every pixel of it, whole).
+SampleBox sample_box(const CameraModel& model, const PixelRect& r) {
+    if (r.x0 > r.x1 || r.y0 > r.y1) return SampleBox{0.0, 0.0, 0.0, 0.0};
+    const glm::vec4 top_left = model.pixel_ndc_bounds(r.x0, r.y0);
+    const glm::vec4 bottom_right = model.pixel_ndc_bounds(r.x1, r.y1);
+    return SampleBox{top_left.x, bottom_right.y, bottom_right.z, top_left.w};
+}
+
+// A tile's samples in float, one array per coordinate: the fast coverage
+// test's input (exact: the samples are floats).
+class FloatSamples {
+public:
+    explicit FloatSamples(std::size_t size) : sx_(size), sy_(size), u_(size), v_(size), t_(size) {}
+    void set(std::size_t k, glm::vec2 ndc, glm::vec2 lens, float time) {
+        sx_[k] = ndc.x;
+        sy_[k] = ndc.y;
+        u_[k] = lens.x;
+        v_[k] = lens.y;
+        t_[k] = time;
+    }
+    bool may_cover(const CoverageSetup& setup, std::size_t k) const {
+        return frontend::may_cover(setup, sx_[k], sy_[k], u_[k], v_[k], t_[k]);
+    }
+    // Samples first .. first + 7 (the array is padded by 8).
+    std::uint32_t may_cover8(const CoverageSetup& setup, std::size_t first) const {
+        return frontend::may_cover8(setup, &sx_[first], &sy_[first], &u_[first], &v_[first], &t_[first]);
+    }
+
+private:
+    std::vector<float> sx_, sy_, u_, v_, t_;
+};
+
 template <class K>
 struct TileSample {
     typename K::vec2 ndc;
@@ -99,6 +132,9 @@ RenderResult render_cpu_in(const Scene& scene, const RenderSettings& settings, c
     std::vector<typename K::MovingTriangle> triangles(count);
     std::vector<PixelRect> rects(count);
     std::vector<int> classes(count);
+    // The fast coverage test's setup (render/cpu/coverage_test.hpp), for the
+    // samples of the triangle's pixel rectangle.
+    std::vector<CoverageSetup> fast_tests(count);
     // Each triangle's screen bound, computed once: its box, and its hull edges
     // (if any) as a range of `hull_edges`.
     struct StoredBound {
@@ -129,6 +165,7 @@ RenderResult render_cpu_in(const Scene& scene, const RenderSettings& settings, c
                 const typename K::ScreenBound bound = K::screen_bound(triangles[i], near, method);
                 if (bound.empty) continue;
                 rects[i] = pixel_rect(model, bound.lo, bound.hi);
+                fast_tests[i] = make_coverage_setup<Real>(triangles[i], sample_box(model, rects[i]));
                 StoredBound& stored = bounds[i];
                 stored.lo = bound.lo;
                 stored.hi = bound.hi;
@@ -177,6 +214,9 @@ RenderResult render_cpu_in(const Scene& scene, const RenderSettings& settings, c
 
     auto work = [&]() {
         std::vector<Sample> samples(static_cast<std::size_t>(tile_size) * tile_size * spp);
+        // The same samples in float, one array per coordinate, for the fast
+        // test's eight lanes (padded so the last pixel's batch stays inside).
+        FloatSamples lanes(samples.size() + 8);
         // Per footprint of the tile's grid, its sample slots sorted by time, so
         // that a footprint's bounds visit only their shutter interval.
         std::vector<std::uint32_t> by_time(samples.size());
@@ -201,8 +241,9 @@ RenderResult render_cpu_in(const Scene& scene, const RenderSettings& settings, c
                     for (std::uint32_t j = 0; j < spp; ++j) {
                         const kernelf::PixelSample s = kernelf::pixel_sample_from(pattern, j);
                         const std::size_t k = slot(px, py, j);
-                        samples[k] = Sample{typename K::vec2(model.sample_ndc(px, py, s.offset)),
-                                            typename K::vec2(s.lens), static_cast<Real>(s.time)};
+                        const glm::vec2 ndc = model.sample_ndc(px, py, s.offset);
+                        samples[k] = Sample{typename K::vec2(ndc), typename K::vec2(s.lens), static_cast<Real>(s.time)};
+                        lanes.set(k, ndc, s.lens, s.time);
                         depth[k] = std::numeric_limits<Real>::infinity();
                         hit[k] = none;
                     }
@@ -259,12 +300,16 @@ RenderResult render_cpu_in(const Scene& scene, const RenderSettings& settings, c
                     return sb;
                 };
                 bool check_screen = true;  // false while the footprint is inside the screen bound
-                auto test_sample = [&](std::size_t k, const typename K::SampleBounds& sb) {
+                const CoverageSetup& fast = fast_tests[index];
+                auto sample_culled = [&](std::size_t k, const typename K::SampleBounds& sb) {
                     const Sample& s = samples[k];
                     // The lens/time test first: it is cheaper than a hull and culls more.
-                    if (!K::sample_passes(sb, s.lens, s.time) || (check_screen && !K::screen_contains(bound, s.ndc)))
-                        return;
-                    ++tested;
+                    return !K::sample_passes(sb, s.lens, s.time) ||
+                           (check_screen && !K::screen_contains(bound, s.ndc));
+                };
+                // The exact test of a sample the fast test did not reject.
+                auto test_exactly = [&](std::size_t k) {
+                    const Sample& s = samples[k];
                     Real z = Real(0);
                     if (!K::covers(tri, s.ndc, s.lens, s.time, near, z)) return;
                     ++hits;
@@ -293,13 +338,31 @@ RenderResult render_cpu_in(const Scene& scene, const RenderSettings& settings, c
                             const int local = static_cast<int>(k / spp);
                             const int px = x0 + local % tw, py = y0 + local / tw;
                             if (px < px0 || px > px1 || py < py0 || py > py1) continue;
-                            test_sample(k, sb);
+                            if (sample_culled(k, sb)) continue;
+                            ++tested;
+                            if (lanes.may_cover(fast, k)) test_exactly(k);
                         }
                         return;
                     }
-                    for (int py = py0; py <= py1; ++py)
-                        for (int px = px0; px <= px1; ++px)
-                            for (std::uint32_t j = 0; j < spp; ++j) test_sample(slot(px, py, j), sb);
+                    for (int py = py0; py <= py1; ++py) {
+                        for (int px = px0; px <= px1; ++px) {
+                            const std::size_t first = slot(px, py, 0);
+                            // Eight samples at a time: the culls, then the fast test
+                            // on the batch, then covers on what it kept.
+                            for (std::uint32_t j0 = 0; j0 < spp; j0 += 8) {
+                                std::uint32_t passed = 0;
+                                for (std::uint32_t j = j0; j < std::min(spp, j0 + 8); ++j) {
+                                    if (sample_culled(first + j, sb)) continue;
+                                    passed |= 1u << (j - j0);
+                                    ++tested;
+                                }
+                                if (passed == 0) continue;
+                                for (std::uint32_t maybe = passed & lanes.may_cover8(fast, first + j0); maybe != 0;
+                                     maybe &= maybe - 1)
+                                    test_exactly(first + j0 + static_cast<std::uint32_t>(__builtin_ctz(maybe)));
+                            }
+                        }
+                    }
                 };
                 // Blocks of the image grid clipped to the triangle's rectangle;
                 // the bounds hold for any footprint. A block whose bounds hold

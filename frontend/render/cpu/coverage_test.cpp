@@ -1,7 +1,6 @@
 #include "render/cpu/coverage_test.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -57,7 +56,7 @@ struct Computed {
 constexpr Rounding double_rounding = oracle_rounding<double>();
 
 // p - s0 w in double (the shift to the setup's sample centre).
-Computed shifted(double p, double w, double s0) {
+[[gnu::always_inline]] inline Computed shifted(double p, double w, double s0) {
     const double product = s0 * w;
     const double value = p - product;
     const double product_err = double_rounding.eps * std::abs(product) * 2 + double_rounding.tiny;
@@ -65,7 +64,7 @@ Computed shifted(double p, double w, double s0) {
 }
 
 // b - a in double.
-Computed difference(const Computed& a, const Computed& b) {
+[[gnu::always_inline]] inline Computed difference(const Computed& a, const Computed& b) {
     const double value = b.value - a.value;
     return Computed{value, a.err + b.err + double_rounding.eps * std::abs(value) * 2 + double_rounding.tiny};
 }
@@ -73,13 +72,13 @@ Computed difference(const Computed& a, const Computed& b) {
 // The float evaluation of one sheared coordinate, fma(l, fma(t, dc, c),
 // fma(t, dp, p)), from its float inputs. Skipped terms are exact zeros, so
 // the "both" bound covers every variant.
-Bound fast_coordinate(Bound p, Bound dp, Bound c, Bound dc, Bound t, Bound lens) {
+[[gnu::always_inline]] inline Bound fast_coordinate(Bound p, Bound dp, Bound c, Bound dc, Bound t, Bound lens) {
     const Rounding& f = float_rounding;
     return f.fma(lens, f.fma(t, dc, c), f.fma(t, dp, p));
 }
 
 // A value computed in double, then rounded to float.
-Bound float_input(const Computed& value) {
+[[gnu::always_inline]] inline Bound float_input(const Computed& value) {
     const Bound exact = value.bound();
     return float_rounding.round(exact.m, exact.e);
 }
@@ -91,7 +90,7 @@ struct CoordinateMagnitude {
 
 // The oracle's evaluation (vertex_at): ((1 - t) p0 + t p1) + l ((1 - t) c0 + t c1),
 // each operation rounded in Real.
-Bound oracle_coordinate(const CoordinateMagnitude& q, Bound t, Bound lens, const Rounding& r) {
+[[gnu::always_inline]] inline Bound oracle_coordinate(const CoordinateMagnitude& q, Bound t, Bound lens, const Rounding& r) {
     const Bound one_minus_t = r.round(1.0, 0.0);
     const Bound p = r.add(r.mul(one_minus_t, Bound{q.p0, 0.0}), r.mul(t, Bound{q.p1, 0.0}));
     const Bound c = r.add(r.mul(one_minus_t, Bound{q.c0, 0.0}), r.mul(t, Bound{q.c1, 0.0}));
@@ -103,7 +102,7 @@ Bound oracle_coordinate(const CoordinateMagnitude& q, Bound t, Bound lens, const
 // sample; oracle: GLM's cross and bc_dot3, every product and sum rounded.
 // The shift is a shear of determinant 1, so both stand for the same exact
 // edge value.
-Bound fast_edge(const VertexBounds& a, const VertexBounds& b, Bound s) {
+[[gnu::always_inline]] inline Bound fast_edge(const VertexBounds& a, const VertexBounds& b, Bound s) {
     const Rounding& f = float_rounding;
     auto component = [&](Bound p, Bound q, Bound r, Bound o) { return f.fma(p, q, f.mul(r, o)); };
     const Bound nx = component(a.y, b.w, a.w, b.y);
@@ -112,7 +111,7 @@ Bound fast_edge(const VertexBounds& a, const VertexBounds& b, Bound s) {
     return f.fma(nx, s, f.fma(ny, s, nz));
 }
 
-Bound oracle_edge(const VertexBounds& a, const VertexBounds& b, Bound s, const Rounding& r) {
+[[gnu::always_inline]] inline Bound oracle_edge(const VertexBounds& a, const VertexBounds& b, Bound s, const Rounding& r) {
     auto component = [&](Bound p, Bound q, Bound u, Bound o) { return r.add(r.mul(p, q), r.mul(u, o)); };
     const Bound nx = component(a.y, b.w, a.w, b.y);
     const Bound ny = component(a.w, b.x, a.x, b.w);
@@ -248,7 +247,25 @@ bool cpu_has_avx2_fma() { return false; }
 #endif
 
 const bool has_avx2 = cpu_has_avx2_fma();
-std::atomic<bool> scalar_forced{false};
+
+bool keep_one(const CoverageSetup&, float, float, float, float, float) { return true; }
+std::uint32_t keep_eight(const CoverageSetup&, const float*, const float*, const float*, const float*, const float*) {
+    return 0xFFu;
+}
+
+// The evaluations for a variant on this CPU.
+template <CoverageVariant V>
+void choose_evaluations(CoverageSetup& setup) {
+#if BLURCULL_HAS_X86
+    if (has_avx2) {
+        setup.one = &may_cover_fma<V>;
+        setup.eight = &may_cover8_avx2<V>;
+        return;
+    }
+#endif
+    setup.one = &may_cover_lane<V>;
+    setup.eight = &may_cover8_lanes<V>;
+}
 
 }  // namespace
 
@@ -307,17 +324,25 @@ CoverageSetup make_coverage_setup(const typename kernel<Real>::MovingTriangle& t
     // Margin for the bound's own rounding: a few dozen roundings of positive
     // terms, each relative 2^-53.
     constexpr double slack = 1.0 + 0x1.0p-40;
-    // Float never overflows while every magnitude bound stays below this.
+    // Float never overflows while every magnitude bound stays below this
+    // (coordinates below its square root keep the cross products below it).
     constexpr double float_safe = 0x1.0p120;
-    setup.usable = std::isfinite(extent) && largest < float_safe;
+    setup.usable = std::isfinite(extent) && largest < 0x1.0p60;
     for (int k = 0; k < 3; ++k) {
         const int a = (k + 1) % 3, b = (k + 2) % 3;
         const Bound fe = fast_edge(fast[a], fast[b], s_fast);
         const Bound oe = oracle_edge(oracle[a], oracle[b], s_oracle, r);
-        // The cross product's components are bounded by the edge with |s| = 1.
-        const Bound components = fast_edge(fast[a], fast[b], Bound{1.0, 0.0});
         setup.band[k] = round_up_to_float((fe.e + oe.e) * slack);
-        setup.usable = setup.usable && components.m < float_safe && fe.m < float_safe && std::isfinite(setup.band[k]);
+        setup.usable = setup.usable && fe.m < float_safe && std::isfinite(setup.band[k]);
+    }
+    if (setup.usable) {
+        by_variant(setup.variant, [&](auto variant) {
+            choose_evaluations<decltype(variant)::value>(setup);
+            return 0;
+        });
+    } else {
+        setup.one = &keep_one;
+        setup.eight = &keep_eight;
     }
     return setup;
 }
@@ -325,34 +350,16 @@ CoverageSetup make_coverage_setup(const typename kernel<Real>::MovingTriangle& t
 template CoverageSetup make_coverage_setup<float>(const kernel<float>::MovingTriangle&, const SampleBox&);
 template CoverageSetup make_coverage_setup<double>(const kernel<double>::MovingTriangle&, const SampleBox&);
 
-bool may_cover(const CoverageSetup& setup, float sx, float sy, float u, float v, float t) {
-    if (!setup.usable) return true;
-    return by_variant(setup.variant, [&](auto variant) {
-#if BLURCULL_HAS_X86
-        if (has_avx2) return may_cover_fma<decltype(variant)::value>(setup, sx, sy, u, v, t);
-#endif
-        return may_cover_lane<decltype(variant)::value>(setup, sx, sy, u, v, t);
-    });
-}
-
-std::uint32_t may_cover8(const CoverageSetup& setup, const float* sx, const float* sy, const float* u,
-                         const float* v, const float* t) {
+std::uint32_t may_cover8_scalar(const CoverageSetup& setup, const float* sx, const float* sy, const float* u,
+                                const float* v, const float* t) {
     if (!setup.usable) return 0xFFu;
     return by_variant(setup.variant, [&](auto variant) {
-#if BLURCULL_HAS_X86
-        if (has_avx2 && !scalar_forced.load(std::memory_order_relaxed))
-            return may_cover8_avx2<decltype(variant)::value>(setup, sx, sy, u, v, t);
-#endif
         return may_cover8_lanes<decltype(variant)::value>(setup, sx, sy, u, v, t);
     });
 }
 
 const char* coverage_test_isa() {
-    return has_avx2 && !scalar_forced.load() ? "avx2" : "scalar";
-}
-
-bool force_scalar_coverage_test(bool scalar) {
-    return scalar_forced.exchange(scalar);
+    return has_avx2 ? "avx2" : "scalar";
 }
 
 }  // namespace blurcull::frontend

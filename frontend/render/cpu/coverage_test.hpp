@@ -40,6 +40,13 @@ struct SampleBox {
     double x0, y0, x1, y1;
 };
 
+struct CoverageSetup;
+
+// The evaluations a setup runs (chosen once per setup, for its variant and the CPU).
+using CoverageOne = bool (*)(const CoverageSetup&, float sx, float sy, float u, float v, float t);
+using CoverageEight = std::uint32_t (*)(const CoverageSetup&, const float* sx, const float* sy, const float* u,
+                                        const float* v, const float* t);
+
 // The per-triangle setup. Vertices and samples are taken relative to a
 // centre near the triangle, so the edge values are not the small
 // differences of large products that they are in absolute screen
@@ -51,6 +58,8 @@ struct CoverageSetup {
     float centre_x = 0.0f, centre_y = 0.0f;
     CoverageVariant variant = CoverageVariant::both;
     bool usable = false;
+    CoverageOne one = nullptr;
+    CoverageEight eight = nullptr;
 };
 
 // The setup for `tri`, for samples with screen position in `box`, lens
@@ -63,18 +72,22 @@ CoverageSetup make_coverage_setup(const typename kernel<Real>::MovingTriangle& t
 // False only if kernel<Real>::covers(tri, s, uv, t, ...) is false for the
 // triangle of `setup` (for samples inside the setup's box). Sample coordinates are rounded to float (exact for
 // the CPU backend's samples).
-bool may_cover(const CoverageSetup& setup, float sx, float sy, float u, float v, float t);
+inline bool may_cover(const CoverageSetup& setup, float sx, float sy, float u, float v, float t) {
+    return setup.one(setup, sx, sy, u, v, t);
+}
 
 // Eight samples (sx[i], sy[i], u[i], v[i], t[i]), i < 8: bit i of the result
 // is may_cover for sample i, bit for bit (AVX2 when the CPU has it).
-std::uint32_t may_cover8(const CoverageSetup& setup, const float* sx, const float* sy, const float* u,
-                         const float* v, const float* t);
+inline std::uint32_t may_cover8(const CoverageSetup& setup, const float* sx, const float* sy, const float* u,
+                                const float* v, const float* t) {
+    return setup.eight(setup, sx, sy, u, v, t);
+}
+
+// may_cover8 on the scalar path whatever the CPU (to compare the two).
+std::uint32_t may_cover8_scalar(const CoverageSetup& setup, const float* sx, const float* sy, const float* u,
+                                const float* v, const float* t);
 
 // "avx2" or "scalar": the code may_cover8 runs on this CPU.
 const char* coverage_test_isa();
-
-// Forces may_cover8's scalar path (for tests that compare the two); returns
-// the previous setting.
-bool force_scalar_coverage_test(bool scalar);
 
 }  // namespace blurcull::frontend
