@@ -165,7 +165,8 @@ RenderResult render_cpu_in(const Scene& scene, const RenderSettings& settings, c
                 const typename K::ScreenBound bound = K::screen_bound(triangles[i], near, method);
                 if (bound.empty) continue;
                 rects[i] = pixel_rect(model, bound.lo, bound.hi);
-                fast_tests[i] = make_coverage_setup<Real>(triangles[i], sample_box(model, rects[i]));
+                if (rects[i].x0 <= rects[i].x1 && rects[i].y0 <= rects[i].y1)
+                    fast_tests[i] = make_coverage_setup<Real>(triangles[i], sample_box(model, rects[i]));
                 StoredBound& stored = bounds[i];
                 stored.lo = bound.lo;
                 stored.hi = bound.hi;
