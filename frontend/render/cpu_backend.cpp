@@ -84,9 +84,9 @@ public:
     bool may_cover(const CoverageSetup& setup, std::size_t k) const {
         return frontend::may_cover(setup, sx_[k], sy_[k], u_[k], v_[k], t_[k]);
     }
-    // Samples first .. first + 7 (the array is padded by 8).
-    std::uint32_t may_cover8(const CoverageSetup& setup, std::size_t first) const {
-        return frontend::may_cover8(setup, &sx_[first], &sy_[first], &u_[first], &v_[first], &t_[first]);
+    // Samples first .. first + 31, those in `wanted` (the arrays are padded by 32).
+    std::uint32_t may_cover32(const CoverageSetup& setup, std::size_t first, std::uint32_t wanted) const {
+        return frontend::may_cover32(setup, &sx_[first], &sy_[first], &u_[first], &v_[first], &t_[first], wanted);
     }
 
 private:
@@ -216,8 +216,8 @@ RenderResult render_cpu_in(const Scene& scene, const RenderSettings& settings, c
     auto work = [&]() {
         std::vector<Sample> samples(static_cast<std::size_t>(tile_size) * tile_size * spp);
         // The same samples in float, one array per coordinate, for the fast
-        // test's eight lanes (padded so the last pixel's batch stays inside).
-        FloatSamples lanes(samples.size() + 8);
+        // test's lanes (padded so the last pixel's batches stay inside).
+        FloatSamples lanes(samples.size() + 32);
         // Per footprint of the tile's grid, its sample slots sorted by time, so
         // that a footprint's bounds visit only their shutter interval.
         std::vector<std::uint32_t> by_time(samples.size());
@@ -348,17 +348,17 @@ RenderResult render_cpu_in(const Scene& scene, const RenderSettings& settings, c
                     for (int py = py0; py <= py1; ++py) {
                         for (int px = px0; px <= px1; ++px) {
                             const std::size_t first = slot(px, py, 0);
-                            // Eight samples at a time: the culls, then the fast test
-                            // on the batch, then covers on what it kept.
-                            for (std::uint32_t j0 = 0; j0 < spp; j0 += 8) {
+                            // Up to 32 samples at a time: the culls, then the fast test
+                            // on them, then covers on what it kept.
+                            for (std::uint32_t j0 = 0; j0 < spp; j0 += 32) {
                                 std::uint32_t passed = 0;
-                                for (std::uint32_t j = j0; j < std::min(spp, j0 + 8); ++j) {
+                                for (std::uint32_t j = j0; j < std::min(spp, j0 + 32); ++j) {
                                     if (sample_culled(first + j, sb)) continue;
                                     passed |= 1u << (j - j0);
                                     ++tested;
                                 }
                                 if (passed == 0) continue;
-                                for (std::uint32_t maybe = passed & lanes.may_cover8(fast, first + j0); maybe != 0;
+                                for (std::uint32_t maybe = passed & lanes.may_cover32(fast, first + j0, passed); maybe != 0;
                                      maybe &= maybe - 1)
                                     test_exactly(first + j0 + static_cast<std::uint32_t>(__builtin_ctz(maybe)));
                             }

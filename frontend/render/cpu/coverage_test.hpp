@@ -44,8 +44,8 @@ struct CoverageSetup;
 
 // The evaluations a setup runs (chosen once per setup, for its variant and the CPU).
 using CoverageOne = bool (*)(const CoverageSetup&, float sx, float sy, float u, float v, float t);
-using CoverageEight = std::uint32_t (*)(const CoverageSetup&, const float* sx, const float* sy, const float* u,
-                                        const float* v, const float* t);
+using CoverageLanes = std::uint32_t (*)(const CoverageSetup&, const float* sx, const float* sy, const float* u,
+                                        const float* v, const float* t, std::uint32_t wanted);
 
 // The per-triangle setup. Vertices and samples are taken relative to a
 // centre near the triangle, so the edge values are not the small
@@ -59,7 +59,7 @@ struct CoverageSetup {
     CoverageVariant variant = CoverageVariant::both;
     bool usable = false;
     CoverageOne one = nullptr;
-    CoverageEight eight = nullptr;
+    CoverageLanes lanes = nullptr;
 };
 
 // The setup for `tri`, for samples with screen position in `box`, lens
@@ -76,18 +76,20 @@ inline bool may_cover(const CoverageSetup& setup, float sx, float sy, float u, f
     return setup.one(setup, sx, sy, u, v, t);
 }
 
-// Eight samples (sx[i], sy[i], u[i], v[i], t[i]), i < 8: bit i of the result
-// is may_cover for sample i, bit for bit (AVX2 when the CPU has it).
-inline std::uint32_t may_cover8(const CoverageSetup& setup, const float* sx, const float* sy, const float* u,
-                                const float* v, const float* t) {
-    return setup.eight(setup, sx, sy, u, v, t);
+// Up to 32 samples (sx[i], sy[i], u[i], v[i], t[i]), i < 32: bit i of the
+// result is may_cover for sample i, for every bit i set in `wanted` (the
+// others are unspecified; the arrays must hold the eight-sample batches
+// that have a wanted bit). Eight at a time with AVX2 where the CPU has it.
+inline std::uint32_t may_cover32(const CoverageSetup& setup, const float* sx, const float* sy, const float* u,
+                                 const float* v, const float* t, std::uint32_t wanted) {
+    return setup.lanes(setup, sx, sy, u, v, t, wanted);
 }
 
-// may_cover8 on the scalar path whatever the CPU (to compare the two).
-std::uint32_t may_cover8_scalar(const CoverageSetup& setup, const float* sx, const float* sy, const float* u,
-                                const float* v, const float* t);
+// may_cover32 on the scalar path whatever the CPU (to compare the two).
+std::uint32_t may_cover32_scalar(const CoverageSetup& setup, const float* sx, const float* sy, const float* u,
+                                 const float* v, const float* t, std::uint32_t wanted);
 
-// "avx2" or "scalar": the code may_cover8 runs on this CPU.
+// "avx2" or "scalar": the code may_cover32 runs on this CPU.
 const char* coverage_test_isa();
 
 }  // namespace blurcull::frontend
