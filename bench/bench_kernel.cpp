@@ -50,7 +50,7 @@ constexpr std::size_t kFixedConfigs = 256;   // configurations per fixed (callgr
 constexpr std::size_t kSamplesPerPixel = 16;
 constexpr double kPixelWidth = 2.0 / 1024.0;  // one pixel of a 1024-wide screen, in NDC
 constexpr int kNoCull = -1;                   // pixel baseline: exact test on every sample
-constexpr std::array<int, 5> kPixelMethods{kNoCull, BC_CULL_BBOX, BC_CULL_HULL, BC_CULL_DUALSPACE, BC_CULL_CLIP2};
+constexpr std::array<int, 5> kPixelMethods{kNoCull, BC_CULL_BBOX, BC_CULL_HULL, BC_CULL_DUALSPACE, BC_CULL_TWO_STAGE};
 
 enum class Workload { motion, defocus, both, adversarial };
 constexpr std::array<Workload, 4> kWorkloads{Workload::motion, Workload::defocus, Workload::both,

@@ -3,9 +3,11 @@
 #
 # emit:  PRELUDE, BODIES (files joined by '|'), CHECK_MAIN, OUTPUT, CHECK_OUTPUT.
 #        OUTPUT = the prelude, then each body behind a `#line 1 <n>` (compiler
-#        messages in source string n point into the n-th body), then a #line
-#        that hands the rest of the shader back to source string 0 with the
-#        numbering of the whole text. CHECK_OUTPUT = OUTPUT + CHECK_MAIN.
+#        messages in source string n point into the n-th body), then an
+#        #undef of every public name the prelude renamed (`#define covers
+#        bc_covers`: the shader after the library sees only bc_covers), then a
+#        #line that hands the rest of the shader back to source string 0 with
+#        the numbering of the whole text. CHECK_OUTPUT = OUTPUT + CHECK_MAIN.
 # embed: INPUT, OUTPUT (.cpp): INPUT's bytes as a C++ array behind
 #        blurcull::glsl::kernel_source() (shaders/include/blurcull/glsl/kernel_glsl.hpp).
 cmake_minimum_required(VERSION 3.16)
@@ -14,6 +16,21 @@ function(blurcull_count_lines text out)
   string(REGEX MATCHALL "\n" newlines "${text}")
   list(LENGTH newlines count)
   set(${out} ${count} PARENT_SCOPE)
+endfunction()
+
+# The names the prelude renames with `#define <name> bc_<name>`.
+function(blurcull_public_names text out)
+  string(REGEX MATCHALL "\n#define[ \t]+[A-Za-z_][A-Za-z_0-9]*[ \t]+bc_[A-Za-z_0-9]*" lines "${text}")
+  set(names "")
+  foreach(line ${lines})
+    string(REGEX REPLACE "^\n#define[ \t]+([A-Za-z_][A-Za-z_0-9]*)[ \t]+bc_([A-Za-z_0-9]*)$" "\\1;\\2" parts "${line}")
+    list(GET parts 0 name)
+    list(GET parts 1 suffix)
+    if(name STREQUAL suffix)
+      list(APPEND names ${name})
+    endif()
+  endforeach()
+  set(${out} ${names} PARENT_SCOPE)
 endfunction()
 
 function(blurcull_read_text path out)
@@ -32,6 +49,7 @@ if(MODE STREQUAL "emit")
   if(NOT glsl MATCHES "^#version ")
     message(FATAL_ERROR "EmbedGlsl: ${PRELUDE} must start with its #version line")
   endif()
+  set(prelude "${glsl}")
   string(REPLACE "|" ";" body_files "${BODIES}")
   set(source_string 1)
   foreach(body ${body_files})
@@ -39,6 +57,11 @@ if(MODE STREQUAL "emit")
     get_filename_component(name "${body}" NAME)
     string(APPEND glsl "\n// ---- ${name} (source string ${source_string}) ----\n#line 1 ${source_string}\n${text}")
     math(EXPR source_string "${source_string} + 1")
+  endforeach()
+  blurcull_public_names("${prelude}" public_names)
+  string(APPEND glsl "\n// ---- the public names: only their bc_ spelling outlives the library ----\n")
+  foreach(name ${public_names})
+    string(APPEND glsl "#undef ${name}\n")
   endforeach()
   blurcull_count_lines("${glsl}" lines)
   # The directive is line lines + 2 of the text; the shader's own code starts on the next.

@@ -22,7 +22,7 @@ namespace {
 using Kf = blurcull::kernelf;
 using Kd = blurcull::kerneld;
 
-constexpr int kMethods[] = {BC_CULL_BBOX, BC_CULL_HULL, BC_CULL_DUALSPACE, BC_CULL_CLIP2};
+constexpr int kMethods[] = {BC_CULL_BBOX, BC_CULL_HULL, BC_CULL_DUALSPACE, BC_CULL_TWO_STAGE};
 constexpr std::size_t kHeaderFloats = 36 + 1 + 4;
 
 struct Reader {

@@ -2,8 +2,10 @@
 # them (docs/glsl.md, "One source").
 #  1. Every function defined with BC_FN in the bodies is defined in
 #     blurcull_kernel.glsl.
-#  2. Every public one (not bc_-prefixed) is called by check_kernel.comp, so
-#     glslangValidator sees it used.
+#  2. Every public one (not bc_-prefixed) is renamed bc_<name> for GLSL by the
+#     prelude (`#define <name> bc_<name>`), #undef'd again after the library,
+#     and called as bc_<name> by check_kernel.comp, so glslangValidator sees it
+#     used under its GLSL name.
 #  3. With one definition renamed away (as if deleted from the header), the
 #     check shader fails glslangValidator: the build would break.
 cmake_minimum_required(VERSION 3.16)
@@ -33,8 +35,14 @@ foreach(body ${body_files})
     endif()
     if(NOT name MATCHES "^bc_")
       list(APPEND public_functions ${name})
-      if(NOT check_main MATCHES "[^A-Za-z_0-9]${name}[ \t]*\\(")
-        message(SEND_ERROR "${name} is public but shaders/glsl/check_kernel.comp does not call it")
+      if(NOT glsl MATCHES "\n#define[ \t]+${name}[ \t]+bc_${name}[ \t]*\n")
+        message(SEND_ERROR "${name} is public but shaders/glsl/prelude.glsl does not #define it as bc_${name}")
+      endif()
+      if(NOT glsl MATCHES "\n#undef[ \t]+${name}[ \t]*\n")
+        message(SEND_ERROR "${name} is public but the emitted library does not #undef it after the bodies")
+      endif()
+      if(NOT check_main MATCHES "[^A-Za-z_0-9]bc_${name}[ \t]*\\(")
+        message(SEND_ERROR "${name} is public but shaders/glsl/check_kernel.comp does not call bc_${name}")
       endif()
     endif()
   endforeach()
@@ -45,9 +53,10 @@ list(LENGTH public_functions public_count)
 if(function_count LESS 20 OR public_count LESS 10)
   message(FATAL_ERROR "found only ${function_count} BC_FN functions (${public_count} public) in ${BODIES}")
 endif()
-message(STATUS "${function_count} BC_FN functions, all in the GLSL; ${public_count} public, all called: ${public_functions}")
+message(STATUS "${function_count} BC_FN functions, all in the GLSL; ${public_count} public, all called as bc_<name>: ${public_functions}")
 
-# 3. Delete `covers` (rename its definition) and expect glslangValidator to fail.
+# 3. Delete `covers` (rename its definition, which the prelude's macro then no
+#    longer turns into bc_covers) and expect glslangValidator to fail.
 string(REGEX REPLACE "BC_FN[ \t]+bool[ \t]+covers[ \t]*\\(" "BC_FN bool covers_deleted(" broken "${check}")
 if(broken STREQUAL check)
   message(FATAL_ERROR "could not find the definition of covers in ${CHECK_GLSL}")

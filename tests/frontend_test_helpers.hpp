@@ -2,8 +2,8 @@
 // sample-id comparison, and the one GL renderer a test file reuses.
 #pragma once
 
-#include "render/gl_backend.hpp"
-#include "render/image.hpp"
+#include "render/common/image.hpp"
+#include "render/gl/gl_backend.hpp"
 #include "scene/scene.hpp"
 
 #include <doctest/doctest.h>

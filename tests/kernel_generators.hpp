@@ -285,11 +285,11 @@ inline const char* method_name(int method) {
         case BC_CULL_BBOX: return "bbox";
         case BC_CULL_HULL: return "hull";
         case BC_CULL_DUALSPACE: return "dualspace";
-        case BC_CULL_CLIP2: return "clip2";
+        case BC_CULL_TWO_STAGE: return "clip2";
     }
     return "?";
 }
 
-constexpr std::array<int, 4> all_methods{BC_CULL_BBOX, BC_CULL_HULL, BC_CULL_DUALSPACE, BC_CULL_CLIP2};
+constexpr std::array<int, 4> all_methods{BC_CULL_BBOX, BC_CULL_HULL, BC_CULL_DUALSPACE, BC_CULL_TWO_STAGE};
 
 }  // namespace blurcull::testing

@@ -1,7 +1,7 @@
 // The `blurcull` command as a user runs it: renders with a JSON summary and a
 // PNG, and refuses bad input with one line naming the problem and a non-zero
 // exit. BLURCULL_CLI is the path of the built executable.
-#include "render/image.hpp"
+#include "render/common/image.hpp"
 
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
@@ -139,6 +139,8 @@ TEST_CASE("bad input: one line naming the problem, non-zero exit, no output file
         {"render --scene missing_file.gltf", "missing_file.gltf"},
         {"render -o /nonexistent-folder/x.png", "not writable"},
         {"render --backend embree --method accum", "--method"},
+        {"render --gl-cell 0 --backend gl", "--gl-cell"},
+        {"render --method clip2", "--method"},
         {"render --bogus", "bogus"},
         {"render --scene '" + data_dir + "/bad_json.gltf'", "bad_json.gltf"},
         {"render --scene '" + data_dir + "/bad_accessor_past_end.gltf'", "bad_accessor_past_end.gltf"},
@@ -163,6 +165,65 @@ TEST_CASE("bad input: one line naming the problem, non-zero exit, no output file
         CHECK_FALSE(std::filesystem::exists(std::filesystem::temp_directory_path() /
                                             "blurcull_cli_test/should_not_exist.png"));
     }
+}
+
+// The options of one backend, given with another, are refused in one line
+// naming the option and the backends that take it, before any rendering.
+TEST_CASE("blurcull render refuses an option the backend cannot honour") {
+    struct Case {
+        std::string arguments;
+        std::string expected;
+    };
+    const Case cases[] = {
+        {"--backend embree --footprint 2", "--footprint: only the cpu backend takes it (backend embree)"},
+        {"--backend gl --footprint 2", "--footprint: only the cpu backend takes it (backend gl)"},
+        {"--backend embree --precision float", "--precision: only the cpu backend takes it (backend embree)"},
+        {"--backend gl --precision double", "--precision: only the cpu backend takes it (backend gl)"},
+        {"--backend cpu --gl-cell 4", "--gl-cell: only the gl backend takes it (backend cpu)"},
+        {"--backend embree --gl-cell 4", "--gl-cell: only the gl backend takes it (backend embree)"},
+        {"--backend embree --method interval", "--method interval: only the cpu and gl backends take it (backend embree)"},
+        {"--backend cpu --method accum --footprint 2", "--footprint: only the stochastic method takes it (method accum)"},
+        {"--backend cpu --method interleave --precision float",
+         "--precision: only the stochastic method takes it (method interleave)"},
+    };
+    for (const Case& c : cases) {
+        // No GL context: the refusal must not depend on one.
+        Run run = run_cli("render " + c.arguments + " --scene car --size 32x24 -q -o refused.png",
+                          "BLURCULL_GL_CONTEXT=bogus");
+        INFO(c.arguments, " -> status ", run.status, ", stderr: ", run.err);
+        CHECK(run.status == 1);
+        CHECK(lines(run.err) == 1);
+        CHECK(run.err.find(c.expected) != std::string::npos);
+        CHECK(run.out.empty());
+        CHECK_FALSE(std::filesystem::exists(std::filesystem::temp_directory_path() / "blurcull_cli_test/refused.png"));
+    }
+    // With --backend auto the line names the backend it chose.
+    Run automatic = run_cli("render --footprint 2 --gl-cell 4 --scene car --size 32x24 -q -o refused.png",
+                            "BLURCULL_GL_CONTEXT=bogus");
+    CHECK(automatic.status == 1);
+    CHECK(automatic.err.find("--gl-cell: only the gl backend takes it (backend cpu, chosen by --backend auto)") !=
+          std::string::npos);
+    // The defaults, or the options given to the backend that takes them, render.
+    Run cpu = run_cli("render --backend cpu --footprint 2 --precision float --scene car --size 32x24 --spp 2 -q --json "
+                      "-o cpu_options.png");
+    INFO(cpu.err);
+    CHECK(cpu.status == 0);
+    Run embree = run_cli("render --backend embree --scene car --size 32x24 --spp 2 -q --json -o embree_defaults.png");
+    INFO(embree.err);
+    CHECK(embree.status == 0);
+}
+
+TEST_CASE("--cull clip2 is twostage under its old name") {
+    Run run = run_cli("render --backend cpu --scene hand --size 32x24 --spp 4 --cull clip2 -q --json -o clip2.png");
+    INFO(run.err);
+    REQUIRE(run.status == 0);
+    const nlohmann::json old_name = nlohmann::json::parse(run.out);
+    CHECK(old_name["cull"] == "twostage");
+    Run renamed = run_cli("render --backend cpu --scene hand --size 32x24 --spp 4 --cull twostage -q --json -o twostage.png");
+    REQUIRE(renamed.status == 0);
+    const nlohmann::json new_name = nlohmann::json::parse(renamed.out);
+    CHECK(new_name["samples_tested"] == old_name["samples_tested"]);
+    CHECK(new_name["samples_hit"] == old_name["samples_hit"]);
 }
 
 TEST_CASE("blurcull scenes lists the built-in scenes; --version and --help exit 0") {
@@ -211,6 +272,30 @@ TEST_CASE("blurcull render --backend gl --method interval: a JSON summary naming
     CHECK(summary["samples_hit"].get<double>() > 0);
     CHECK(summary["samples_tested"].get<double>() >= summary["samples_hit"].get<double>());
     CHECK(summary["bounds_computed"].get<double>() > 0);
+}
+
+TEST_CASE("blurcull render --backend gl --gl-cell: the cell size reaches the gl backend, the image stays") {
+    const std::string args = "render --backend gl --scene car --size 32x24 --spp 4 --cull twostage --json -q";
+    const std::string no_leaks = "ASAN_OPTIONS=\"${ASAN_OPTIONS:-}:detect_leaks=0\"";
+    Run standard = run_cli(args + " -o gl_cell_8.png", no_leaks);
+    const char* ci = std::getenv("CI");
+    const bool in_ci = ci != nullptr && (std::string(ci) == "true" || std::string(ci) == "1");
+    if (standard.status != 0 && standard.err.find("no OpenGL 4.5 context") != std::string::npos && !in_ci) {
+        MESSAGE("SKIPPED: no headless OpenGL 4.5 context (" << standard.err << "); CI=true makes this a failure");
+        return;
+    }
+    INFO(standard.err);
+    REQUIRE(standard.status == 0);
+    Run fine = run_cli(args + " --gl-cell 1 -o gl_cell_1.png", no_leaks);
+    INFO(fine.err);
+    REQUIRE(fine.status == 0);
+    const nlohmann::json a = nlohmann::json::parse(standard.out), b = nlohmann::json::parse(fine.out);
+    // Culling only skips samples the exact test rejects: same hits, same image.
+    CHECK(a["samples_hit"] == b["samples_hit"]);
+    const std::string folder = (std::filesystem::temp_directory_path() / "blurcull_cli_test").string();
+    const blurcull::frontend::Image image_a = blurcull::frontend::read_png(folder + "/gl_cell_8.png");
+    const blurcull::frontend::Image image_b = blurcull::frontend::read_png(folder + "/gl_cell_1.png");
+    CHECK(image_a.pixels == image_b.pixels);
 }
 
 TEST_CASE("--backend auto with --method accum and no GL context: the cpu backend, same method") {

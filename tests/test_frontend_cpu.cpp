@@ -2,9 +2,9 @@
 // only skip samples that miss), independent of the thread count, and in
 // agreement with the Embree reference on every built-in scene.
 #include "frontend_test_helpers.hpp"
-#include "render/cpu_backend.hpp"
-#include "render/embree_backend.hpp"
-#include "render/image.hpp"
+#include "render/cpu/cpu_backend.hpp"
+#include "render/embree/embree_backend.hpp"
+#include "render/common/image.hpp"
 #include "scene/builtin_scenes.hpp"
 
 #include <doctest/doctest.h>
@@ -56,7 +56,7 @@ TEST_CASE("every culling method renders the same image, on every built-in scene,
                 settings.cull = CullMethod::bbox;
                 RenderResult reference = render_cpu(scene, settings, options);
                 CHECK(reference.stats.samples_hit > 0);
-                for (CullMethod method : {CullMethod::hull, CullMethod::dualspace, CullMethod::clip2}) {
+                for (CullMethod method : {CullMethod::hull, CullMethod::dualspace, CullMethod::two_stage}) {
                     settings.cull = method;
                     RenderResult result = render_cpu(scene, settings, options);
                     INFO(name, " x", blur, " ", to_string(method),
@@ -75,7 +75,7 @@ TEST_CASE("culling footprints larger than a pixel change nothing in the image") 
     RenderSettings settings = quiet_settings(64, 48, 8);
     settings.cull = CullMethod::bbox;
     RenderResult reference = render_cpu(scene, settings);
-    settings.cull = CullMethod::clip2;
+    settings.cull = CullMethod::two_stage;
     for (int footprint : {2, 3, 8}) {
         CpuOptions options;
         options.footprint = footprint;
@@ -92,7 +92,7 @@ TEST_CASE("near-plane crossings: same image for every method") {
     settings.cull = CullMethod::bbox;
     RenderResult reference = render_cpu(scene, settings);
     CHECK(reference.stats.samples_hit > 1000);
-    for (CullMethod method : {CullMethod::hull, CullMethod::dualspace, CullMethod::clip2}) {
+    for (CullMethod method : {CullMethod::hull, CullMethod::dualspace, CullMethod::two_stage}) {
         settings.cull = method;
         RenderResult result = render_cpu(scene, settings);
         INFO(to_string(method));

@@ -1,11 +1,11 @@
 // The Embree reference renderer and the shared camera model, shading and
 // image utilities, on tiny scenes built here.
-#include "render/camera_model.hpp"
-#include "render/embree_backend.hpp"
-#include "render/image.hpp"
-#include "render/moving_triangle.hpp"
-#include "render/render_types.hpp"
-#include "render/shading.hpp"
+#include "render/common/camera_model.hpp"
+#include "render/embree/embree_backend.hpp"
+#include "render/common/image.hpp"
+#include "render/common/moving_triangle.hpp"
+#include "render/common/render_types.hpp"
+#include "render/common/shading.hpp"
 
 #include <doctest/doctest.h>
 
@@ -96,7 +96,7 @@ float orange_coverage(const Image& image, int px, int py) {
 }  // namespace
 
 TEST_CASE("cull method names round-trip and bad names are rejected") {
-    for (CullMethod method : {CullMethod::bbox, CullMethod::hull, CullMethod::dualspace, CullMethod::clip2}) {
+    for (CullMethod method : {CullMethod::bbox, CullMethod::hull, CullMethod::dualspace, CullMethod::two_stage}) {
         CHECK(parse_cull_method(to_string(method)) == method);
     }
     try {
@@ -105,7 +105,7 @@ TEST_CASE("cull method names round-trip and bad names are rejected") {
     } catch (const std::invalid_argument& error) {
         std::string message = error.what();
         CHECK(message.find("boxes") != std::string::npos);
-        CHECK(message.find("clip2") != std::string::npos);
+        CHECK(message.find("twostage") != std::string::npos);
         CHECK(message.find('\n') == std::string::npos);
     }
 }
@@ -465,6 +465,11 @@ TEST_CASE("embree: bad settings and scenes are rejected with a message") {
     settings.width = 0;
     CHECK_THROWS_AS(render_embree(scene, settings), std::invalid_argument);
     settings.width = 8;
+    settings.method = RenderMethod::accum;  // the rasterizers' method: refused, naming those that take it
+    CHECK_THROWS_WITH_AS(render_embree(scene, settings),
+                         "render method accum: only the cpu and gl backends take it (backend embree)",
+                         std::invalid_argument);
+    settings.method = RenderMethod::stochastic;
     scene.triangle_material[0] = 9;
     CHECK_THROWS_WITH_AS(render_embree(scene, settings), doctest::Contains("material 9"), std::runtime_error);
 }

@@ -1,11 +1,11 @@
 // --method interleave, interval and accum on the GL backend
-// (frontend/render/gl_methods.cpp) against the CPU renderers
+// (frontend/render/gl/gl_sampling_methods.cpp) against the CPU renderers
 // (interleaved_backend.hpp): the same samples decided the same way, the same
 // resolved image, the same box statistics. No GL context: SKIPPED, or a
 // failure when CI=true.
 #include "frontend_test_helpers.hpp"
-#include "render/gl_backend.hpp"
-#include "render/interleaved_backend.hpp"
+#include "render/cpu/methods.hpp"
+#include "render/gl/gl_backend.hpp"
 #include "scene/builtin_scenes.hpp"
 
 #include <doctest/doctest.h>
@@ -26,15 +26,15 @@ using namespace blurcull::frontend::test;
 namespace {
 
 RenderResult render_cpu_method(const Scene& scene, const RenderSettings& settings, std::vector<std::uint32_t>& ids) {
-    if (settings.method == "interleave") return render_interleave(scene, settings, {}, &ids);
-    if (settings.method == "interval") return render_interval(scene, settings, &ids);
+    if (settings.method == RenderMethod::interleave) return render_interleave(scene, settings, {}, &ids);
+    if (settings.method == RenderMethod::interval) return render_interval(scene, settings, &ids);
     return render_accum(scene, settings, &ids);
 }
 
 RenderSettings small_settings(const std::string& method, int spp) {
     RenderSettings settings = quiet_settings(48, 36, spp);
     settings.seed = 3;
-    settings.method = method;
+    settings.method = parse_render_method(method);
     return settings;
 }
 
@@ -107,8 +107,7 @@ TEST_CASE("gl methods: the seed moves the samples as on the cpu; bad settings ar
 
     settings = small_settings("interleave", 8);  // not a square
     CHECK_THROWS_AS(gl->render(scene, settings), std::invalid_argument);
-    settings.method = "stratified";
-    CHECK_THROWS_AS(gl->render(scene, settings), std::invalid_argument);
+    CHECK_THROWS_AS(parse_render_method("stratified"), std::invalid_argument);  // no such RenderMethod
     settings = small_settings("interval", 4);
     settings.width = 0;
     CHECK_THROWS_AS(gl->render(scene, settings), std::invalid_argument);

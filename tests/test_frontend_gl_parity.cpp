@@ -19,9 +19,9 @@
 
 #include "frontend_test_helpers.hpp"
 #include "kernel_generators.hpp"
+#include "render/gl/gl_context.hpp"
 
 #include <blurcull/glsl/kernel_glsl.hpp>
-#include <gl/gl_context.hpp>
 
 #include <doctest/doctest.h>
 
@@ -62,8 +62,9 @@ constexpr int kInputFloats = 5;
 constexpr int kInputKeys = 4;  // px, py, index, spp
 // Output layout (uints, floats as their bits): per config and method the
 // screen bound (empty, lo, hi, hull_count, 24 edges) and sample bounds (empty,
-// u_range, v_range, tx, tx2, ty, ty2), then classify; per input the decision
-// bits, the covers depth and the pixel sample (offset, lens, time).
+// u_range, v_range, u_time_a, u_time_b, v_time_a, v_time_b), then classify;
+// per input the decision bits, the covers depth and the pixel sample (offset,
+// lens, time).
 constexpr int kScreenUints = 1 + 2 + 2 + 1 + 3 * BC_HULL_MAX;
 constexpr int kSampleUints = 1 + 2 + 2 + 4 * 4;
 constexpr int kConfigUints = 4 * (kScreenUints + kSampleUints) + 1;
@@ -110,10 +111,10 @@ void main() {
     bool first = id % samples_per_config == 0u;
     uint decisions = 0u;
     for (int method = 0; method < 4; ++method) {
-        ScreenBound sb = screen_bound(tri, near, method);
-        SampleBounds b = sample_bounds(tri, s_lo, s_hi, method);
-        if (screen_contains(sb, s)) decisions |= 1u << (1 + method);
-        if (sample_passes(b, uv, t)) decisions |= 1u << (5 + method);
+        ScreenBound sb = bc_screen_bound(tri, near, method);
+        SampleBounds b = bc_sample_bounds(tri, s_lo, s_hi, method);
+        if (bc_screen_contains(sb, s)) decisions |= 1u << (1 + method);
+        if (bc_sample_passes(b, uv, t)) decisions |= 1u << (5 + method);
         if (!first) continue;
         int o = config * CONFIG_UINTS + method * (SCREEN_UINTS + SAMPLE_UINTS);
         config_out[o] = sb.empty ? 1u : 0u;
@@ -129,17 +130,17 @@ void main() {
         put(o + 1, b.u_range.x); put(o + 2, b.u_range.y);
         put(o + 3, b.v_range.x); put(o + 4, b.v_range.y);
         for (int k = 0; k < 4; ++k) {
-            put(o + 5 + k, b.tx[k]);
-            put(o + 9 + k, b.tx2[k]);
-            put(o + 13 + k, b.ty[k]);
-            put(o + 17 + k, b.ty2[k]);
+            put(o + 5 + k, b.u_time_a[k]);
+            put(o + 9 + k, b.u_time_b[k]);
+            put(o + 13 + k, b.v_time_a[k]);
+            put(o + 17 + k, b.v_time_b[k]);
         }
     }
-    if (first) config_out[config * CONFIG_UINTS + CONFIG_UINTS - 1] = uint(classify(tri));
+    if (first) config_out[config * CONFIG_UINTS + CONFIG_UINTS - 1] = uint(bc_classify(tri));
     float depth;
-    if (covers(tri, s, uv, t, near, depth)) decisions |= 1u;
+    if (bc_covers(tri, s, uv, t, near, depth)) decisions |= 1u;
     int k = int(id) * 4;
-    PixelSample ps = pixel_sample(key_in[k], key_in[k + 1], key_in[k + 2], key_in[k + 3], 0x5eedu);
+    PixelSample ps = bc_pixel_sample(key_in[k], key_in[k + 1], key_in[k + 2], key_in[k + 3], 0x5eedu);
     int o = int(id) * INPUT_UINTS;
     input_out[o] = decisions;
     input_out[o + 1] = floatBitsToUint(depth);
@@ -159,7 +160,8 @@ const char* const kDecisionNames[] = {
     "sample_passes bbox", "sample_passes hull", "sample_passes dualspace", "sample_passes clip2"};
 
 // The sample-bound values in output order, two uints per name.
-const char* const kSampleFieldNames[] = {"u_range", "v_range", "tx", "tx", "tx2", "tx2", "ty", "ty", "ty2", "ty2"};
+const char* const kSampleFieldNames[] = {"u_range",  "v_range",  "u_time_a", "u_time_a", "u_time_b",
+                                         "u_time_b", "v_time_a", "v_time_a", "v_time_b", "v_time_b"};
 
 std::uint32_t bits_of(float x) {
     std::uint32_t b;
@@ -320,10 +322,10 @@ HostResults run_host(const Inputs& in) {
             o[3] = bits_of(b.v_range.x);
             o[4] = bits_of(b.v_range.y);
             for (int k = 0; k < 4; ++k) {
-                o[5 + k] = bits_of(b.tx[k]);
-                o[9 + k] = bits_of(b.tx2[k]);
-                o[13 + k] = bits_of(b.ty[k]);
-                o[17 + k] = bits_of(b.ty2[k]);
+                o[5 + k] = bits_of(b.u_time_a[k]);
+                o[9 + k] = bits_of(b.u_time_b[k]);
+                o[13 + k] = bits_of(b.v_time_a[k]);
+                o[17 + k] = bits_of(b.v_time_b[k]);
             }
         }
         co[kConfigUints - 1] = static_cast<std::uint32_t>(Kf::classify(tri));
@@ -509,7 +511,7 @@ TEST_CASE("shader errors and bad context names are reported") {
     CHECK_THROWS_AS(gl::parse_context_kind("vulkan"), gl::GlError);
     auto context = context_or_skip();
     if (!context) return;
-    const char* broken = "layout(local_size_x = 1) in;\nvoid main() { float x = covers(); }\n";
+    const char* broken = "layout(local_size_x = 1) in;\nvoid main() { float x = bc_covers(); }\n";
     try {
         gl::Program program(context->gl(), {{GL_COMPUTE_SHADER, {glsl::kernel_source(), broken}}});
         FAIL("a broken shader compiled");

@@ -1,13 +1,13 @@
-// The GL backend (frontend/render/gl_backend.hpp) against the CPU backend: the
+// The GL backend (frontend/render/gl/gl_backend.hpp) against the CPU backend: the
 // same samples decided the same way, the same resolved image, the same
 // statistics; the static path's speed-up. No GL context: SKIPPED, or a failure
 // when CI=true.
 #include "frontend_test_helpers.hpp"
-#include "render/cpu_backend.hpp"
-#include "render/gl_backend.hpp"
-#include "render/camera_model.hpp"
-#include "render/moving_triangle.hpp"
-#include "render/shading.hpp"
+#include "render/common/camera_model.hpp"
+#include "render/common/moving_triangle.hpp"
+#include "render/common/shading.hpp"
+#include "render/cpu/cpu_backend.hpp"
+#include "render/gl/gl_backend.hpp"
 #include "scene/builtin_scenes.hpp"
 
 #include <blurcull/kernel.hpp>
@@ -127,8 +127,8 @@ TEST_CASE("gl backend: every built-in scene agrees with the cpu backend sample b
             // to keep the test short on llvmpipe.
             const std::vector<CullMethod> culls =
                 spp == 4 ? std::vector<CullMethod>{CullMethod::bbox, CullMethod::hull, CullMethod::dualspace,
-                                                   CullMethod::clip2}
-                         : std::vector<CullMethod>{CullMethod::clip2};
+                                                   CullMethod::two_stage}
+                         : std::vector<CullMethod>{CullMethod::two_stage};
             const RenderSettings settings = small_settings(spp);
             // The CPU backend's decisions in double (the reference) and in
             // float (the GL backend's arithmetic, kernel<float> and its GLSL

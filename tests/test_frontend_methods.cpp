@@ -3,14 +3,15 @@
 // they document (so their boxes never lose a hit), converging to the
 // stochastic reference as N (K) grows, deterministic whatever the threads.
 #include "frontend_test_helpers.hpp"
-#include "render/camera_model.hpp"
-#include "render/cpu_backend.hpp"
-#include "render/image.hpp"
-#include "render/interleaved_backend.hpp"
-#include "render/moving_triangle.hpp"
-#include "render/shading.hpp"
+#include "render/common/camera_model.hpp"
+#include "render/cpu/cpu_backend.hpp"
+#include "render/common/image.hpp"
+#include "render/cpu/methods.hpp"
+#include "render/common/moving_triangle.hpp"
+#include "render/common/shading.hpp"
 
 #include <blurcull/kernel.hpp>
+#include <blurcull/interleaved_tiles.hpp>
 #include <blurcull/patterns.hpp>
 
 #include <doctest/doctest.h>
@@ -39,7 +40,7 @@ RenderSettings settings_for(int spp, const std::string& method) {
     settings.height = height;
     settings.spp = spp;
     settings.progress = false;
-    settings.method = method;
+    settings.method = parse_render_method(method);
     settings.seed = 3;
     return settings;
 }
@@ -81,7 +82,7 @@ Scene blurred_scene() {
 }
 
 RenderResult render(const Scene& scene, const RenderSettings& settings, int tile_width = 6) {
-    if (settings.method == "interleave") {
+    if (settings.method == RenderMethod::interleave) {
         InterleaveOptions options;
         options.tile_width = tile_width;
         return render_interleave(scene, settings, options);
@@ -287,14 +288,14 @@ TEST_CASE("methods: dispatch and bad input") {
     CHECK(render_method_names() == std::vector<std::string>{"stochastic", "interleave", "interval", "accum"});
     RenderSettings settings = settings_for(4, "stochastic");
     CHECK(same_pixels(render_with_method(scene, settings).image, render_cpu(scene, settings).image));
-    settings.method = "interval";
+    settings.method = RenderMethod::interval;
     CHECK(same_pixels(render_with_method(scene, settings).image, render_interval(scene, settings).image));
-    settings.method = "stratified";
-    CHECK_THROWS_WITH_AS(render_with_method(scene, settings),
+    // An unknown name is refused where names become methods.
+    CHECK_THROWS_WITH_AS(parse_render_method("stratified"),
                          "unknown render method 'stratified' (valid: stochastic, interleave, interval, accum)",
                          std::invalid_argument);
-    CHECK_NOTHROW(validate_render_method("accum"));
-    settings.method = "interleave";
+    CHECK(parse_render_method("accum") == RenderMethod::accum);
+    settings.method = RenderMethod::interleave;
     settings.spp = 8;
     CHECK_THROWS_WITH_AS(render_with_method(scene, settings),
                          "interleave: samples per pixel must be a square (1, 4, 9, 16, ...), got 8", std::invalid_argument);
@@ -302,7 +303,7 @@ TEST_CASE("methods: dispatch and bad input") {
     InterleaveOptions options;
     options.tile_width = 40;
     CHECK_THROWS_AS(render_interleave(scene, settings, options), std::invalid_argument);
-    settings.method = "accum";
+    settings.method = RenderMethod::accum;
     settings.width = 0;
     CHECK_THROWS_AS(render_with_method(scene, settings), std::invalid_argument);
 }

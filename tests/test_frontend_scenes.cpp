@@ -1,9 +1,12 @@
 // The scene library: the four procedural scenes (size, determinism, blur
 // class, blur_scale), the glTF loader on the Khronos sample models and on
-// small hand-written files, and its one-line errors for malformed input.
+// small hand-written files, and its one-line errors for malformed input; the
+// one rule for scene file names and load_scene's settings, validated once.
 #include "scene/builtin_scenes.hpp"
-#include "scene/gltf_loader.hpp"
+#include "scene/gltf/gltf_loader.hpp"
+#include "scene/load_scene.hpp"
 #include "scene/scene_checks.hpp"
+#include "scene/scene_name.hpp"
 
 #include <doctest/doctest.h>
 
@@ -541,4 +544,126 @@ TEST_CASE("glTF: truncated and corrupted files never crash") {
     }
     CHECK(failures > 0);
     CHECK(loads > 0);
+}
+
+// ---------------------------------------------------------------------------
+// Scene names and load_scene
+
+TEST_CASE("scene names: one rule for glTF files, other files and built-in names") {
+    CHECK(scene_file_type("a.gltf") == SceneFileType::gltf);
+    CHECK(scene_file_type("scenes/A.GLTF") == SceneFileType::gltf);
+    CHECK(scene_file_type("a.glb") == SceneFileType::glb);
+    CHECK(scene_file_type("dir/Model.GlB") == SceneFileType::glb);
+    CHECK(scene_file_type("dir/.glb") == SceneFileType::glb);
+    CHECK(scene_file_type("model.obj") == SceneFileType::unsupported);
+    CHECK(scene_file_type("hand.") == SceneFileType::unsupported);
+    CHECK(scene_file_type("hand") == SceneFileType::none);
+    CHECK(scene_file_type("dir.v2/hand") == SceneFileType::none);
+    CHECK(scene_file_type("x.gltf/") == SceneFileType::none);
+    CHECK(is_gltf_file("A.GLB"));
+    CHECK(is_gltf_file("a.gltf"));
+    CHECK_FALSE(is_gltf_file("a.obj"));
+    CHECK_FALSE(is_gltf_file("forest"));
+
+    CHECK(stem("scenes/a.gltf") == "a");
+    CHECK(stem("a.b.GLB") == "a.b");
+    CHECK(stem("hand") == "hand");
+    CHECK(stem("dir.v2/hand") == "hand");
+    CHECK(stem("dir/.glb") == ".glb");
+}
+
+TEST_CASE("load_scene: upper-case extensions load the file; other extensions are refused") {
+    const std::string scratch =
+        (std::filesystem::temp_directory_path() / ("blurcull_scenes_case_" + std::to_string(::getpid()))).string();
+    std::filesystem::create_directories(scratch);
+    for (const char* name : {"triangle.gltf", "triangle.glb"}) {
+        const std::string upper = scratch + "/" + (std::string(name).find(".glb") != std::string::npos ? "TRIANGLE.GLB"
+                                                                                                      : "TRIANGLE.GLTF");
+        write_bytes(upper, read_bytes(kDataDir + name));
+        CAPTURE(upper);
+        const Scene scene = load_scene(upper);
+        CHECK(scene.triangles.size() == 1);
+        CHECK(scene.name == "TRIANGLE");
+        CHECK(same_scene(scene, load_gltf_scene(kDataDir + name, GltfOptions{})));
+    }
+    std::filesystem::remove_all(scratch);
+    CHECK(error_of([] { load_scene("scenes/car.OBJ"); }) ==
+          "scenes/car.OBJ: unsupported scene file type (expected .gltf or .glb)");
+    CHECK(error_of([] { load_scene("nowhere"); }) == "unknown scene 'nowhere' (known: hand, car, dragonfly, forest)");
+}
+
+TEST_CASE("load_scene: settings over the scene's own, validated once at the end") {
+    // No settings: exactly the scene the makers give.
+    CHECK(same_scene(load_scene("hand"), make_builtin_scene("hand", SceneOptions{})));
+    CHECK(same_scene(load_scene(kDataDir + "triangle.gltf"), load_gltf_scene(kDataDir + "triangle.gltf", GltfOptions{})));
+
+    SceneSettings settings;
+    settings.blur_scale = 2.0;
+    settings.lens_radius = 0.05;
+    settings.focus = 3.0;
+    const Scene car = load_scene("car", settings);
+    CHECK(car.camera.lens_radius == static_cast<float>(0.05 * 2.0));
+    CHECK(car.camera.focus_distance == 3.0f);
+    CHECK(describe(car).max_vertex_displacement ==
+          doctest::Approx(2.0f * describe(load_scene("car")).max_vertex_displacement).epsilon(1e-4));
+
+    settings = SceneSettings{};
+    settings.fstop = 2.8;
+    const Scene hand = load_scene("hand", settings);
+    CHECK(hand.camera.lens_radius == lens_radius_for_fstop(hand.camera.yfov, 2.8));
+    CHECK(lens_radius_for_fstop(2.0f * std::atan(0.5f), 2.0) == doctest::Approx(0.006f));
+
+    // A built-in scene's shutter re-samples its motion: a zero-length one stands still.
+    settings = SceneSettings{};
+    settings.has_shutter = true;
+    settings.shutter_open = 0.5f;
+    settings.shutter_close = 0.5f;
+    CHECK_FALSE(describe(load_scene("car", settings)).object_motion);
+    CHECK_FALSE(describe(load_scene("forest", settings)).camera_motion);
+    // A shutter that throws the car to infinity fails the one validation.
+    settings.shutter_open = 0.0f;
+    settings.shutter_close = 1e38f;
+    CHECK(error_of([&] { load_scene("car", settings); }).find("scene 'car': vertex ") == 0);
+
+    // glTF: the shutter is in animation seconds; warnings go to the sink only.
+    if (khronos_available()) {
+        settings = SceneSettings{};
+        settings.has_shutter = true;
+        settings.shutter_open = 0.1f;
+        settings.shutter_close = 0.3f;
+        CHECK(same_scene(load_scene(kKhronosDir + "AnimatedTriangle.gltf", settings),
+                         load_gltf_scene(kKhronosDir + "AnimatedTriangle.gltf", shutter(0.1f, 0.3f))));
+    }
+    std::vector<std::string> warnings;
+    const Scene modes = load_scene(kDataDir + "modes.gltf", SceneSettings{},
+                                   [&](const std::string& line) { warnings.push_back(line); });
+    CHECK(modes.triangles.size() == 7);
+    REQUIRE(warnings.size() == 1);
+    CHECK(warnings[0] == kDataDir + "modes.gltf: warning: points primitives are skipped");
+}
+
+TEST_CASE("glTF: warnings reach the sink in order, before the error of the same load") {
+    std::vector<std::string> lines;
+    const std::string path = kDataDir + "bad_lines_only.gltf";
+    const std::string message =
+        error_of([&] { load_gltf_scene(path, GltfOptions{}, [&](const std::string& line) { lines.push_back(line); }); });
+    CHECK(message == path + ": no triangles to render");
+    REQUIRE(lines.size() == 1);
+    CHECK(lines[0] == path + ": warning: line primitives are skipped");
+}
+
+TEST_CASE("validated once: the makers mark their scenes, require_valid_scene checks only the others") {
+    const std::string triangle = kDataDir + "triangle.gltf";
+    CHECK(make_builtin_scene("hand", SceneOptions{}).validated);
+    CHECK(load_gltf_scene(triangle, GltfOptions{}).validated);
+    CHECK(load_scene("car").validated);
+    CHECK(load_scene(triangle).validated);
+    CHECK(make_mostly_static(make_builtin_scene("car", SceneOptions{}), 10).validated);
+    CHECK_FALSE(Scene{}.validated);
+
+    Scene edited = make_builtin_scene("hand", SceneOptions{});
+    edited.triangle_material[0] = 99;
+    CHECK_NOTHROW(require_valid_scene(edited));  // trusted: its maker checked it, the edit did not say so
+    edited.validated = false;
+    CHECK(error_of([&] { require_valid_scene(edited); }).find("triangle 0 uses material 99") != std::string::npos);
 }

@@ -3,7 +3,7 @@
 // there is no display. BLURCULL_CLI is the path of the built executable.
 // Without xvfb-run the window tests are skipped, unless CI=true (then they fail).
 #include "frontend_test_helpers.hpp"
-#include "render/image.hpp"
+#include "render/common/image.hpp"
 
 #include <doctest/doctest.h>
 
@@ -97,7 +97,7 @@ TEST_CASE("blurcull view renders frames under Xvfb and writes the window's conte
     REQUIRE(count_lines(run.out) == 3);
     std::istringstream lines(run.out);
     std::string line;
-    const char* expected[] = {"cull clip2", "cull bbox", "cull hull"};
+    const char* expected[] = {"cull twostage", "cull bbox", "cull hull"};
     for (const char* method : expected) {
         std::getline(lines, line);
         CHECK(line.find(method) != std::string::npos);

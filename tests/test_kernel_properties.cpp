@@ -81,8 +81,8 @@ struct Judge {
                     double(sb.lo.y), double(sb.hi.x), double(sb.hi.y), sb.hull_count, int(K::screen_contains(sb, s)));
         std::printf("  bounds: empty %d u [%g, %g] v [%g, %g] tx (%g %g %g %g) ty (%g %g %g %g)\n", int(b.empty),
                     double(b.u_range.x), double(b.u_range.y), double(b.v_range.x), double(b.v_range.y),
-                    double(b.tx.x), double(b.tx.y), double(b.tx.z), double(b.tx.w), double(b.ty.x), double(b.ty.y),
-                    double(b.ty.z), double(b.ty.w));
+                    double(b.u_time_a.x), double(b.u_time_a.y), double(b.u_time_a.z), double(b.u_time_a.w), double(b.v_time_a.x), double(b.v_time_a.y),
+                    double(b.v_time_a.z), double(b.v_time_a.w));
     }
 };
 
@@ -169,9 +169,9 @@ TEST_CASE_TEMPLATE("tightness: STE per method on fixed seeded sets", Real, float
     }
     // The two-stage test must beat dual-space where motion and defocus combine,
     // and neither may be looser than the box it refines.
-    CHECK(ste[2][BC_CULL_CLIP2] > ste[2][BC_CULL_DUALSPACE]);
+    CHECK(ste[2][BC_CULL_TWO_STAGE] > ste[2][BC_CULL_DUALSPACE]);
     for (int f = 0; f < 3; ++f) {
-        CHECK(ste[f][BC_CULL_CLIP2] >= ste[f][BC_CULL_BBOX]);
+        CHECK(ste[f][BC_CULL_TWO_STAGE] >= ste[f][BC_CULL_BBOX]);
         CHECK(ste[f][BC_CULL_DUALSPACE] >= ste[f][BC_CULL_BBOX]);
         CHECK(ste[f][BC_CULL_HULL] >= ste[f][BC_CULL_BBOX]);
     }

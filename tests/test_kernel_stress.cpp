@@ -226,7 +226,7 @@ bool bounds_finite(const typename K::ScreenBound& sb, const typename K::SampleBo
     }
     if (!b.empty) {
         if (!f(b.u_range.x) || !f(b.u_range.y) || !f(b.v_range.x) || !f(b.v_range.y)) return false;
-        for (const typename K::vec4& line : {b.tx, b.tx2, b.ty, b.ty2}) {
+        for (const typename K::vec4& line : {b.u_time_a, b.u_time_b, b.v_time_a, b.v_time_b}) {
             if (!f_or(line.x, -inf) || !f(line.y) || !f_or(line.z, inf) || !f(line.w)) return false;
         }
     }
@@ -240,8 +240,8 @@ bool is_documented_fallback(const typename K::ScreenBound& sb, const typename K:
     const typename K::SampleBounds none = K::no_sample_bounds();
     const real huge = std::numeric_limits<real>::max();
     return !sb.empty && sb.hull_count == 0 && sb.lo == typename K::vec2(-huge) && sb.hi == typename K::vec2(huge) &&
-           b.empty == none.empty && b.u_range == none.u_range && b.v_range == none.v_range && b.tx == none.tx &&
-           b.tx2 == none.tx2 && b.ty == none.ty && b.ty2 == none.ty2;
+           b.empty == none.empty && b.u_range == none.u_range && b.v_range == none.v_range && b.u_time_a == none.u_time_a &&
+           b.u_time_b == none.u_time_b && b.v_time_a == none.v_time_a && b.v_time_b == none.v_time_b;
 }
 
 template <class Real>
@@ -359,7 +359,7 @@ void check_stress(const char* precision) {
                     precision, stress_name(stress), c.configs, c.invalid, c.swamped, c.samples, c.covered,
                     c.covered_bounded, c.nonfinite_bounds,
                     c.bad_fallbacks, c.false_culls[BC_CULL_BBOX], c.false_culls[BC_CULL_HULL],
-                    c.false_culls[BC_CULL_DUALSPACE], c.false_culls[BC_CULL_CLIP2]);
+                    c.false_culls[BC_CULL_DUALSPACE], c.false_culls[BC_CULL_TWO_STAGE]);
         CAPTURE(stress_name(stress));
         CHECK(c.nonfinite_bounds == 0);
         CHECK(c.bad_fallbacks == 0);
@@ -429,7 +429,7 @@ TEST_CASE("stress: the documented NaN/Inf and non-positive near behaviour, one b
     }
     // near <= 0 or NaN is a caller error: the whole screen, never empty.
     for (float near : {0.0f, -1.0f, std::numeric_limits<float>::quiet_NaN()}) {
-        const K::ScreenBound sb = K::screen_bound(tri, near, BC_CULL_CLIP2);
+        const K::ScreenBound sb = K::screen_bound(tri, near, BC_CULL_TWO_STAGE);
         CHECK_FALSE(sb.empty);
         CHECK(K::screen_contains(sb, K::vec2(0.3f, 0.3f)));
     }
@@ -445,7 +445,7 @@ TEST_CASE("stress: the keep-everything fallback needs two vertices swamped by th
     }
     const K::vec2 far_lo(0.9), far_hi(0.95);  // a footprint the triangle cannot reach with this lens
     CHECK(K::bc_triangle_boundable(tri));
-    CHECK(K::sample_bounds(tri, far_lo, far_hi, BC_CULL_CLIP2).empty);
+    CHECK(K::sample_bounds(tri, far_lo, far_hi, BC_CULL_TWO_STAGE).empty);
     CHECK(K::screen_bound(tri, 0.1, BC_CULL_BBOX).hi.x < 0.5);
     // Vertices 0 and 1 at w = 1e-30 (positions scaled with w) beside a CoC of
     // 0.05: the shear is 1e29 times the vertex, the oracle's edge between them

@@ -6,7 +6,7 @@
 //
 //   bench_embree [--scene forest] [--size 1024x768] [--spp 16] [--threads 1]
 //                [--repeat 3] [--blur 0,1]
-#include "render/embree_backend.hpp"
+#include "render/embree/embree_backend.hpp"
 #include "scene/builtin_scenes.hpp"
 
 #include <algorithm>

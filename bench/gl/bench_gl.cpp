@@ -15,8 +15,8 @@
 // Only ratios within one run mean something on a shared machine; software
 // GL (llvmpipe) timings are not GPU timings.
 #include "bench_common.hpp"
-#include "render/gl_backend.hpp"
-#include "render/render_types.hpp"
+#include "render/common/render_types.hpp"
+#include "render/gl/gl_backend.hpp"
 #include "scene/builtin_scenes.hpp"
 
 #include <chrono>

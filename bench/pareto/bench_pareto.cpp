@@ -14,10 +14,10 @@
 // --repeat runs with the methods interleaved within each repeat, so a drifting
 // machine load hits all of them alike.
 #include "bench_common.hpp"
-#include "render/cpu_backend.hpp"
-#include "render/embree_backend.hpp"
-#include "render/image.hpp"
-#include "render/interleaved_backend.hpp"
+#include "render/cpu/cpu_backend.hpp"
+#include "render/embree/embree_backend.hpp"
+#include "render/common/image.hpp"
+#include "render/cpu/methods.hpp"
 #include "scene/builtin_scenes.hpp"
 
 #include <algorithm>
@@ -44,11 +44,24 @@ constexpr std::uint32_t reference_seed_a = 7919;
 constexpr std::uint32_t reference_seed_b = 104729;
 constexpr std::uint32_t test_seed = 1;
 
+// The stochastic rasterizer with two culls (its labels are those of the
+// published CSVs), then every other render method of the registry.
+const std::vector<std::string>& known_methods() {
+    static const std::vector<std::string> names = [] {
+        std::vector<std::string> list = {"stochastic-clip2", "stochastic-bbox"};
+        for (const RenderMethodInfo& info : render_methods()) {
+            if (info.method != RenderMethod::stochastic) list.emplace_back(info.name);
+        }
+        return list;
+    }();
+    return names;
+}
+
 struct Options {
     int width = 256, height = 192, repeat = 3, threads = 1, reference_spp = 1024;
     double blur_sigma = 2.0;
     std::vector<std::string> scenes = builtin_scene_names();
-    std::vector<std::string> methods = {"stochastic-clip2", "stochastic-bbox", "interleave", "interval", "accum"};
+    std::vector<std::string> methods = known_methods();
     std::vector<int> spps = {1, 4, 16, 64};
     std::string cache_dir = (std::filesystem::temp_directory_path() / "blurcull-pareto-cache").string();
     std::string csv_path, markdown_path;
@@ -89,12 +102,6 @@ int parse_int(const std::string& option, const std::string& text, int lo, int hi
     return static_cast<int>(value);
 }
 
-const std::vector<std::string>& known_methods() {
-    static const std::vector<std::string> names = {"stochastic-clip2", "stochastic-bbox", "interleave", "interval",
-                                                   "accum"};
-    return names;
-}
-
 int square_root(int n) {
     int root = 0;
     while ((root + 1) * (root + 1) <= n) ++root;
@@ -106,29 +113,29 @@ std::string setting_label(const Config& config) {
     const std::string n = std::to_string(config.spp);
     if (config.method == "stochastic-clip2") return n + " spp (clip2 cull)";
     if (config.method == "stochastic-bbox") return n + " spp (bbox cull)";
-    if (config.method == "interleave") {
+    if (config.method == to_string(RenderMethod::interleave)) {
         const std::string w = std::to_string(square_root(config.spp));
         return "N = " + n + " tuples (tile " + w + "x" + w + ")";
     }
-    if (config.method == "interval") return "N = " + n + " shutter strata";
+    if (config.method == to_string(RenderMethod::interval)) return "N = " + n + " shutter strata";
     return "K = " + n + " passes";
 }
 
 RenderResult render(const Scene& scene, RenderSettings settings, const Config& config) {
     settings.spp = config.spp;
     if (config.method == "stochastic-clip2" || config.method == "stochastic-bbox") {
-        settings.method = "stochastic";
-        settings.cull = config.method == "stochastic-clip2" ? CullMethod::clip2 : CullMethod::bbox;
+        settings.method = RenderMethod::stochastic;
+        settings.cull = config.method == "stochastic-clip2" ? CullMethod::two_stage : CullMethod::bbox;
         return render_cpu(scene, settings);
     }
-    if (config.method == "interleave") {
+    if (config.method == to_string(RenderMethod::interleave)) {
         // N = spp tuples: a tile is one pixel's s x s lattice cells, so every
         // pixel sees every tuple once (the "N = spp" point of the comparison).
         InterleaveOptions options;
         options.tile_width = square_root(config.spp);
         return render_interleave(scene, settings, options);
     }
-    settings.method = config.method;
+    settings.method = parse_render_method(config.method);
     return render_with_method(scene, settings);
 }
 
@@ -388,7 +395,7 @@ int main(int argc, char** argv) {
         for (const std::string& method : o.methods)
             for (int spp : o.spps)
                 // N = spp tuples needs tiles of at least 2 x 2 cells.
-                if (method != "interleave" || spp >= 4) configs.push_back({method, spp});
+                if (method != to_string(RenderMethod::interleave) || spp >= 4) configs.push_back({method, spp});
 
         std::vector<Row> rows;
         std::vector<Reference> references;

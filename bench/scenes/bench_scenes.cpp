@@ -10,7 +10,7 @@
 // the same run (same scene, same samples): on a noisy machine only ratios
 // within one run mean something.
 #include "bench_common.hpp"
-#include "render/cpu_backend.hpp"
+#include "render/cpu/cpu_backend.hpp"
 #include "scene/builtin_scenes.hpp"
 
 #include <algorithm>
@@ -34,7 +34,9 @@ struct Published {
     double bbox[2], dualspace[2], thesis[2];  // STE %, 1x and 2x
 };
 
-// Thesis Table 4.1 (16 spp, 1024x768), as quoted in shared/design/BRIEF.md section 4.
+// Table 4.1 (16 spp, 1024x768) of the NCTU thesis of the same name behind Wu,
+// Way, Tsai and Shih, "Clip Space Sample Culling for Motion Blur and Defocus
+// Blur", JISE 31(3), 2015.
 const Published published[] = {
     {"hand", "defocus", "15k", {12, 10}, {29, 28}, {29, 27}},
     {"car", "object motion", "54k", {9, 4}, {28, 25}, {27, 26}},
@@ -42,7 +44,7 @@ const Published published[] = {
     {"forest", "motion + defocus", "170k", {0.4, 0.2}, {5, 2}, {19, 13}},
 };
 
-const CullMethod methods[] = {CullMethod::bbox, CullMethod::hull, CullMethod::dualspace, CullMethod::clip2};
+const CullMethod methods[] = {CullMethod::bbox, CullMethod::hull, CullMethod::dualspace, CullMethod::two_stage};
 
 struct Row {
     std::string scene;

@@ -2,6 +2,9 @@
 #pragma once
 
 #include "app/scene_setup.hpp"
+#include "render/common/render_types.hpp"
+#include "render/cpu/cpu_backend.hpp"
+#include "render/gl/gl_backend.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -14,18 +17,32 @@ struct RenderCommand : SceneFlags {
     RenderCommand() : SceneFlags("forest", 16, "1024x768") {}
 
     std::string backend = "auto";
-    std::string method = "stochastic";
+    std::string method = to_string(RenderSettings{}.method);
     std::string output;         // empty: <scene>.png in the current folder
     bool json = false;
     int threads = 0;
-    int footprint = 4;  // CpuOptions::footprint
-    std::string precision = "double";  // CpuOptions::precision
+    int footprint = CpuOptions{}.footprint;
+    std::string precision = to_string(CpuOptions{}.precision);
+    int gl_cell = GlOptions{}.cell_pixels;
     bool quiet = false;
 
+    // The backend-specific options, to tell whether they were given
+    // (count() > 0) when the backend in use cannot honour them.
+    CLI::Option* method_option = nullptr;
+    CLI::Option* footprint_option = nullptr;
+    CLI::Option* precision_option = nullptr;
+    CLI::Option* gl_cell_option = nullptr;
+
+    // Declares the options on `app`, their checks and help read from the
+    // registries of cull methods, render methods, precisions and backends.
     void add_options(CLI::App& app);
+
+    // Renders as the options say and prints the summary; returns the exit
+    // status. Throws std::exception with a one-line message naming the flag.
     int run() const;
 };
 
+// Prints the built-in scenes' names, one a line; returns the exit status.
 int list_scenes();
 
 }  // namespace blurcull::frontend

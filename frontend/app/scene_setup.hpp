@@ -1,9 +1,13 @@
 // What `blurcull render` and `blurcull view` share: parsing --size and
-// --shutter, and loading a built-in or glTF scene with the lens, focus,
-// shutter and blur-scale overrides applied.
+// --shutter, the scene flags, and loading a built-in or glTF scene with the
+// lens, focus, shutter and blur-scale settings applied (the scene layer does
+// the work; this prints its warnings).
 #pragma once
 
+#include "render/common/render_types.hpp"
+#include "scene/load_scene.hpp"
 #include "scene/scene.hpp"
+#include "scene/scene_name.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -19,19 +23,10 @@ void parse_size(const std::string& text, int& width, int& height);
 // "OPEN,CLOSE" with finite OPEN <= CLOSE; throws std::invalid_argument naming --shutter.
 void parse_shutter(const std::string& text, float& open, float& close);
 
-// The file name without folder and extension ("scenes/a.gltf" -> "a").
-std::string stem(const std::string& path);
-
-struct SceneRequest {
-    std::string scene = "forest";  // built-in name or a .gltf/.glb path
-    float aspect = 4.0f / 3.0f;    // width / height of the image
-    double blur_scale = 1.0;
-    bool has_shutter = false;      // else the scene's own shutter
-    float shutter_open = 0.0f;
-    float shutter_close = 1.0f;
-    double lens_radius = -1.0;     // < 0: the scene's own (multiplied by blur_scale when set)
-    double fstop = -1.0;           // > 0: the lens radius for this f-number
-    double focus = -1.0;           // > 0: the focus distance
+// The scene to load and its settings (aspect, blur scale, shutter, lens,
+// focus: scene/load_scene.hpp), as the flags give them.
+struct SceneRequest : SceneSettings {
+    std::string scene = "forest";  // built-in name or a .gltf/.glb path (scene/scene_name.hpp)
 };
 
 // The flags `blurcull render` and `blurcull view` share: the scene, its lens,
@@ -41,7 +36,7 @@ struct SceneFlags {
         : scene(std::move(default_scene)), spp(default_spp), size(std::move(default_size)) {}
 
     std::string scene;
-    std::string cull = "clip2";
+    std::string cull = to_string(RenderSettings{}.cull);
     int spp;
     std::string size;
     double lens_radius = -1.0;  // < 0: the scene's own
@@ -57,8 +52,9 @@ struct SceneFlags {
     void add_options(CLI::App& app, bool initial);
 };
 
-// Loads and validates the scene; throws SceneError or std::runtime_error
-// with a one-line message.
+// Loads the scene (validated once, by the scene layer's load_scene) and
+// prints its warnings on stderr, one line each; throws SceneError or
+// std::runtime_error with a one-line message.
 Scene load_scene(const SceneRequest& request);
 
 }  // namespace blurcull::frontend

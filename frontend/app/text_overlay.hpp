@@ -3,7 +3,7 @@
 // rectangles, on a dark translucent panel so they read on any scene.
 #pragma once
 
-#include "render/image.hpp"
+#include "render/common/image.hpp"
 
 #include <string>
 

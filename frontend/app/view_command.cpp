@@ -3,11 +3,10 @@
 #include "app/scene_setup.hpp"
 #include "app/text_overlay.hpp"
 
-#include "render/gl_backend.hpp"
-#include "render/image.hpp"
-#include "render/render_types.hpp"
-
-#include <gl/gl_context.hpp>
+#include "render/common/image.hpp"
+#include "render/common/render_types.hpp"
+#include "render/gl/gl_backend.hpp"
+#include "render/gl/gl_context.hpp"
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -35,7 +34,7 @@ const char* const view_controls_help =
     "Controls: left drag orbit | wheel dolly | R reset view\n"
     "  A / Shift+A  lens radius x1.25 / /1.25     F / Shift+F  focus distance x1.1 / /1.1\n"
     "  S / Shift+S  shutter length x1.25 / /1.25  B / Shift+B  blur scale x1.25 / /1.25\n"
-    "  N  next spp (4, 8, 16, 32)                 C  next cull method (bbox, hull, dualspace, clip2)\n"
+    "  N  next spp (4, 8, 16, 32)                 C  next cull method (bbox, hull, dualspace, twostage)\n"
     "  P  screenshot (--screenshot FILE, else view-N.png)   Esc / Q  quit\n";
 
 namespace {
@@ -43,7 +42,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 constexpr int spp_steps[] = {4, 8, 16, 32};
-constexpr CullMethod cull_steps[] = {CullMethod::bbox, CullMethod::hull, CullMethod::dualspace, CullMethod::clip2};
+constexpr CullMethod cull_steps[] = {CullMethod::bbox, CullMethod::hull, CullMethod::dualspace, CullMethod::two_stage};
 
 int next_spp(int spp) {
     for (int step : spp_steps) {
@@ -57,10 +56,6 @@ CullMethod next_cull(CullMethod cull) {
         if (cull_steps[i] == cull) return cull_steps[(i + 1) % std::size(cull_steps)];
     }
     return cull_steps[0];
-}
-
-bool ends_with(const std::string& text, const std::string& suffix) {
-    return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 void require_writable_folder(const std::string& path, const char* flag) {
@@ -134,7 +129,7 @@ struct ViewState {
     float shutter_close = 1.0f;
     double blur_scale = 1.0;
     int spp = 4;
-    CullMethod cull = CullMethod::clip2;
+    CullMethod cull = CullMethod::two_stage;
 };
 
 // The orbit: rotates the world about its centre in view space, then moves
@@ -311,6 +306,248 @@ void on_scroll(GLFWwindow* window, double, double y_offset) {
     input.changed = true;
 }
 
+// The scene request of the view: the command's flags, with the shutter always
+// explicit (the view changes it) and the loaders' defaults when not given.
+SceneRequest view_scene_request(const ViewCommand& command, int width, int height) {
+    SceneRequest request;
+    request.scene = command.scene;
+    request.aspect = static_cast<float>(width) / static_cast<float>(height);
+    request.blur_scale = command.blur_scale;
+    request.has_shutter = true;
+    request.shutter_open = 0.0f;
+    request.shutter_close = is_gltf_file(command.scene) ? 1.0f / 24.0f : 1.0f;
+    if (!command.shutter.empty()) parse_shutter(command.shutter, request.shutter_open, request.shutter_close);
+    request.lens_radius = command.lens_radius;
+    request.fstop = command.fstop;
+    request.focus = command.focus;
+    return request;
+}
+
+// A width x height OpenGL 4.5 core window, not resizable, current, no vsync.
+GLFWwindow* open_window(int width, int height) {
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
+    glfwWindowHint(GLFW_SAMPLES, 0);
+    GLFWwindow* window = glfwCreateWindow(width, height, "blurcull view", nullptr, nullptr);
+    if (window == nullptr) {
+        throw std::runtime_error("cannot open an OpenGL 4.5 core window (" + last_glfw_error() + ")");
+    }
+    glfwMakeContextCurrent(window);
+    glfwSwapInterval(0);
+    pin_loaded_libraries();  // the context's creation loaded the DRI driver
+    return window;
+}
+
+// One `blurcull view` run: the window, the renderer on its context, what the
+// user changed, and the loop that re-renders when something did.
+class ViewSession {
+public:
+    ViewSession(const ViewCommand& command, int width, int height)
+        : command_(command),
+          width_(width),
+          height_(height),
+          request_(view_scene_request(command, width, height)),
+          base_(load_scene(request_)),
+          view_(initial_view(command, base_, request_)),
+          initial_(view_),
+          window_((glfw_.window = open_window(width, height))),
+          renderer_(gl::HeadlessContext::from_current(glfwGetProcAddress, "glfwGetProcAddress")),
+          // from_current loaded the same table; a second copy is only for the window's own calls.
+          window_context_(gl::HeadlessContext::from_current(glfwGetProcAddress, "glfwGetProcAddress")),
+          timing_label_(is_software(window_context_.renderer()) ? "llvmpipe, software" : "GPU"),
+          presenter_(window_context_.gl(), width, height),
+          scene_name_(stem(command.scene)),  // a glTF path without its folders
+          centre_(scene_centre(base_)) {
+        input_.view = &view_;
+        glfwSetWindowUserPointer(window_, &input_);
+        glfwSetKeyCallback(window_, on_key);
+        glfwSetMouseButtonCallback(window_, on_mouse_button);
+        glfwSetCursorPosCallback(window_, on_cursor);
+        glfwSetScrollCallback(window_, on_scroll);
+    }
+
+    void run() {
+        if (!command_.quiet) {
+            std::fprintf(stderr, "blurcull view: %s on %s\n%s", command_.scene.c_str(),
+                         renderer_.description().c_str(), view_controls_help);
+        }
+        warm_up();
+        while (!glfwWindowShouldClose(window_)) {
+            if (command_.frames > 0 && rendered_ == command_.frames) break;
+            wait_for_change();
+            apply_input();
+            int window_width = width_, window_height = height_;
+            glfwGetFramebufferSize(window_, &window_width, &window_height);
+            if (needs_render_) render_frame(window_width, window_height);
+            take_screenshots(window_width, window_height);
+            glfwSwapBuffers(window_);
+        }
+    }
+
+private:
+    static ViewState initial_view(const ViewCommand& command, const Scene& base, const SceneRequest& request) {
+        ViewState view;
+        view.lens_radius = base.camera.lens_radius;
+        view.focus = base.camera.focus_distance;
+        view.shutter_open = request.shutter_open;
+        view.shutter_close = request.shutter_close;
+        view.blur_scale = command.blur_scale;
+        view.spp = command.spp;
+        view.cull = parse_cull_method(command.cull);
+        return view;
+    }
+
+    // llvmpipe compiles a program's code on its first draw: a 1x1 frame
+    // first, as render_gl does, so frame times are frames alone.
+    void warm_up() {
+        glfwSetWindowTitle(window_, "blurcull view: compiling shaders...");
+        glfwPollEvents();
+        RenderSettings settings;
+        settings.width = 1;
+        settings.height = 1;
+        settings.spp = 4;
+        settings.progress = false;
+        renderer_.render(base_, settings);
+    }
+
+    // --frames: between frames a turn of the orbit and the next cull method,
+    // so both the per-triangle (bbox, hull) and per-cell (dualspace,
+    // twostage) bounds run. Interactive: sleeps until something happens,
+    // then takes every queued event before rendering once.
+    void wait_for_change() {
+        if (command_.frames > 0) {
+            if (rendered_ > 0) {
+                view_.yaw += 0.35f;
+                view_.cull = next_cull(view_.cull);
+                needs_render_ = true;
+            }
+            return;
+        }
+        if (!needs_render_) glfwWaitEvents();
+        glfwPollEvents();
+    }
+
+    void apply_input() {
+        if (input_.reset) {
+            view_ = initial_;
+            input_.reset = false;
+            input_.scene_changed = true;
+        }
+        if (input_.scene_changed) {
+            request_.blur_scale = view_.blur_scale;
+            request_.shutter_open = view_.shutter_open;
+            request_.shutter_close = view_.shutter_close;
+            request_.lens_radius = -1.0;
+            request_.fstop = -1.0;
+            base_ = load_scene(request_);
+            input_.scene_changed = false;
+        }
+        needs_render_ = needs_render_ || input_.changed;
+        input_.changed = false;
+    }
+
+    // The scene with the view's camera: orbit, lens and focus.
+    Scene posed_scene() {
+        Scene posed = base_;
+        const glm::vec3 centre_in_view = glm::vec3(base_.camera.view_open * glm::vec4(centre_, 1.0f));
+        input_.dolly_step = 0.1f * std::max(glm::length(centre_in_view), 1e-3f);
+        const glm::mat4 orbit = orbit_transform(view_, centre_in_view);
+        posed.camera.view_open = orbit * base_.camera.view_open;
+        posed.camera.view_close = orbit * base_.camera.view_close;
+        posed.camera.lens_radius = view_.lens_radius;
+        posed.camera.focus_distance = view_.focus;
+        posed.validated = false;  // camera from the keys: the renderer checks it again
+        return posed;
+    }
+
+    void render_frame(int window_width, int window_height) {
+        RenderSettings settings;
+        settings.width = width_;
+        settings.height = height_;
+        settings.spp = view_.spp;
+        settings.seed = command_.seed;
+        settings.cull = view_.cull;
+        settings.progress = false;
+        const std::string busy = "blurcull view: rendering " + std::to_string(view_.spp) + " spp...";
+        glfwSetWindowTitle(window_, busy.c_str());
+        glfwPollEvents();
+        const Clock::time_point start = Clock::now();
+        RenderResult result = renderer_.render(posed_scene(), settings);
+        const double frame_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+        const RenderStats& stats = result.stats;
+        draw_text_panel(result.image, 6, 6, overlay_text(stats, frame_ms), width_ >= 640 ? 2 : 1);
+        shown_ = std::move(result.image);
+        presenter_.show(shown_, window_width, window_height);
+        const std::string title = "blurcull view: " + scene_name_ + " | " + to_string(view_.cull) + " " +
+                                  std::to_string(view_.spp) + " spp | " + format("STE %.2f%%", 100.0 * stats.ste()) +
+                                  " | " + format("%.0f ms", frame_ms) + " " + timing_label_;
+        glfwSetWindowTitle(window_, title.c_str());
+        ++rendered_;
+        needs_render_ = false;
+        if (command_.frames > 0 && !command_.quiet) {
+            std::printf("frame %d: cull %s, %d spp, STE %.4f, %.1f ms (%s)\n", rendered_, to_string(view_.cull),
+                        view_.spp, stats.ste(), frame_ms, timing_label_.c_str());
+            std::fflush(stdout);
+        }
+    }
+
+    // The overlay's four lines: settings, camera, STE, frame time.
+    std::string overlay_text(const RenderStats& stats, double frame_ms) const {
+        const std::string settings_line = scene_name_ + "  " + std::to_string(width_) + "x" +
+                                          std::to_string(height_) + "  " + std::to_string(view_.spp) + " spp  cull " +
+                                          to_string(view_.cull);
+        const std::string camera_line = format("lens %.4g  focus %.4g  shutter [%.3g, %.3g]", view_.lens_radius,
+                                               view_.focus, view_.shutter_open, view_.shutter_close) +
+                                        format("  blur x%.3g", view_.blur_scale);
+        const std::string ste_line = format("STE %.2f%%  (%.0f hit / %.0f tested)", 100.0 * stats.ste(),
+                                            static_cast<double>(stats.samples_hit),
+                                            static_cast<double>(stats.samples_tested));
+        const std::string time_line = format("frame %.0f ms", frame_ms) + " (" + timing_label_ + ")";
+        return settings_line + "\n" + camera_line + "\n" + ste_line + "\n" + time_line;
+    }
+
+    void take_screenshots(int window_width, int window_height) {
+        const gl::Functions& gl = window_context_.gl();
+        if (input_.screenshot && rendered_ > 0) {
+            // The back buffer is undefined after a swap: draw the last frame again.
+            presenter_.show(shown_, window_width, window_height);
+            const std::string path = command_.screenshot.empty()
+                                         ? "view-" + std::to_string(++screenshot_count_) + ".png"
+                                         : command_.screenshot;
+            write_window_png(gl, window_width, window_height, path);
+            if (!command_.quiet) std::fprintf(stderr, "wrote %s\n", path.c_str());
+        }
+        input_.screenshot = false;
+        if (command_.frames > 0 && rendered_ == command_.frames && !command_.screenshot.empty()) {
+            // The back buffer still holds the last frame (no swap yet).
+            write_window_png(gl, window_width, window_height, command_.screenshot);
+        }
+    }
+
+    const ViewCommand& command_;
+    int width_, height_;
+    SceneRequest request_;
+    Scene base_;
+    ViewState view_;
+    const ViewState initial_;
+    GlfwSession glfw_;  // before the window and everything on its context, released after them
+    GLFWwindow* window_;
+    GlRenderer renderer_;
+    gl::HeadlessContext window_context_;
+    std::string timing_label_;
+    Presenter presenter_;
+    std::string scene_name_;
+    glm::vec3 centre_;
+    Input input_;
+    Image shown_;  // the last frame with its overlay
+    int rendered_ = 0;
+    int screenshot_count_ = 0;
+    bool needs_render_ = true;
+};
+
 }  // namespace
 
 void ViewCommand::add_options(CLI::App& app) {
@@ -329,187 +566,8 @@ int ViewCommand::run() const {
     int width = 0, height = 0;
     parse_size(size, width, height);
     if (!screenshot.empty()) require_writable_folder(screenshot, "--screenshot");
-
-    SceneRequest request;
-    request.scene = scene;
-    request.aspect = static_cast<float>(width) / static_cast<float>(height);
-    request.blur_scale = blur_scale;
-    request.has_shutter = true;  // the view changes it, so it is always explicit
-    const bool gltf = ends_with(scene, ".gltf") || ends_with(scene, ".glb");
-    request.shutter_open = 0.0f;
-    request.shutter_close = gltf ? 1.0f / 24.0f : 1.0f;  // the loaders' defaults
-    if (!shutter.empty()) parse_shutter(shutter, request.shutter_open, request.shutter_close);
-    request.lens_radius = lens_radius;
-    request.fstop = fstop;
-    request.focus = focus;
-    Scene base = load_scene(request);
-
-    ViewState view;
-    view.lens_radius = base.camera.lens_radius;
-    view.focus = base.camera.focus_distance;
-    view.shutter_open = request.shutter_open;
-    view.shutter_close = request.shutter_close;
-    view.blur_scale = blur_scale;
-    view.spp = spp;
-    view.cull = parse_cull_method(cull);
-    const ViewState initial = view;
-
-    GlfwSession session;
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
-    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-    glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
-    glfwWindowHint(GLFW_SAMPLES, 0);
-    session.window = glfwCreateWindow(width, height, "blurcull view", nullptr, nullptr);
-    if (session.window == nullptr) {
-        throw std::runtime_error("cannot open an OpenGL 4.5 core window (" + last_glfw_error() + ")");
-    }
-    glfwMakeContextCurrent(session.window);
-    glfwSwapInterval(0);
-    pin_loaded_libraries();  // the context's creation loaded the DRI driver
-    GlRenderer renderer(gl::HeadlessContext::from_current(glfwGetProcAddress, "glfwGetProcAddress"));
-    // from_current loaded the same table; a second copy is only for the window's own calls.
-    gl::HeadlessContext window_context = gl::HeadlessContext::from_current(glfwGetProcAddress, "glfwGetProcAddress");
-    const gl::Functions& gl = window_context.gl();
-    const std::string gl_renderer = window_context.renderer();
-    const std::string timing_label = is_software(gl_renderer) ? "llvmpipe, software" : "GPU";
-    Presenter presenter(gl, width, height);
-
-    Input input;
-    input.view = &view;
-    glfwSetWindowUserPointer(session.window, &input);
-    glfwSetKeyCallback(session.window, on_key);
-    glfwSetMouseButtonCallback(session.window, on_mouse_button);
-    glfwSetCursorPosCallback(session.window, on_cursor);
-    glfwSetScrollCallback(session.window, on_scroll);
-
-    if (!quiet) {
-        std::fprintf(stderr, "blurcull view: %s on %s\n%s", scene.c_str(), renderer.description().c_str(),
-                     view_controls_help);
-    }
-
-    {
-        // llvmpipe compiles a program's code on its first draw: a 1x1 frame
-        // first, as render_gl does, so frame times are frames alone.
-        glfwSetWindowTitle(session.window, "blurcull view: compiling shaders...");
-        glfwPollEvents();
-        RenderSettings warm_up;
-        warm_up.width = 1;
-        warm_up.height = 1;
-        warm_up.spp = 4;
-        warm_up.progress = false;
-        renderer.render(base, warm_up);
-    }
-    const std::string scene_name = stem(scene);  // a glTF path without its folders
-    const glm::vec3 centre = scene_centre(base);
-    int screenshot_count = 0;
-    Image shown;  // the last frame with its overlay
-    int rendered = 0;
-    bool needs_render = true;
-    while (!glfwWindowShouldClose(session.window)) {
-        if (frames > 0) {
-            if (rendered == frames) break;
-            if (rendered > 0) {
-                // Between frames: a turn of the orbit and the next cull method, so
-                // both the per-triangle (bbox, hull) and per-cell (dualspace, clip2)
-                // bounds run.
-                view.yaw += 0.35f;
-                view.cull = next_cull(view.cull);
-                needs_render = true;
-            }
-        } else {
-            // Sleeps until something happens; then takes every queued event
-            // before rendering once.
-            if (!needs_render) glfwWaitEvents();
-            glfwPollEvents();
-        }
-        if (input.reset) {
-            view = initial;
-            input.reset = false;
-            input.scene_changed = true;
-        }
-        if (input.scene_changed) {
-            request.blur_scale = view.blur_scale;
-            request.shutter_open = view.shutter_open;
-            request.shutter_close = view.shutter_close;
-            request.lens_radius = -1.0;
-            request.fstop = -1.0;
-            base = load_scene(request);
-            input.scene_changed = false;
-        }
-        needs_render = needs_render || input.changed;
-        input.changed = false;
-
-        int window_width = width, window_height = height;
-        glfwGetFramebufferSize(session.window, &window_width, &window_height);
-        if (needs_render) {
-            Scene posed = base;
-            const glm::vec3 centre_in_view = glm::vec3(base.camera.view_open * glm::vec4(centre, 1.0f));
-            input.dolly_step = 0.1f * std::max(glm::length(centre_in_view), 1e-3f);
-            const glm::mat4 orbit = orbit_transform(view, centre_in_view);
-            posed.camera.view_open = orbit * base.camera.view_open;
-            posed.camera.view_close = orbit * base.camera.view_close;
-            posed.camera.lens_radius = view.lens_radius;
-            posed.camera.focus_distance = view.focus;
-
-            RenderSettings settings;
-            settings.width = width;
-            settings.height = height;
-            settings.spp = view.spp;
-            settings.seed = seed;
-            settings.cull = view.cull;
-            settings.progress = false;
-            const std::string busy = "blurcull view: rendering " + std::to_string(view.spp) + " spp...";
-            glfwSetWindowTitle(session.window, busy.c_str());
-            glfwPollEvents();
-            const Clock::time_point start = Clock::now();
-            RenderResult result = renderer.render(posed, settings);
-            const double frame_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-            const RenderStats& stats = result.stats;
-
-            const std::string settings_line =
-                scene_name + "  " + std::to_string(width) + "x" + std::to_string(height) + "  " +
-                std::to_string(view.spp) + " spp  cull " + to_string(view.cull);
-            const std::string camera_line =
-                format("lens %.4g  focus %.4g  shutter [%.3g, %.3g]", view.lens_radius, view.focus, view.shutter_open,
-                       view.shutter_close) +
-                format("  blur x%.3g", view.blur_scale);
-            const std::string ste_line =
-                format("STE %.2f%%  (%.0f hit / %.0f tested)", 100.0 * stats.ste(),
-                       static_cast<double>(stats.samples_hit), static_cast<double>(stats.samples_tested));
-            const std::string time_line = format("frame %.0f ms", frame_ms) + " (" + timing_label + ")";
-            draw_text_panel(result.image, 6, 6, settings_line + "\n" + camera_line + "\n" + ste_line + "\n" + time_line,
-                            width >= 640 ? 2 : 1);
-            shown = std::move(result.image);
-            presenter.show(shown, window_width, window_height);
-
-            const std::string title = "blurcull view: " + scene_name + " | " + to_string(view.cull) + " " +
-                                      std::to_string(view.spp) + " spp | " + format("STE %.2f%%", 100.0 * stats.ste()) +
-                                      " | " + format("%.0f ms", frame_ms) + " " + timing_label;
-            glfwSetWindowTitle(session.window, title.c_str());
-            ++rendered;
-            needs_render = false;
-            if (frames > 0 && !quiet) {
-                std::printf("frame %d: cull %s, %d spp, STE %.4f, %.1f ms (%s)\n", rendered, to_string(view.cull),
-                            view.spp, stats.ste(), frame_ms, timing_label.c_str());
-                std::fflush(stdout);
-            }
-        }
-        if (input.screenshot && rendered > 0) {
-            // The back buffer is undefined after a swap: draw the last frame again.
-            presenter.show(shown, window_width, window_height);
-            const std::string path = screenshot.empty() ? "view-" + std::to_string(++screenshot_count) + ".png" : screenshot;
-            write_window_png(gl, window_width, window_height, path);
-            if (!quiet) std::fprintf(stderr, "wrote %s\n", path.c_str());
-        }
-        input.screenshot = false;
-        if (frames > 0 && rendered == frames && !screenshot.empty()) {
-            // The back buffer still holds the last frame (no swap yet).
-            write_window_png(gl, window_width, window_height, screenshot);
-        }
-        glfwSwapBuffers(session.window);
-    }
+    ViewSession session(*this, width, height);
+    session.run();
     return 0;
 }
 

@@ -20,10 +20,13 @@ struct SceneOptions {
     float aspect = 4.0f / 3.0f;
 };
 
-// "hand", "car", "dragonfly", "forest". Throws SceneError for any other name,
-// or for a blur_scale / aspect that is negative, zero (aspect) or not finite.
+// "hand", "car", "dragonfly", "forest", validated. Throws SceneError for any
+// other name, or for a blur_scale / aspect that is negative, zero (aspect) or
+// not finite. Each scene is built in scene/builtin/<name>.cpp from the shapes
+// of scene/builtin/mesh_builder.hpp.
 Scene make_builtin_scene(const std::string& name, const SceneOptions& options);
 
+// The built-in scene names, in the order `blurcull scenes` lists them.
 std::vector<std::string> builtin_scene_names();
 
 // `source` with the lens closed, the camera still, and every triangle given
@@ -32,7 +35,8 @@ std::vector<std::string> builtin_scene_names();
 // stand still at their shutter-open place. With moving_every = 10, 90% of the
 // triangles are static and in focus: the GL backend's static-path workload
 // (docs/gl-backend.md). A scene with no motion (the hand) comes out all
-// static. Throws SceneError when moving_every < 1.
+// static. `source` must be valid; so is the result (not validated again).
+// Throws SceneError when moving_every < 1.
 Scene make_mostly_static(const Scene& source, int moving_every);
 
 }  // namespace blurcull::frontend

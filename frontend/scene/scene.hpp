@@ -1,6 +1,12 @@
 // A scene as every backend sees it: triangles whose vertices have a world
 // position at shutter open and at shutter close (linear motion in between), a
 // thin-lens camera whose view may also differ between the two, flat materials.
+//
+// Validity is checked once, where a scene is made: make_builtin_scene,
+// load_gltf_scene and load_scene return scenes that passed validate_scene
+// (scene_checks.hpp) and say so in Scene::validated; make_mostly_static keeps
+// a valid scene valid. The backends call require_valid_scene, which trusts a
+// scene so marked and checks any other (one built by hand).
 #pragma once
 
 #include <glm/glm.hpp>
@@ -41,6 +47,12 @@ struct Scene {
     Camera camera;
     glm::vec3 light_direction{0.3f, 0.8f, 0.5f};  // towards the light, world space
     glm::vec3 background{0.02f, 0.02f, 0.03f};
+
+    // True when the maker that returned this scene validated it, so the
+    // backends need not check it again. Code that edits such a scene in a
+    // way that could break validity (new vertices, triangles, materials, or
+    // values from outside) clears it, and the backend checks it once more.
+    bool validated = false;
 };
 
 }  // namespace blurcull::frontend

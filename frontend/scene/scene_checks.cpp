@@ -83,6 +83,10 @@ void validate_scene(const Scene& scene) {
     }
 }
 
+void require_valid_scene(const Scene& scene) {
+    if (!scene.validated) validate_scene(scene);
+}
+
 SceneStats describe(const Scene& scene) {
     SceneStats stats;
     stats.triangles = scene.triangles.size();

@@ -14,8 +14,12 @@ namespace blurcull::frontend {
 // the two per-triangle arrays have matching sizes, every vertex index and
 // material index is in range, every position and camera matrix is finite, and
 // the camera is usable (0 < yfov < pi, znear > 0, lens_radius >= 0,
-// focus_distance > 0).
+// focus_distance > 0). The scene makers call it on what they return.
 void validate_scene(const Scene& scene);
+
+// What a backend calls before rendering: nothing for a scene its maker
+// validated (scene.validated), validate_scene for any other.
+void require_valid_scene(const Scene& scene);
 
 struct SceneStats {
     std::size_t triangles = 0;
@@ -31,6 +35,8 @@ struct SceneStats {
     float focus_distance = 0.0f;
 };
 
+// Size, bounds and blur of the scene: triangle and vertex counts, bounds over
+// both shutter ends, how far vertices and camera move, the lens.
 SceneStats describe(const Scene& scene);
 
 }  // namespace blurcull::frontend

@@ -1,6 +1,8 @@
 // Umbrella header of the blurcull kernel.
 #pragma once
 
-#include "version.hpp"
+#include <blurcull/version.hpp>  // generated from the project version (cmake/version.hpp.in)
 #include "kernel.hpp"
 #include "patterns.hpp"
+#include "pattern_names.hpp"
+#include "interleaved_tiles.hpp"

@@ -1,16 +1,209 @@
-// blurcull::kernel<Real>: every shared formula, instantiated for float or double.
+// blurcull/kernel.hpp: the kernel's front page.
 //
-// The bodies in detail/*_body.inl are the single source of each formula; the
-// GLSL build step emits the same text for the shaders. Here they become static
-// member functions of a class template whose member types play the role of
-// GLSL's float, vec2, vec3, ... (the pattern of pbrt-v4, Blender and
-// nvpro-samples for host/device shared code).
+// Which of a pixel's stochastic samples (x, y, u, v, t) can a moving,
+// defocused triangle cover? blurcull::kernel<Real> (kernelf, kerneld) answers
+// without ever dropping a sample that the triangle covers: every bound below
+// contains every sample that covers() covers, and every fallback keeps
+// samples, never drops them (tests/test_kernel_*.cpp check it).
+//
+// Each function is a static member of kernel<Real>, written once in the shared
+// C++/GLSL dialect of detail/dialect.hpp in one detail/*_body.inl file per
+// algorithm, and emitted as GLSL under the name bc_<name>: kerneld::covers is
+// bc_covers in a shader (docs/glsl.md). The functions listed here are the
+// API. Everything named bc_* (bc_err, bc_axis_extent, bc_two_stage_lens_bounds,
+// ...) is internal: the bodies' helpers, which may change without notice.
+// docs/kernel.md derives every formula and every margin.
+//
+// Conventions
+//   real    float or double (GLSL: float); vec2/vec3/vec4 are GLM vectors of it.
+//   clip    clip coordinates (x, y, w): w is the view depth, > 0 in front of the
+//           eye. A vertex behind the eye (w <= 0) is fine everywhere.
+//   s       screen position (NDC): s = (x / w, y / w), [-1, 1]^2 on the screen.
+//   uv      lens position (u, v) in [-1, 1]^2; the sample patterns' unit disk
+//           lies inside. A lens position shears a vertex to (x + u c_x, y + v c_y, w).
+//   t       shutter time in [0, 1]: 0 at shutter open, 1 at close.
+//   CoC     signed circle of confusion (c_x, c_y) of a vertex, in clip units
+//           (c / w is the blur radius in NDC); its sign flips at the focal plane.
+//   near    the near plane as a view depth, > 0: samples whose hit lies closer
+//           are not covered.
+//   cull    which bounds to compute: BC_CULL_BBOX 0 (clipped, CoC-grown screen
+//           box), BC_CULL_HULL 1 (box and convex hull), BC_CULL_DUALSPACE 2
+//           (box, plus the lens and time bounds of Laine et al. 2011),
+//           BC_CULL_TWO_STAGE 3 (box and hull, plus the clip-space two-stage
+//           lens and time bounds of Wu et al. 2015). Switching is this one value.
+//
+// Types
+//   MovingTriangle  p[6]: clip (x, y, w) of vertex i at shutter open (p[i]) and
+//                   close (p[i + 3]); c[6]: the CoC of each, same indexing. Both
+//                   are interpolated linearly in t.
+//   ScreenBound     empty; the box [lo, hi] (NDC); hull_count edges hull_edge[k]
+//                   (inside when edge.x s.x + edge.y s.y + edge.z >= 0).
+//   SampleBounds    empty; the lens ranges u_range, v_range; the time lines
+//                   u_time_a, u_time_b (t between .x + .y u and .z + .w u) and
+//                   v_time_a, v_time_b (the same over v).
+//   PixelSample     offset in the pixel, [0, 1)^2; lens in the unit disk; time in [0, 1).
+//
+// Typical use, per triangle and footprint (docs/kernel.md, "API in one screen"):
+//   if (classify(tri) == BC_INVALID) skip the triangle;
+//   ScreenBound sb = screen_bound(tri, near, cull);                 // once per triangle
+//   SampleBounds b = sample_bounds(tri, footprint_lo, footprint_hi, cull);  // per pixel or tile
+//   for each sample: screen_contains(sb, s) && sample_passes(b, uv, t) && covers(...)
+//
+// ---- Circle of confusion and motion (detail/coc_motion_body.inl) -------------------
+//
+// vec2 thin_lens_coc(real projection_scale, real lens_radius, real focus_depth)
+//   The thin lens's CoC as a function of view depth, returned as (a, b) with
+//   c(w) = a + b w = -k R + (k R / F) w, so c(F) = 0. projection_scale k: the
+//   projection's scale along the axis (clip x per unit of view x / view depth,
+//   e.g. P[0][0] for c_x, P[1][1] for c_y); lens_radius R >= 0 and focus_depth
+//   F > 0 in view-space units. F = 0 gives an infinite (or, with k R = 0, NaN)
+//   b: CoCs computed from it are not finite, and classify() reports BC_INVALID.
+//
+// real coc_at(vec2 coc_ab, real w)
+//   The signed CoC a + b w at view depth w, for (a, b) from thin_lens_coc.
+//
+// real coc_controlled(vec2 coc_ab, real w, real focus_range, real max_coc)
+//   Controllable defocus (Munkberg et al. 2012): the CoC of coc_at with its
+//   magnitude shrunk by |b| focus_range (no blur while |w - F| <= focus_range,
+//   focus_range >= 0 in view units) and clamped to max_coc >= 0 (clip units).
+//   Returns a signed CoC of magnitude in [0, max_coc], with coc_at's sign.
+//
+// vec3 vertex_at(MovingTriangle tri, int i, real t, vec2 uv)
+//   Vertex i (0..2) at time t, sheared by lens position uv: clip
+//   (x + u c_x, y + v c_y, w) of the interpolated position and CoC.
+//
+// bool triangle_is_finite(MovingTriangle tri)
+//   Whether all 30 values of the triangle are finite (no NaN, no +-Inf).
+//
+// int classify(MovingTriangle tri)
+//   What the triangle needs: 0 (static and in focus: plain rasterization),
+//   else BC_NEEDS_MOTION (1: a position or CoC changes over the shutter) and/or
+//   BC_NEEDS_DEFOCUS (2: some CoC is not 0). BC_INVALID (4) for any non-finite
+//   value; a renderer skips such triangles.
+//
+// ---- The exact test, the oracle (detail/oracle_body.inl) -------------------------------
+//
+// bool covers(MovingTriangle tri, vec2 s, vec2 uv, real t, real near, out real depth)
+//   Whether sample (s, uv, t) is covered: the ray through s meets the sheared
+//   triangle at time t (edges inclusive; homogeneous rasterization, so vertices
+//   behind the eye are handled) at a view depth >= near. depth: that view depth
+//   when covered; 0 when the ray misses; the too-close depth when false because
+//   the hit is nearer than near. Zero area seen edge-on covers nothing. NaN
+//   anywhere in the computation gives false; classify() flags such input.
+//
+// ---- The per-triangle screen bound (detail/screen_bound_body.inl) ----------------------
+//
+// ScreenBound screen_bound(MovingTriangle tri, real near, int cull)
+//   Where on the screen the triangle can cover anything, over every t and uv:
+//   the box of its part in front of the near plane, grown by the CoC and the
+//   rounding margins, and with cull BC_CULL_HULL or BC_CULL_TWO_STAGE also the
+//   convex hull of the lens-shifted vertices (McGuire et al. 2010) when every
+//   vertex is in front of the near plane (else hull_count = 0, the box alone).
+//   empty = true: never in front of the near plane. Fallback, the whole screen
+//   (empty = false, box [-huge, huge]^2, no hull): near <= 0, non-finite input,
+//   or a triangle whose lens shear swamps two vertices at one shutter end (the
+//   oracle is then decided by rounding; docs/kernel.md). An axis whose extent
+//   overflows spans [-huge, huge].
+//
+// int screen_footprint(ScreenBound b, vec2 lo, vec2 hi)
+//   Where the screen rectangle [lo, hi] (NDC, lo <= hi) lies relative to b:
+//   BC_FOOTPRINT_OUTSIDE (0: no sample in it passes screen_contains; also for
+//   an empty b), BC_FOOTPRINT_INSIDE (2: every sample passes, the per-sample
+//   test may be skipped) or BC_FOOTPRINT_PARTIAL (1).
+//
+// bool screen_contains(ScreenBound b, vec2 s)
+//   Whether screen position s lies in the box and inside every hull edge.
+//   False: no sample at s can be covered. Always false for an empty b.
+//
+// ---- The per-footprint sample bounds (detail/sample_bounds_body.inl) -------------------
+//
+// SampleBounds sample_bounds(MovingTriangle tri, vec2 s_lo, vec2 s_hi, int cull)
+//   Bounds on the lens position and time of every sample in the screen
+//   footprint [s_lo, s_hi] (NDC, s_lo <= s_hi: a pixel or a tile) that the
+//   triangle can cover, per axis: a lens range, and time between lines in u
+//   (v). BC_CULL_DUALSPACE computes them as in detail/dual_space_body.inl,
+//   BC_CULL_TWO_STAGE as in detail/two_stage_body.inl. empty = true: no sample
+//   of the footprint can be covered. Fallback, no_sample_bounds(): cull
+//   BC_CULL_BBOX or BC_CULL_HULL (they bound only the screen), non-finite input,
+//   a swamped triangle (as for screen_bound). An axis whose bound cannot be
+//   computed (a vertex behind the eye for dual-space's lens bound, an
+//   overflow) keeps the whole lens or shutter on that axis.
+//
+// SampleBounds no_sample_bounds()
+//   Bounds that keep every sample: lens [-1, 1]^2, time [0, 1], empty = false.
+//
+// bool sample_passes(SampleBounds b, vec2 uv, real t)
+//   Whether (uv, t) lies inside the bounds. False: the triangle covers no
+//   sample of the footprint with that lens position and time. Always false
+//   for an empty b.
+//
+// vec2 sample_time_range(SampleBounds b)
+//   The shutter interval [lo, hi] within [0, 1] that holds every (uv, t) that
+//   sample_passes lets through, for a renderer whose samples are sorted by
+//   time. (1, 0) (lo > hi) for an empty b.
+//
+// ---- The default sample pattern (detail/sampling_body.inl) -----------------------------
+//
+// PixelSample pixel_sample(uint px, uint py, uint index, uint spp, uint seed)
+//   Sample index of pixel (px, py) with spp >= 1 samples per pixel (0 divides
+//   by zero) and a seed: BC_PATTERN_HASHED, a pure function of its arguments,
+//   so every backend draws the same samples. Positions are jittered strata of
+//   an n x n grid (n^2 <= spp), time is stratified over spp strata, the two
+//   decorrelated per pixel. index >= spp is allowed (unstratified position).
+//
+// PixelSampleSetup pixel_sample_setup(uint px, uint py, uint spp, uint seed)
+// PixelSample pixel_sample_from(PixelSampleSetup setup, uint index)
+//   pixel_sample in two steps, for a renderer that draws all of a pixel's
+//   samples: the setup once per pixel, then each sample; the same samples.
+//
+// ---- Sample patterns (patterns.hpp: patterns<Real>, detail/patterns_body.inl) ----------
+//
+// Each returns a PixelSample like pixel_sample. pattern ids: BC_PATTERN_HASHED 0
+// (pixel_sample), BC_PATTERN_RANDOM 1, BC_PATTERN_JITTERED 2, BC_PATTERN_SOBOL 3.
+//
+// PixelSample pattern_sample(int pattern, uint px, uint py, uint index, uint spp, uint seed)
+//   Sample index of spp of pixel (px, py) in pattern `pattern`; an unknown id
+//   gives pixel_sample.
+// PixelSample pattern_sample_tiled(int pattern, uint px, uint py, uint index, uint spp, uint seed, uint tile)
+//   The same pattern repeated every tile pixels in x and y (tile 0 counts as
+//   1), equal to the texture of make_pattern_tile.
+// PixelSample pattern_random(uint px, uint py, uint index, uint seed)
+//   Independent uniform samples (the baseline).
+// PixelSample pattern_jittered(uint px, uint py, uint index, uint spp, uint seed)
+//   Stratified in (x, y), (u, v) and t, the three paired by random
+//   permutations; spp = 0 counts as 1, samples past floor(sqrt(spp))^2 are uniform.
+// PixelSample pattern_sobol(uint px, uint py, uint index, uint seed)
+//   Owen-scrambled 5D Sobol, index scrambled per pixel: every power-of-two
+//   prefix of a pixel's samples is well stratified.
+// PixelSample interval_sample(uint px, uint py, uint stratum, uint strata, uint seed)
+//   The interval method's sample: jittered, its time inside stratum `stratum`
+//   of `strata` equal parts of the shutter.
+// vec3 interleaved_tuple(uint k)
+//   Tuple k (u, v, t) of the interleaved set: Halton bases 2 (t), 3 (radius^2)
+//   and 5 (angle); (u, v) in the unit disk, t in [0, 1).
+// uint interleaved_corner_colour(uint cx, uint cy, uint seed)
+//   The colour, 0..2, of lattice corner (cx, cy) of the interleaved tiling.
+// uint interleaved_prototype(uint tx, uint ty, uint seed)
+//   The prototype, 0..80, of tile (tx, ty): its four corner colours in base 3.
+// vec2 interleaved_jitter(uint gx, uint gy, uint seed)
+//   Position in [0, 1)^2 of the sample of lattice cell (gx, gy) inside the cell.
+// PixelSample accum_sample(uint k, uint seed)
+//   Pass k of the accumulation buffer: one lens position, time and sub-pixel
+//   offset for every pixel (rotated Halton points, different per seed).
+//
+// Host-only C++ beside the kernel (not GLSL): make_pattern_tile (patterns.hpp),
+// sample_pattern_name and parse_sample_pattern (pattern_names.hpp), the
+// interleaved tile set make_interleaved_tiles and its cost
+// (interleaved_tiles.hpp). Each has its own doc comment.
 #pragma once
 
 #include "detail/dialect.hpp"
 
 namespace blurcull {
 
+// The bodies become static members of a class template whose member types play
+// the role of GLSL's float, vec2, vec3, ... (the pattern of pbrt-v4, Blender and
+// nvpro-samples for host/device shared code).
 template <class Real>
 struct kernel {
     static_assert(std::numeric_limits<Real>::is_iec559, "kernel<Real> needs IEEE float or double");
@@ -20,6 +213,9 @@ struct kernel {
     using vec3 = glm::vec<3, Real, glm::defaultp>;
     using vec4 = glm::vec<4, Real, glm::defaultp>;
     using uint = std::uint32_t;
+    // GLSL's ivec2, ivec4 (pixel positions and rectangles of the raster glue).
+    using ivec2 = glm::ivec2;
+    using ivec4 = glm::ivec4;
 
     // GLSL built-ins the shared text uses, forwarded to GLM (whose names follow GLSL).
     template <class X> static X min(X a, X b) { return glm::min(a, b); }
@@ -42,8 +238,16 @@ struct kernel {
     // The smallest normal value: below it, rounding errors are absolute.
     static constexpr real bc_tiny() { return std::numeric_limits<real>::min(); }
 
+    // One body per algorithm, each after the ones it uses (the GLSL build
+    // emits them in this order too: shaders/CMakeLists.txt).
 #include "detail/sampling_body.inl"
-#include "detail/kernel_body.inl"
+#include "detail/coc_motion_body.inl"
+#include "detail/oracle_body.inl"
+#include "detail/screen_bound_body.inl"
+#include "detail/dual_space_body.inl"
+#include "detail/two_stage_body.inl"
+#include "detail/sample_bounds_body.inl"
+#include "detail/raster_body.inl"
 };
 
 using kernelf = kernel<float>;

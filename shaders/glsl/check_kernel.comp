@@ -1,5 +1,6 @@
 // Appended to blurcull_kernel.glsl by the build and compiled and linked by
-// glslangValidator: it calls every public function of the shared text, so no
+// glslangValidator: it calls every public function of the shared text, by
+// its GLSL name bc_<name> (prelude.glsl), so no
 // function can escape checking by being unused (a definition missing from the
 // headers fails the link). Never run; the outputs only keep the calls alive.
 layout(local_size_x = 1) in;
@@ -14,41 +15,56 @@ void main() {
         tri.c[j] = vec2(values[18 + 2 * j], values[19 + 2 * j]);
     }
     float near = values[30];
-    int method = int(values[31]);
+    int cull = int(values[31]);
     vec2 s = vec2(values[32], values[33]);
     vec2 uv = vec2(values[34], values[35]);
     float t = values[36];
 
-    vec2 lens_ab = thin_lens_coc(values[37], values[38], values[39]);
-    float coc = coc_at(lens_ab, values[40]) + coc_controlled(lens_ab, values[40], values[41], values[42]);
-    vec3 vertex = vertex_at(tri, 1, t, uv);
-    bool finite = triangle_is_finite(tri);
-    int needs = classify(tri);
+    vec2 lens_ab = bc_thin_lens_coc(values[37], values[38], values[39]);
+    float coc = bc_coc_at(lens_ab, values[40]) + bc_coc_controlled(lens_ab, values[40], values[41], values[42]);
+    vec3 vertex = bc_vertex_at(tri, 1, t, uv);
+    bool finite = bc_triangle_is_finite(tri);
+    int needs = bc_classify(tri);
     float depth;
-    bool covered = covers(tri, s, uv, t, near, depth);
-    ScreenBound screen = screen_bound(tri, near, method);
-    bool on_screen = screen_contains(screen, s);
-    int footprint_state = screen_footprint(screen, s - vec2(0.01), s + vec2(0.01));
-    SampleBounds none = no_sample_bounds();
-    SampleBounds bounds = sample_bounds(tri, s - vec2(0.01), s + vec2(0.01), method);
-    bool passes = sample_passes(bounds, uv, t) || sample_passes(none, uv, t);
-    vec2 time_range = sample_time_range(bounds);
+    bool covered = bc_covers(tri, s, uv, t, near, depth);
+    ScreenBound screen = bc_screen_bound(tri, near, cull);
+    bool on_screen = bc_screen_contains(screen, s);
+    int footprint_state = bc_screen_footprint(screen, s - vec2(0.01), s + vec2(0.01));
+    SampleBounds none = bc_no_sample_bounds();
+    SampleBounds bounds = bc_sample_bounds(tri, s - vec2(0.01), s + vec2(0.01), cull);
+    bool passes = bc_sample_passes(bounds, uv, t) || bc_sample_passes(none, uv, t);
+    vec2 time_range = bc_sample_time_range(bounds);
     uint px = uint(values[43]);
     uint py = uint(values[44]);
-    PixelSample sample_at = pixel_sample(px, py, 3u, 16u, 7u);
-    PixelSampleSetup setup = pixel_sample_setup(px, py, 16u, 7u);
-    PixelSample from_setup = pixel_sample_from(setup, 3u);
-    PixelSample patterned = pattern_sample(method, px, py, 3u, 16u, 7u);
-    PixelSample tiled = pattern_sample_tiled(method, px, py, 3u, 16u, 7u, 2u);
-    PixelSample others[4] = PixelSample[4](pattern_random(px, py, 1u, 7u), pattern_jittered(px, py, 1u, 16u, 7u),
-                                           pattern_sobol(px, py, 1u, 7u), interval_sample(px, py, 1u, 4u, 7u));
-    vec3 tuple = interleaved_tuple(px);
-    uint tile = interleaved_corner_colour(px, py, 7u) + interleaved_prototype(px, py, 7u);
-    vec2 jitter = interleaved_jitter(px, py, 7u);
-    PixelSample accum = accum_sample(px, 7u);
+    int pattern = int(values[45]);
+    PixelSample sample_at = bc_pixel_sample(px, py, 3u, 16u, 7u);
+    PixelSampleSetup setup = bc_pixel_sample_setup(px, py, 16u, 7u);
+    PixelSample from_setup = bc_pixel_sample_from(setup, 3u);
+    PixelSample patterned = bc_pattern_sample(pattern, px, py, 3u, 16u, 7u);
+    PixelSample tiled = bc_pattern_sample_tiled(pattern, px, py, 3u, 16u, 7u, 2u);
+    PixelSample others[4] = PixelSample[4](bc_pattern_random(px, py, 1u, 7u), bc_pattern_jittered(px, py, 1u, 16u, 7u),
+                                           bc_pattern_sobol(px, py, 1u, 7u), bc_interval_sample(px, py, 1u, 4u, 7u));
+    vec3 tuple = bc_interleaved_tuple(px);
+    uint tile = bc_interleaved_corner_colour(px, py, 7u) + bc_interleaved_prototype(px, py, 7u);
+    vec2 jitter = bc_interleaved_jitter(px, py, 7u);
+    PixelSample accum = bc_accum_sample(px, 7u);
+    vec2 image_size = vec2(values[45], values[46]);
+    vec2 raster = bc_ndc_to_raster(bc_raster_to_ndc(s, image_size), image_size);
+    vec2 sample_pos = bc_pixel_sample_ndc(ivec2(px, py), uv, image_size);
+    ivec4 rect = bc_box_cell_rect(s - vec2(0.01), s + vec2(0.01), image_size);
+    vec4 rect_ndc = bc_pixel_rect_ndc(rect, image_size);
+    ivec2 cell = bc_interleaved_cell(ivec2(px, py), int(values[47]), 6);
+    vec2 interleaved = bc_interleaved_sample_ndc(cell, 2, jitter, image_size);
+    float hit_depth;
+    int test = bc_sample_test(tri, screen, on_screen, bounds, s, uv, t, near, hit_depth);
+    float key = bc_depth_key(near, hit_depth);
+    bool wins = bc_depth_nearer(hit_depth, depth) || bc_depth_key_wins(key, px, depth, py);
+    vec2 camera_ab = bc_camera_coc(values[37], values[38], values[39]);
 
     values[0] = coc + vertex.x + float(finite) + float(needs) + float(covered) + depth + float(on_screen) + float(footprint_state) +
                 float(passes) + time_range.x + sample_at.offset.x + sample_at.lens.y + sample_at.time + patterned.time +
                 tiled.time + from_setup.time + others[0].time + others[1].time + others[2].time + others[3].time + tuple.x +
-                float(tile) + jitter.x + accum.time + accum.offset.x + accum.lens.y + bc_rotate_unit(jitter.x, jitter.y);
+                float(tile) + jitter.x + accum.time + accum.offset.x + accum.lens.y + bc_rotate_unit(jitter.x, jitter.y) +
+                raster.x + sample_pos.y + float(rect.x) + rect_ndc.w + interleaved.x + float(test) + key + float(wins) +
+                camera_ab.y;
 }

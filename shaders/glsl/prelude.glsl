@@ -14,6 +14,62 @@
 // No reassociation or fusion of the initialising expression.
 #define BC_PRECISE precise
 
+// Public names (docs/glsl.md, "Names"): every public function of the shared
+// text is bc_<name> in GLSL, while its C++ member of kernel<Real> keeps <name>
+// (kerneld::covers). The bodies call and define the plain names; these macros
+// rename them for GLSL, and the emitted library #undefs them again after the
+// last body, so a shader that includes it sees only the bc_ names and may use
+// the plain ones for itself. Functions already named bc_* are internal.
+// shaders/check_glsl_emission.cmake checks that every public function has its
+// line here.
+// the per-pixel sample pattern (sampling_body.inl)
+#define pixel_sample_setup bc_pixel_sample_setup
+#define pixel_sample_from bc_pixel_sample_from
+#define pixel_sample bc_pixel_sample
+// circle of confusion, motion, classification (coc_motion_body.inl)
+#define thin_lens_coc bc_thin_lens_coc
+#define coc_at bc_coc_at
+#define coc_controlled bc_coc_controlled
+#define vertex_at bc_vertex_at
+#define triangle_is_finite bc_triangle_is_finite
+#define classify bc_classify
+// the exact coverage test (oracle_body.inl)
+#define covers bc_covers
+// the screen bound (screen_bound_body.inl)
+#define screen_bound bc_screen_bound
+#define screen_footprint bc_screen_footprint
+#define screen_contains bc_screen_contains
+// the per-footprint sample bounds (sample_bounds_body.inl)
+#define no_sample_bounds bc_no_sample_bounds
+#define sample_bounds bc_sample_bounds
+#define sample_time_range bc_sample_time_range
+#define sample_passes bc_sample_passes
+// the raster glue both backends share (raster_body.inl)
+#define raster_to_ndc bc_raster_to_ndc
+#define ndc_to_raster bc_ndc_to_raster
+#define pixel_sample_ndc bc_pixel_sample_ndc
+#define pixel_rect_ndc bc_pixel_rect_ndc
+#define box_cell_rect bc_box_cell_rect
+#define interleaved_cell bc_interleaved_cell
+#define interleaved_sample_ndc bc_interleaved_sample_ndc
+#define sample_test bc_sample_test
+#define depth_nearer bc_depth_nearer
+#define depth_key bc_depth_key
+#define depth_key_wins bc_depth_key_wins
+#define camera_coc bc_camera_coc
+// the sample patterns of patterns.hpp (patterns_body.inl)
+#define pattern_random bc_pattern_random
+#define pattern_jittered bc_pattern_jittered
+#define interval_sample bc_interval_sample
+#define pattern_sobol bc_pattern_sobol
+#define pattern_sample bc_pattern_sample
+#define pattern_sample_tiled bc_pattern_sample_tiled
+#define interleaved_tuple bc_interleaved_tuple
+#define interleaved_corner_colour bc_interleaved_corner_colour
+#define interleaved_prototype bc_interleaved_prototype
+#define interleaved_jitter bc_interleaved_jitter
+#define accum_sample bc_accum_sample
+
 // std::numeric_limits<float>::epsilon() and max(), exactly (0x34000000, 0x7f7fffff).
 float bc_epsilon() { return uintBitsToFloat(0x34000000u); }
 float bc_huge() { return uintBitsToFloat(0x7f7fffffu); }

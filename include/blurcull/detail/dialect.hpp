@@ -16,6 +16,11 @@
 #include <limits>
 
 // Function definitions: static members of kernel<Real> in C++.
+// Names: the bodies define and call a public function by its plain name
+// (covers), which is its C++ member name (kerneld::covers); the GLSL prelude
+// renames each one to bc_<name> with `#define covers bc_covers`, and the
+// emitted library #undefs those after the last body (docs/glsl.md, "Names"),
+// so C++ needs no macro for it. Internal helpers are named bc_* in both.
 #define BC_FN static inline
 // Parameter passing: const reference / out / inout.
 #define BC_IN(T) const T&

@@ -182,6 +182,7 @@ BC_FN PixelSample bc_jittered(uint px, uint py, uint index, uint spp, uint seed,
     return s;
 }
 
+// BC_PATTERN_JITTERED: bc_jittered with the time strata permuted too.
 BC_FN PixelSample pattern_jittered(uint px, uint py, uint index, uint spp, uint seed) {
     return bc_jittered(px, py, index, spp, seed, false);
 }

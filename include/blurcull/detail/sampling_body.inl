@@ -79,6 +79,7 @@ struct PixelSampleSetup {
     uint time_add;
 };
 
+// The per-pixel setup of pixel_sample for pixel (px, py), spp >= 1 samples, seed.
 BC_FN PixelSampleSetup pixel_sample_setup(uint px, uint py, uint spp, uint seed) {
     PixelSampleSetup p;
     p.key = bc_hash3(px, py, seed);
@@ -117,6 +118,8 @@ BC_FN PixelSample pixel_sample_from(BC_IN(PixelSampleSetup) p, uint index) {
     return s;
 }
 
+// Sample `index` (0 .. spp-1) of pixel (px, py): the default pattern
+// (BC_PATTERN_HASHED), the same on every backend. kernel.hpp has the details.
 BC_FN PixelSample pixel_sample(uint px, uint py, uint index, uint spp, uint seed) {
     return pixel_sample_from(pixel_sample_setup(px, py, spp, seed), index);
 }

@@ -1,0 +1,133 @@
+#include "render/common/image.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <stdexcept>
+
+// stb's own code is not held to the project's warning flags.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wconversion"
+#pragma GCC diagnostic ignored "-Wsign-conversion"
+#pragma GCC diagnostic ignored "-Wshadow"
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#pragma GCC diagnostic ignored "-Wunused-function"
+#pragma GCC diagnostic ignored "-Wunused-parameter"
+#pragma GCC diagnostic ignored "-Wpedantic"
+#pragma GCC diagnostic ignored "-Wimplicit-fallthrough"
+#pragma GCC diagnostic ignored "-Wdouble-promotion"
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#define STB_IMAGE_WRITE_STATIC
+#include <stb_image_write.h>
+#define STB_IMAGE_IMPLEMENTATION
+#define STB_IMAGE_STATIC
+#define STBI_ONLY_PNG
+#include <stb_image.h>
+#pragma GCC diagnostic pop
+
+namespace blurcull::frontend {
+
+Image::Image(int image_width, int image_height, glm::vec3 fill) : width(image_width), height(image_height) {
+    if (image_width < 0 || image_height < 0) {
+        throw std::invalid_argument("image size must not be negative, got " + std::to_string(image_width) + "x" +
+                                    std::to_string(image_height));
+    }
+    pixels.assign(static_cast<std::size_t>(image_width) * static_cast<std::size_t>(image_height), fill);
+}
+
+float linear_to_srgb(float linear) {
+    float c = std::clamp(linear, 0.0f, 1.0f);
+    if (!(c == c)) c = 0.0f;  // NaN: clamp keeps it, the PNG should not
+    return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+}
+
+float srgb_to_linear(float encoded) {
+    float c = std::clamp(encoded, 0.0f, 1.0f);
+    if (!(c == c)) c = 0.0f;
+    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+namespace {
+
+void write_bytes(void* context, void* data, int size) {
+    auto* out = static_cast<std::ofstream*>(context);
+    out->write(static_cast<const char*>(data), static_cast<std::streamsize>(size));
+}
+
+void require_same_size(const Image& a, const Image& b, const char* what) {
+    if (a.width != b.width || a.height != b.height || a.pixels.size() != b.pixels.size()) {
+        throw std::invalid_argument(std::string(what) + ": image sizes differ (" + std::to_string(a.width) + "x" +
+                                    std::to_string(a.height) + " vs " + std::to_string(b.width) + "x" +
+                                    std::to_string(b.height) + ")");
+    }
+}
+
+}  // namespace
+
+void write_png(const std::string& path, const Image& image) {
+    const auto fail = [&](const std::string& reason) {
+        return std::runtime_error("cannot write '" + path + "': " + reason);
+    };
+    if (image.width < 1 || image.height < 1) throw fail("image is empty");
+    if (image.pixels.size() != static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height)) {
+        throw fail("pixel count does not match the image size");
+    }
+    std::vector<std::uint8_t> bytes(image.pixels.size() * 3);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+        for (int channel = 0; channel < 3; ++channel) {
+            float encoded = linear_to_srgb(image.pixels[i][channel]);
+            bytes[3 * i + static_cast<std::size_t>(channel)] = static_cast<std::uint8_t>(std::lround(encoded * 255.0f));
+        }
+    }
+    // An ofstream instead of stbi_write_png so the failure reason (errno) is ours to report.
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    if (!out) throw fail(std::strerror(errno));
+    int ok = stbi_write_png_to_func(write_bytes, &out, image.width, image.height, 3, bytes.data(), image.width * 3);
+    out.flush();
+    if (!ok) throw fail("PNG encoding failed");
+    if (!out) throw fail(std::strerror(errno));
+}
+
+Image read_png(const std::string& path) {
+    int width = 0;
+    int height = 0;
+    int channels_in_file = 0;
+    stbi_uc* data = stbi_load(path.c_str(), &width, &height, &channels_in_file, 3);
+    if (data == nullptr) {
+        throw std::runtime_error("cannot read '" + path + "': " + stbi_failure_reason());
+    }
+    Image image(width, height);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+        for (int channel = 0; channel < 3; ++channel) {
+            float encoded = static_cast<float>(data[3 * i + static_cast<std::size_t>(channel)]) / 255.0f;
+            image.pixels[i][channel] = srgb_to_linear(encoded);
+        }
+    }
+    stbi_image_free(data);
+    return image;
+}
+
+double rmse(const Image& a, const Image& b) {
+    require_same_size(a, b, "rmse");
+    if (a.pixels.empty()) return 0.0;
+    double sum = 0.0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+        for (int channel = 0; channel < 3; ++channel) {
+            double d = static_cast<double>(a.pixels[i][channel]) - static_cast<double>(b.pixels[i][channel]);
+            sum += d * d;
+        }
+    }
+    return std::sqrt(sum / (3.0 * static_cast<double>(a.pixels.size())));
+}
+
+Image abs_difference(const Image& a, const Image& b) {
+    require_same_size(a, b, "abs_difference");
+    Image difference(a.width, a.height);
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) difference.pixels[i] = glm::abs(a.pixels[i] - b.pixels[i]);
+    return difference;
+}
+
+}  // namespace blurcull::frontend

@@ -1,0 +1,45 @@
+// A scene triangle as the kernel sees it: clip-space vertices at both shutter
+// ends and their circles of confusion (conventions in camera_model.hpp).
+#pragma once
+
+#include "render/common/camera_model.hpp"
+#include "scene/scene.hpp"
+
+#include <blurcull/kernel.hpp>
+
+#include <cstddef>
+#include <vector>
+
+namespace blurcull::frontend {
+
+// p[i + 3k] = clip (x, y, w) of vertex i at shutter end k (0 open, 1 close),
+// c[i + 3k] = (c_x, c_y) at that depth. Computed in Real from the float scene
+// and the camera model's float constants, so kernel<double> gets the
+// double-precision image of the same float model. The caller guarantees the
+// triangle and its vertex indices are valid (validate_scene).
+template <class Real>
+typename blurcull::kernel<Real>::MovingTriangle make_moving_triangle(const Scene& scene, const CameraModel& model,
+                                                                     std::size_t triangle) {
+    using K = blurcull::kernel<Real>;
+    using vec3 = typename K::vec3;
+    using vec4 = glm::vec<4, Real, glm::defaultp>;
+    using mat4 = glm::mat<4, 4, Real, glm::defaultp>;
+    const mat4 views[2] = {mat4(model.view_open), mat4(model.view_close)};
+    const std::vector<glm::vec3>* positions[2] = {&scene.position_open, &scene.position_close};
+    const Real k_x = static_cast<Real>(model.k_x);
+    const Real k_y = static_cast<Real>(model.k_y);
+    typename K::MovingTriangle result{};
+    for (int end = 0; end < 2; ++end) {
+        for (int i = 0; i < 3; ++i) {
+            const glm::vec3& world = (*positions[end])[scene.triangles[triangle][i]];
+            const vec4 view = views[end] * vec4(vec3(world), Real(1));
+            const Real w = -view.z;
+            result.p[i + 3 * end] = vec3(k_x * view.x, k_y * view.y, w);
+            result.c[i + 3 * end] = typename K::vec2(static_cast<Real>(model.a_x) + static_cast<Real>(model.b_x) * w,
+                                                     static_cast<Real>(model.a_y) + static_cast<Real>(model.b_y) * w);
+        }
+    }
+    return result;
+}
+
+}  // namespace blurcull::frontend

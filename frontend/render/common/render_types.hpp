@@ -1,0 +1,76 @@
+// Types every backend shares: the render settings (with the cull and render
+// methods of their registries) and what a render returns (the image, its
+// statistics and its warnings).
+#pragma once
+
+#include "render/common/cull_method.hpp"
+#include "render/common/image.hpp"
+#include "render/common/render_method.hpp"
+
+#include <blurcull/kernel.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace blurcull::frontend {
+
+struct RenderSettings {
+    int width = 1024;
+    int height = 768;
+    int spp = 16;  // samples per pixel
+    std::uint32_t seed = 1;
+    CullMethod cull = CullMethod::two_stage;
+    int threads = 0;  // 0 = std::thread::hardware_concurrency()
+    bool progress = true;  // report progress on stderr when a render is slow
+    // Which renderer: stochastic (render_cpu), interleave, interval or accum
+    // (render/cpu/methods.hpp, docs/sampling.md).
+    RenderMethod method = RenderMethod::stochastic;
+};
+
+// Throws std::invalid_argument with a one-line message when a setting is out of range.
+inline void validate_settings(const RenderSettings& settings) {
+    if (settings.width < 1 || settings.height < 1) {
+        throw std::invalid_argument("image size must be at least 1x1, got " + std::to_string(settings.width) + "x" +
+                                    std::to_string(settings.height));
+    }
+    if (settings.width > 65536 || settings.height > 65536) {
+        throw std::invalid_argument("image size is limited to 65536x65536, got " + std::to_string(settings.width) +
+                                    "x" + std::to_string(settings.height));
+    }
+    if (settings.spp < 1 || settings.spp > 65536) {
+        throw std::invalid_argument("samples per pixel must be in [1, 65536], got " + std::to_string(settings.spp));
+    }
+    if (settings.threads < 0) {
+        throw std::invalid_argument("thread count must be >= 0 (0 = all cores), got " +
+                                    std::to_string(settings.threads));
+    }
+}
+
+struct RenderStats {
+    std::uint64_t samples_tested = 0;  // (sample, triangle) tests, or rays for a ray tracer
+    std::uint64_t samples_hit = 0;     // tests that found coverage
+    std::uint64_t bounds_computed = 0; // per-footprint sample bounds set up (cpu: blocks and footprints)
+    std::uint64_t bounds_empty = 0;    // of those, how many proved the footprint empty
+    double ms_total = 0;
+    std::vector<std::pair<std::string, double>> ms_per_phase;  // in the order they ran
+    std::size_t triangles = 0;
+
+    // Sample test efficiency: hits / tests (0 when nothing was tested).
+    double ste() const {
+        return samples_tested == 0 ? 0.0 : static_cast<double>(samples_hit) / static_cast<double>(samples_tested);
+    }
+};
+
+struct RenderResult {
+    Image image;
+    RenderStats stats;
+    // One line each, for the caller to show ("cpu: skipped 3 triangles ..."):
+    // the render layer prints nothing but its progress.
+    std::vector<std::string> warnings;
+};
+
+}  // namespace blurcull::frontend

@@ -1,0 +1,602 @@
+#include "render/cpu/cpu_backend.hpp"
+
+#include "render/common/camera_model.hpp"
+#include "render/cpu/coverage_test.hpp"
+#include "render/common/moving_triangle.hpp"
+#include "render/common/progress.hpp"
+#include "render/common/shading.hpp"
+#include "scene/scene_checks.hpp"
+
+#include <blurcull/kernel.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace blurcull::frontend {
+namespace {
+
+// The CPU path runs the kernel in double by default: its bounds are then
+// conservative against the very oracle that decides coverage (the property
+// tests prove it for double against double), so every culling method gives
+// the same image. CpuOptions::precision float runs kernel<float>, the GL
+// backend's arithmetic, to compare decisions with it.
+using Clock = std::chrono::steady_clock;
+
+constexpr int tile_size = 16;  // pixels per side of a binning and work tile
+
+double ms_since(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+struct PixelRect {
+    int x0, y0, x1, y1;  // inclusive
+};
+
+// Pixels whose footprint meets the NDC box [lo, hi], clamped to the image;
+// empty (x0 > x1) when they miss it.
+template <class Vec2>
+PixelRect pixel_rect(const CameraModel& model, Vec2 lo, Vec2 hi) {
+    const double w = model.width, h = model.height;
+    // raster x = (X + 1) w / 2, raster y = (1 - Y) h / 2 (rows grow downwards)
+    auto clamp_floor = [](double v, int limit) {
+        if (!(v > 0.0)) return 0;  // also NaN
+        if (v >= double(limit)) return limit;
+        return static_cast<int>(std::floor(v));
+    };
+    PixelRect r;
+    r.x0 = clamp_floor((double(lo.x) + 1.0) * 0.5 * w, model.width);
+    r.x1 = clamp_floor((double(hi.x) + 1.0) * 0.5 * w, model.width);
+    r.y0 = clamp_floor((1.0 - double(hi.y)) * 0.5 * h, model.height);
+    r.y1 = clamp_floor((1.0 - double(lo.y)) * 0.5 * h, model.height);
+    r.x1 = std::min(r.x1, model.width - 1);
+    r.y1 = std::min(r.y1, model.height - 1);
+    if (double(lo.x) > 1.0 || double(hi.x) < -1.0 || double(lo.y) > 1.0 || double(hi.y) < -1.0) r.x0 = r.x1 + 1;
+    return r;
+}
+
+// The NDC box of a pixel rectangle's samples (every pixel of it, whole).
+SampleBox sample_box(const CameraModel& model, const PixelRect& r) {
+    const glm::vec4 top_left = model.pixel_ndc_bounds(r.x0, r.y0);
+    const glm::vec4 bottom_right = model.pixel_ndc_bounds(r.x1, r.y1);
+    return SampleBox{top_left.x, bottom_right.y, bottom_right.z, top_left.w};
+}
+
+// A tile's samples in float, one array per coordinate: the fast coverage
+// test's input (exact: the samples are floats).
+class FloatSamples {
+public:
+    explicit FloatSamples(std::size_t size) : sx_(size), sy_(size), u_(size), v_(size), t_(size) {}
+    void set(std::size_t k, glm::vec2 ndc, glm::vec2 lens, float time) {
+        sx_[k] = ndc.x;
+        sy_[k] = ndc.y;
+        u_[k] = lens.x;
+        v_[k] = lens.y;
+        t_[k] = time;
+    }
+    bool may_cover(const CoverageSetup& setup, std::size_t k) const {
+        return frontend::may_cover(setup, sx_[k], sy_[k], u_[k], v_[k], t_[k]);
+    }
+    // Samples first .. first + 31, those in `wanted` (the arrays are padded by 32).
+    std::uint32_t may_cover32(const CoverageSetup& setup, std::size_t first, std::uint32_t wanted) const {
+        return frontend::may_cover32(setup, &sx_[first], &sy_[first], &u_[first], &v_[first], &t_[first], wanted);
+    }
+
+private:
+    std::vector<float> sx_, sy_, u_, v_, t_;
+};
+
+template <class K>
+struct TileSample {
+    typename K::vec2 ndc;
+    typename K::vec2 lens;
+    typename K::real time;
+};
+
+// What the setup phase computes once per frame for every triangle: its
+// clip-space form, class, pixel rectangle and screen bound, and the tiles it
+// is binned into.
+template <class Real>
+struct FrameSetup {
+    using K = blurcull::kernel<Real>;
+    // A triangle's screen bound, computed once: its box, and its hull edges
+    // (if any) as a range of `hull_edges`.
+    struct StoredBound {
+        typename K::vec2 lo, hi;
+        std::size_t hull_offset = 0;
+        int hull_count = 0;
+    };
+    std::vector<typename K::MovingTriangle> triangles;
+    std::vector<PixelRect> rects;
+    std::vector<int> classes;
+    std::vector<StoredBound> bounds;
+    // The fast coverage test's setup (render/cpu/coverage_test.hpp), for the
+    // samples of the triangle's pixel rectangle.
+    std::vector<CoverageSetup> fast_tests;
+    std::vector<typename K::vec3> hull_edges;
+    std::size_t invalid = 0;  // triangles skipped: their clip coordinates overflow
+    int tiles_x = 0, tiles_y = 0;
+    std::vector<std::vector<std::uint32_t>> bins;  // per work tile, the triangles whose rectangle meets it
+
+    // The stored bound of triangle i as the kernel's ScreenBound.
+    typename K::ScreenBound screen_bound(std::size_t i) const {
+        const StoredBound& stored = bounds[i];
+        typename K::ScreenBound bound;
+        bound.empty = false;
+        bound.lo = stored.lo;
+        bound.hi = stored.hi;
+        bound.hull_count = stored.hull_count;
+        for (int e = 0; e < stored.hull_count; ++e) bound.hull_edge[e] = hull_edges[stored.hull_offset + e];
+        return bound;
+    }
+};
+
+// Sets up every triangle of the scene, in parallel over contiguous chunks;
+// each chunk keeps its hull edges apart, then they are joined in triangle order.
+template <class Real>
+void set_up_triangles(const Scene& scene, const CameraModel& model, int method, int threads, FrameSetup<Real>& setup) {
+    using K = blurcull::kernel<Real>;
+    const Real near = static_cast<Real>(model.znear);
+    const std::size_t count = scene.triangles.size();
+    setup.triangles.resize(count);
+    setup.rects.resize(count);
+    setup.classes.resize(count);
+    setup.bounds.resize(count);
+    setup.fast_tests.resize(count);
+    const std::size_t chunks = static_cast<std::size_t>(std::max(1, std::min(threads, 64)));
+    std::vector<std::vector<typename K::vec3>> chunk_edges(chunks);
+    std::vector<std::size_t> chunk_invalid(chunks, 0);
+    auto set_up = [&](std::size_t chunk) {
+        const std::size_t first = count * chunk / chunks, last = count * (chunk + 1) / chunks;
+        for (std::size_t i = first; i < last; ++i) {
+            setup.triangles[i] = make_moving_triangle<Real>(scene, model, i);
+            setup.classes[i] = K::classify(setup.triangles[i]);
+            setup.rects[i] = PixelRect{0, 0, -1, -1};
+            if (setup.classes[i] == BC_INVALID) {
+                ++chunk_invalid[chunk];  // validate_scene checked the input; only overflow gets here
+                continue;
+            }
+            const typename K::ScreenBound bound = K::screen_bound(setup.triangles[i], near, method);
+            if (bound.empty) continue;
+            setup.rects[i] = pixel_rect(model, bound.lo, bound.hi);
+            const PixelRect& r = setup.rects[i];
+            if (r.x0 <= r.x1 && r.y0 <= r.y1)
+                setup.fast_tests[i] = make_coverage_setup<Real>(setup.triangles[i], sample_box(model, r));
+            auto& stored = setup.bounds[i];
+            stored.lo = bound.lo;
+            stored.hi = bound.hi;
+            stored.hull_offset = chunk_edges[chunk].size();
+            stored.hull_count = bound.hull_count;
+            for (int e = 0; e < bound.hull_count; ++e) chunk_edges[chunk].push_back(bound.hull_edge[e]);
+        }
+    };
+    std::vector<std::thread> workers;
+    for (std::size_t c = 1; c < chunks; ++c) workers.emplace_back(set_up, c);
+    set_up(0);
+    for (std::thread& worker : workers) worker.join();
+    for (std::size_t c = 0; c < chunks; ++c) {
+        const std::size_t base = setup.hull_edges.size();
+        for (std::size_t i = count * c / chunks; i < count * (c + 1) / chunks; ++i) setup.bounds[i].hull_offset += base;
+        setup.hull_edges.insert(setup.hull_edges.end(), chunk_edges[c].begin(), chunk_edges[c].end());
+        setup.invalid += chunk_invalid[c];
+    }
+}
+
+// Bins each triangle into the work tiles its pixel rectangle meets.
+template <class Real>
+void bin_triangles(int width, int height, FrameSetup<Real>& setup) {
+    setup.tiles_x = (width + tile_size - 1) / tile_size;
+    setup.tiles_y = (height + tile_size - 1) / tile_size;
+    setup.bins.assign(static_cast<std::size_t>(setup.tiles_x) * setup.tiles_y, {});
+    for (std::size_t i = 0; i < setup.rects.size(); ++i) {
+        const PixelRect& r = setup.rects[i];
+        if (r.x0 > r.x1 || r.y0 > r.y1) continue;
+        for (int ty = r.y0 / tile_size; ty <= r.y1 / tile_size; ++ty) {
+            for (int tx = r.x0 / tile_size; tx <= r.x1 / tile_size; ++tx) {
+                setup.bins[static_cast<std::size_t>(ty) * setup.tiles_x + tx].push_back(static_cast<std::uint32_t>(i));
+            }
+        }
+    }
+}
+
+// What every worker shares: the frame's constants and its setup.
+template <class Real>
+struct FrameContext {
+    const Scene& scene;
+    const RenderSettings& settings;
+    const CameraModel& model;
+    const FrameSetup<Real>& setup;
+    const std::vector<glm::vec3>& colours;
+    int method;
+    Real near;
+    std::uint32_t spp;
+    int footprint;
+    int block;          // a multiple of the footprint
+    bool cull_bounds;   // the method bounds lens and time per footprint
+    bool time_sorted;   // footprints tile the work tiles: their samples are sorted by time
+};
+
+// One worker's rasterization of work tiles: its sample, depth and hit
+// buffers, and its counters. A tile is loaded (its samples, sorted by time
+// per footprint when that pays), its binned triangles rasterized in index
+// order with the strict depth test, and resolved into the image.
+template <class Real>
+class TileRasterizer {
+public:
+    using K = blurcull::kernel<Real>;
+    using Sample = TileSample<K>;
+
+    explicit TileRasterizer(const FrameContext<Real>& frame)
+        : frame_(frame),
+          samples_(static_cast<std::size_t>(tile_size) * tile_size * frame.spp),
+          by_time_(samples_.size()),
+          by_time_t_(samples_.size()),
+          depth_(samples_.size()),
+          hit_(samples_.size()),
+          lanes_(samples_.size() + 32) {}
+
+    // Rasterizes work tile `tile` (row-major over the tiles) into its pixels of `image`.
+    void render_tile(int tile, Image& image) {
+        const int tx = tile % frame_.setup.tiles_x, ty = tile / frame_.setup.tiles_x;
+        x0_ = tx * tile_size;
+        y0_ = ty * tile_size;
+        x1_ = std::min(x0_ + tile_size, frame_.settings.width) - 1;
+        y1_ = std::min(y0_ + tile_size, frame_.settings.height) - 1;
+        tw_ = x1_ - x0_ + 1;
+        load_samples();
+        footprints_x_ = (tw_ + frame_.footprint - 1) / frame_.footprint;
+        if (frame_.time_sorted) sort_footprints_by_time();
+        for (std::uint32_t index : frame_.setup.bins[static_cast<std::size_t>(tile)]) rasterize_triangle(index);
+        resolve(image);
+    }
+
+    // This worker's counts: exact tests, hits, sample bounds set up, and empty ones.
+    std::uint64_t tested = 0, hits = 0, bounded = 0, bounded_empty = 0;
+
+private:
+    static constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+
+    std::size_t slot(int px, int py, std::uint32_t j) const {
+        return (static_cast<std::size_t>(py - y0_) * tw_ + (px - x0_)) * frame_.spp + j;
+    }
+
+    // The tile's samples (kernel::pixel_sample's), with empty depth and hits.
+    void load_samples() {
+        for (int py = y0_; py <= y1_; ++py) {
+            for (int px = x0_; px <= x1_; ++px) {
+                const kernelf::PixelSampleSetup pattern = kernelf::pixel_sample_setup(
+                    static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py), frame_.spp, frame_.settings.seed);
+                for (std::uint32_t j = 0; j < frame_.spp; ++j) {
+                    const kernelf::PixelSample s = kernelf::pixel_sample_from(pattern, j);
+                    const std::size_t k = slot(px, py, j);
+                    const glm::vec2 ndc = frame_.model.sample_ndc(px, py, s.offset);
+                    samples_[k] = Sample{typename K::vec2(ndc), typename K::vec2(s.lens), static_cast<Real>(s.time)};
+                    lanes_.set(k, ndc, s.lens, s.time);
+                    depth_[k] = std::numeric_limits<Real>::infinity();
+                    hit_[k] = none;
+                }
+            }
+        }
+    }
+
+    // Per footprint of the tile's grid, its sample slots sorted by time, so
+    // that a footprint's bounds visit only their shutter interval.
+    void sort_footprints_by_time() {
+        const int footprint = frame_.footprint;
+        const int th = y1_ - y0_ + 1;
+        const int footprints_y = (th + footprint - 1) / footprint;
+        footprint_start_.assign(static_cast<std::size_t>(footprints_x_) * footprints_y + 1, 0);
+        std::size_t next = 0;
+        for (int fy = 0; fy < footprints_y; ++fy) {
+            for (int fx = 0; fx < footprints_x_; ++fx) {
+                const std::size_t first = next;
+                footprint_start_[static_cast<std::size_t>(fy) * footprints_x_ + fx] = first;
+                for (int py = y0_ + fy * footprint; py <= std::min(y1_, y0_ + fy * footprint + footprint - 1); ++py)
+                    for (int px = x0_ + fx * footprint; px <= std::min(x1_, x0_ + fx * footprint + footprint - 1); ++px)
+                        for (std::uint32_t j = 0; j < frame_.spp; ++j)
+                            by_time_[next++] = static_cast<std::uint32_t>(slot(px, py, j));
+                std::sort(by_time_.begin() + static_cast<std::ptrdiff_t>(first),
+                          by_time_.begin() + static_cast<std::ptrdiff_t>(next),
+                          [&](std::uint32_t a, std::uint32_t b) { return samples_[a].time < samples_[b].time; });
+                for (std::size_t q = first; q < next; ++q) by_time_t_[q] = samples_[by_time_[q]].time;
+            }
+        }
+        footprint_start_.back() = next;
+    }
+
+    // The triangle being rasterized.
+    struct Current {
+        std::uint32_t index;
+        const typename K::MovingTriangle* tri;
+        const CoverageSetup* fast;  // its fast coverage test
+        typename K::ScreenBound bound;
+        bool needs_bounds;  // the method bounds lens and time, and the triangle moves or is defocused
+        bool check_screen;  // false while the footprint is inside the screen bound
+    };
+
+    // NDC rectangle of a block of pixels (rows grow downwards).
+    typename K::vec2 footprint_lo(int px0, int py1) const {
+        const glm::vec4 corner = frame_.model.pixel_ndc_bounds(px0, py1);
+        return typename K::vec2(corner.x, corner.y);
+    }
+    typename K::vec2 footprint_hi(int px1, int py0) const {
+        const glm::vec4 corner = frame_.model.pixel_ndc_bounds(px1, py0);
+        return typename K::vec2(corner.z, corner.w);
+    }
+
+    // The sample bounds of a block or footprint, counted.
+    typename K::SampleBounds bounds_of(const Current& current, int px0, int py0, int px1, int py1) {
+        typename K::SampleBounds sb =
+            K::sample_bounds(*current.tri, footprint_lo(px0, py1), footprint_hi(px1, py0), frame_.method);
+        ++bounded;
+        if (sb.empty) ++bounded_empty;
+        return sb;
+    }
+
+    // Blocks of the image grid clipped to the triangle's rectangle; the
+    // bounds hold for any footprint. A block whose bounds hold nothing is
+    // skipped whole; the others are bounded again per footprint when
+    // footprints are smaller than blocks.
+    void rasterize_triangle(std::uint32_t index) {
+        const PixelRect& r = frame_.setup.rects[index];
+        Current current{index, &frame_.setup.triangles[index], &frame_.setup.fast_tests[index],
+                        frame_.setup.screen_bound(index),
+                        frame_.cull_bounds && frame_.setup.classes[index] != 0, true};
+        const int rx0 = std::max(r.x0, x0_), rx1 = std::min(r.x1, x1_);
+        const int ry0 = std::max(r.y0, y0_), ry1 = std::min(r.y1, y1_);
+        const int block = frame_.block, footprint = frame_.footprint;
+        for (int by = ry0 - (ry0 % block); by <= ry1; by += block) {
+            for (int bx = rx0 - (rx0 % block); bx <= rx1; bx += block) {
+                const int bx0 = std::max(bx, rx0), bx1 = std::min(bx + block - 1, rx1);
+                const int by0 = std::max(by, ry0), by1 = std::min(by + block - 1, ry1);
+                if (!current.needs_bounds) {
+                    test_samples(current, bx0, by0, bx1, by1, K::no_sample_bounds());
+                    continue;
+                }
+                if (block > footprint) {
+                    if (bounds_of(current, bx0, by0, bx1, by1).empty) continue;
+                }
+                for (int fy = by0 - (by0 % footprint); fy <= by1; fy += footprint) {
+                    for (int fx = bx0 - (bx0 % footprint); fx <= bx1; fx += footprint) {
+                        const int px0 = std::max(fx, bx0), px1 = std::min(fx + footprint - 1, bx1);
+                        const int py0 = std::max(fy, by0), py1 = std::min(fy + footprint - 1, by1);
+                        const typename K::SampleBounds sb = bounds_of(current, px0, py0, px1, py1);
+                        if (!sb.empty) test_samples(current, px0, py0, px1, py1, sb);
+                    }
+                }
+            }
+        }
+    }
+
+    // Tests a footprint's samples that may pass `sb`.
+    void test_samples(Current& current, int px0, int py0, int px1, int py1, const typename K::SampleBounds& sb) {
+        // The screen bound per footprint first: skip it whole, or spare its
+        // samples the per-sample screen test.
+        const int state = K::screen_footprint(current.bound, footprint_lo(px0, py1), footprint_hi(px1, py0));
+        if (state == BC_FOOTPRINT_OUTSIDE) return;
+        current.check_screen = state != BC_FOOTPRINT_INSIDE;
+        const typename K::vec2 range = frame_.time_sorted && current.needs_bounds ? K::sample_time_range(sb)
+                                                                                  : typename K::vec2(Real(0), Real(1));
+        // Only the footprint's samples inside the bounds' shutter interval, when
+        // that skips enough of them to pay for visiting them out of memory order.
+        if (range.y - range.x < Real(0.5)) {
+            const std::size_t f = static_cast<std::size_t>((py0 - y0_) / frame_.footprint) * footprints_x_ +
+                                  static_cast<std::size_t>((px0 - x0_) / frame_.footprint);
+            const auto begin = by_time_t_.begin() + static_cast<std::ptrdiff_t>(footprint_start_[f]);
+            const auto end = by_time_t_.begin() + static_cast<std::ptrdiff_t>(footprint_start_[f + 1]);
+            for (auto it = std::lower_bound(begin, end, range.x); it != end && *it <= range.y; ++it) {
+                const std::uint32_t k = by_time_[static_cast<std::size_t>(it - by_time_t_.begin())];
+                const int local = static_cast<int>(k / frame_.spp);
+                const int px = x0_ + local % tw_, py = y0_ + local / tw_;
+                if (px < px0 || px > px1 || py < py0 || py > py1) continue;
+                if (sample_culled(current, k, sb)) continue;
+                ++tested;
+                if (lanes_.may_cover(*current.fast, k)) test_exactly(current, k);
+            }
+            return;
+        }
+        for (int py = py0; py <= py1; ++py)
+            for (int px = px0; px <= px1; ++px) test_pixel(current, slot(px, py, 0), sb);
+    }
+
+    // A pixel's samples from slot `first` on, up to 32 at a time: the culls,
+    // then the fast test on those that passed, then covers on what it kept.
+    void test_pixel(const Current& current, std::size_t first, const typename K::SampleBounds& sb) {
+        const std::uint32_t spp = frame_.spp;
+        for (std::uint32_t j0 = 0; j0 < spp; j0 += 32) {
+            std::uint32_t passed = 0;
+            for (std::uint32_t j = j0; j < std::min(spp, j0 + 32); ++j) {
+                if (sample_culled(current, first + j, sb)) continue;
+                passed |= 1u << (j - j0);
+                ++tested;
+            }
+            if (passed == 0) continue;
+            for (std::uint32_t maybe = passed & lanes_.may_cover32(*current.fast, first + j0, passed); maybe != 0;
+                 maybe &= maybe - 1)
+                test_exactly(current, first + j0 + static_cast<std::uint32_t>(__builtin_ctz(maybe)));
+        }
+    }
+
+    // The culls before the exact test: bounds, then screen bound.
+    bool sample_culled(const Current& current, std::size_t k, const typename K::SampleBounds& sb) const {
+        const Sample& s = samples_[k];
+        // The lens/time test first: it is cheaper than a hull and culls more.
+        return !K::sample_passes(sb, s.lens, s.time) ||
+               (current.check_screen && !K::screen_contains(current.bound, s.ndc));
+    }
+
+    // The exact test of a sample the fast test kept, and the depth test.
+    void test_exactly(const Current& current, std::size_t k) {
+        const Sample& s = samples_[k];
+        Real z = Real(0);
+        if (!K::covers(*current.tri, s.ndc, s.lens, s.time, frame_.near, z)) return;
+        ++hits;
+        if (z < depth_[k]) {
+            depth_[k] = z;
+            hit_[k] = current.index;
+        }
+    }
+
+    // The box filter of the tile's samples into its pixels.
+    void resolve(Image& image) const {
+        for (int py = y0_; py <= y1_; ++py) {
+            for (int px = x0_; px <= x1_; ++px) {
+                glm::vec3 sum(0.0f);
+                for (std::uint32_t j = 0; j < frame_.spp; ++j) {
+                    const std::uint32_t id = hit_[slot(px, py, j)];
+                    sum += id == none ? frame_.scene.background : frame_.colours[id];
+                }
+                image.at(px, py) = resolve_box(sum, frame_.settings.spp);
+            }
+        }
+    }
+
+    const FrameContext<Real>& frame_;
+    std::vector<Sample> samples_;
+    std::vector<std::uint32_t> by_time_;
+    std::vector<Real> by_time_t_;
+    std::vector<std::size_t> footprint_start_;
+    std::vector<Real> depth_;
+    std::vector<std::uint32_t> hit_;
+    FloatSamples lanes_;  // samples_ in float, for the fast coverage test
+    int x0_ = 0, y0_ = 0, x1_ = -1, y1_ = -1, tw_ = 0, footprints_x_ = 0;
+};
+
+// Rasterization: tiles are handed out dynamically; within a tile the
+// triangles run in index order and the depth test is strict, so the result
+// does not depend on the schedule.
+template <class Real>
+void rasterize_tiles(const FrameContext<Real>& frame, int threads, Clock::time_point start, RenderResult& result) {
+    std::atomic<int> next_tile{0};
+    std::atomic<std::uint64_t> total_tested{0}, total_hit{0}, total_bounded{0}, total_bounded_empty{0};
+    const int tile_count = frame.setup.tiles_x * frame.setup.tiles_y;
+    Progress progress(frame.settings.progress, start, tile_count);
+    auto work = [&]() {
+        TileRasterizer<Real> rasterizer(frame);
+        for (int tile = next_tile.fetch_add(1); tile < tile_count; tile = next_tile.fetch_add(1)) {
+            rasterizer.render_tile(tile, result.image);
+            progress.advance();
+        }
+        total_tested.fetch_add(rasterizer.tested);
+        total_hit.fetch_add(rasterizer.hits);
+        total_bounded.fetch_add(rasterizer.bounded);
+        total_bounded_empty.fetch_add(rasterizer.bounded_empty);
+    };
+    std::vector<std::thread> helpers;
+    try {
+        for (int i = 1; i < std::min(threads, tile_count); ++i) helpers.emplace_back(work);
+    } catch (...) {
+        next_tile.store(tile_count);
+        for (std::thread& helper : helpers) helper.join();
+        throw;
+    }
+    work();
+    for (std::thread& helper : helpers) helper.join();
+    progress.finish();
+    RenderStats& stats = result.stats;
+    stats.samples_tested = total_tested.load();
+    stats.samples_hit = total_hit.load();
+    stats.bounds_computed = total_bounded.load();
+    stats.bounds_empty = total_bounded_empty.load();
+}
+
+template <class Real>
+RenderResult render_cpu_in(const Scene& scene, const RenderSettings& settings, const CpuOptions& options) {
+    const Clock::time_point start = Clock::now();
+    const CameraModel model(scene.camera, settings.width, settings.height);
+    const CullMethodInfo& cull = cull_method_info(settings.cull);
+    const int footprint = options.footprint;
+    // Blocks: the coarser level of the footprint hierarchy, a multiple of the footprint.
+    const int block = options.block > footprint ? options.block - options.block % footprint : footprint;
+    // Only the per-footprint methods bound lens and time; a static, in-focus
+    // triangle has neither to bound, whatever the method.
+    const bool cull_bounds = cull.bounds_samples;
+    const int threads =
+        settings.threads > 0 ? settings.threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+
+    RenderResult result;
+    result.stats.triangles = scene.triangles.size();
+
+    // Setup: clip-space triangles, their screen rectangles, binned into tiles.
+    Clock::time_point phase = Clock::now();
+    const std::vector<glm::vec3> colours = shade_all(scene);
+    FrameSetup<Real> setup;
+    set_up_triangles(scene, model, cull.kernel_method, threads, setup);
+    bin_triangles(settings.width, settings.height, setup);
+    if (setup.invalid > 0) {
+        result.warnings.push_back("cpu: skipped " + std::to_string(setup.invalid) +
+                                  " triangles whose clip coordinates overflow");
+    }
+    result.stats.ms_per_phase.emplace_back("setup", ms_since(phase));
+
+    phase = Clock::now();
+    result.image = Image(settings.width, settings.height);
+    const FrameContext<Real> frame{scene,
+                                   settings,
+                                   model,
+                                   setup,
+                                   colours,
+                                   cull.kernel_method,
+                                   static_cast<Real>(model.znear),
+                                   static_cast<std::uint32_t>(settings.spp),
+                                   footprint,
+                                   block,
+                                   cull_bounds,
+                                   // Footprints that tile the work tiles get their samples sorted by time.
+                                   cull_bounds && footprint <= tile_size && tile_size % footprint == 0};
+    rasterize_tiles(frame, threads, start, result);
+    result.stats.ms_per_phase.emplace_back("raster+resolve", ms_since(phase));
+    result.stats.ms_total = ms_since(start);
+    return result;
+}
+
+}  // namespace
+
+RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, const CpuOptions& options) {
+    validate_settings(settings);
+    require_valid_scene(scene);
+    if (options.footprint < 1) throw std::invalid_argument("cpu: footprint must be >= 1 pixel");
+    if (options.block < 0) throw std::invalid_argument("cpu: block must be >= 0 pixels");
+    switch (options.precision) {
+    case KernelPrecision::float32:
+        return render_cpu_in<float>(scene, settings, options);
+    case KernelPrecision::float64:
+        return render_cpu_in<double>(scene, settings, options);
+    }
+    throw std::invalid_argument("cpu: unknown kernel precision");
+}
+
+const std::vector<KernelPrecisionInfo>& kernel_precisions() {
+    static const std::vector<KernelPrecisionInfo> precisions = {
+        {KernelPrecision::float64, "double", "kernel<double>, the reference"},
+        {KernelPrecision::float32, "float", "kernel<float>, the gl backend's arithmetic"},
+    };
+    return precisions;
+}
+
+const char* to_string(KernelPrecision precision) {
+    return kernel_precisions()[static_cast<std::size_t>(precision)].name;
+}
+
+std::vector<std::string> kernel_precision_names() {
+    std::vector<std::string> names;
+    for (const KernelPrecisionInfo& info : kernel_precisions()) names.emplace_back(info.name);
+    return names;
+}
+
+KernelPrecision parse_kernel_precision(const std::string& name) {
+    std::string valid;
+    for (const KernelPrecisionInfo& info : kernel_precisions()) {
+        if (name == info.name) return info.precision;
+        valid += (valid.empty() ? "" : " or ") + std::string(info.name);
+    }
+    throw std::invalid_argument("kernel precision '" + name + "' is not " + valid);
+}
+
+
+}  // namespace blurcull::frontend

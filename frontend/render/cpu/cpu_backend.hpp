@@ -1,0 +1,60 @@
+// The CPU reference rasterizer: exact stochastic rasterization with a
+// per-sample z-buffer, culling by the kernel (docs/cpu-renderer.md).
+#pragma once
+
+#include "render/common/render_types.hpp"
+#include "scene/scene.hpp"
+
+#include <string>
+#include <vector>
+
+namespace blurcull::frontend {
+
+// The kernel's arithmetic: kernel<double> (the reference) or kernel<float>,
+// the arithmetic of the kernel's GLSL and so of the GL backend.
+enum class KernelPrecision { float64, float32 };
+
+struct KernelPrecisionInfo {
+    KernelPrecision precision;
+    const char* name;  // what the command takes and prints
+    const char* help;  // one line
+};
+
+// Every precision, in the order of the enum: the one list of their names.
+const std::vector<KernelPrecisionInfo>& kernel_precisions();
+
+// "double" or "float".
+const char* to_string(KernelPrecision precision);
+
+// The names of kernel_precisions(), in order.
+std::vector<std::string> kernel_precision_names();
+
+// "double" or "float"; throws std::invalid_argument("kernel precision 'x' is
+// not double or float") otherwise.
+KernelPrecision parse_kernel_precision(const std::string& name);
+
+struct CpuOptions {
+    // Side, in pixels, of the screen footprint the per-footprint sample bounds
+    // (dualspace, twostage) are computed for: 1 = per pixel; larger amortises
+    // their setup over more samples at the price of looser bounds.
+    int footprint = 4;
+    // Side, in pixels, of the blocks bounded first: a block whose bounds hold
+    // nothing is skipped without bounding its footprints. <= footprint: off.
+    int block = 16;
+    // kernel<double> (default) or kernel<float>. In float every culling
+    // method is still conservative against the double oracle (property
+    // tests), and the decisions are those the GL backend makes.
+    KernelPrecision precision = KernelPrecision::float64;
+};
+
+// Renders with settings.spp samples per pixel, sample j of pixel (px, py)
+// taken from kernel::pixel_sample(px, py, j, spp, seed) — the samples every
+// backend uses. Culling only skips samples the exact test would reject, so the
+// image is the same for every settings.cull (tests/test_frontend_cpu.cpp).
+// stats.samples_tested counts the exact tests run (samples that passed the
+// cull), stats.samples_hit those that found coverage. Deterministic whatever
+// the thread count. Throws std::invalid_argument for bad settings and
+// SceneError for a bad scene. Triangles it skips are in result.warnings.
+RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, const CpuOptions& options = {});
+
+}  // namespace blurcull::frontend

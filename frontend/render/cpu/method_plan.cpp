@@ -1,0 +1,222 @@
+#include "render/cpu/method_plan.hpp"
+
+#include "render/common/moving_triangle.hpp"
+#include "render/common/shading.hpp"
+#include "scene/scene_checks.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace blurcull::frontend {
+namespace {
+
+using K = blurcull::kernel<double>;
+
+// The triangle frozen at lens position uv and time t: static and sharp.
+K::MovingTriangle placed(const K::MovingTriangle& tri, K::vec2 uv, double t) {
+    K::MovingTriangle result{};
+    for (int i = 0; i < 3; ++i) {
+        const K::vec3 p = K::vertex_at(tri, i, t, uv);
+        result.p[i] = p;
+        result.p[i + 3] = p;
+        result.c[i] = K::vec2(0.0);
+        result.c[i + 3] = K::vec2(0.0);
+    }
+    return result;
+}
+
+// The triangle over the shutter interval [t0, t1] (all lens positions).
+K::MovingTriangle restricted(const K::MovingTriangle& tri, double t0, double t1) {
+    K::MovingTriangle result{};
+    for (int i = 0; i < 3; ++i) {
+        result.p[i] = (1.0 - t0) * tri.p[i] + t0 * tri.p[i + 3];
+        result.p[i + 3] = (1.0 - t1) * tri.p[i] + t1 * tri.p[i + 3];
+        result.c[i] = (1.0 - t0) * tri.c[i] + t0 * tri.c[i + 3];
+        result.c[i + 3] = (1.0 - t1) * tri.c[i] + t1 * tri.c[i + 3];
+    }
+    return result;
+}
+
+// Raster-space rectangle (x right, y down, in units of 1/scale pixel) of the
+// lattice cells that may hold a sample inside the NDC box, clamped to the
+// lattice, one cell wider on each side so float rounding of sample positions
+// cannot push a sample out of it; empty (x0 > x1) when the box misses the screen.
+CellRect cell_rect(const CameraModel& model, const K::ScreenBound& bound, int scale) {
+    CellRect r{0, 0, -1, -1};
+    if (bound.empty || bound.lo.x > 1.0 || bound.hi.x < -1.0 || bound.lo.y > 1.0 || bound.hi.y < -1.0) return r;
+    const int cells_x = model.width * scale, cells_y = model.height * scale;
+    auto cell = [](double v, int limit) {
+        if (!(v > 0.0)) return 0;  // also NaN
+        if (v >= double(limit)) return limit - 1;
+        return static_cast<int>(std::floor(v));
+    };
+    r.x0 = std::max(cell((bound.lo.x + 1.0) * 0.5 * cells_x, cells_x) - 1, 0);
+    r.x1 = std::min(cell((bound.hi.x + 1.0) * 0.5 * cells_x, cells_x) + 1, cells_x - 1);
+    r.y0 = std::max(cell((1.0 - bound.hi.y) * 0.5 * cells_y, cells_y) - 1, 0);
+    r.y1 = std::min(cell((1.0 - bound.lo.y) * 0.5 * cells_y, cells_y) + 1, cells_y - 1);
+    return r;
+}
+
+int exact_square_root(int n) {
+    int root = static_cast<int>(std::lround(std::sqrt(static_cast<double>(n))));
+    while (root * root > n) --root;
+    while ((root + 1) * (root + 1) <= n) ++root;
+    return root;
+}
+
+// Stratum j of `strata`, widened a little: the float sample times of stratum
+// j may round just outside [j, j + 1] / N.
+void stratum_interval(int j, int strata, double& t0, double& t1) {
+    t0 = std::max(0.0, double(j) / strata - 1e-6);
+    t1 = std::min(1.0, double(j + 1) / strata + 1e-6);
+}
+
+// The double precision triangles and colours, which triangles some sample may
+// see, and whether the scene has motion and defocus at all.
+void plan_triangles(const Scene& scene, MethodPlan& plan) {
+    plan.colours = shade_all(scene);
+    const std::size_t count = scene.triangles.size();
+    plan.triangles.resize(count);
+    plan.visible.resize(count);
+    std::size_t invalid = 0;
+    for (std::size_t i = 0; i < count; ++i) {
+        plan.triangles[i] = make_moving_triangle<double>(scene, plan.model, i);
+        const int needs = K::classify(plan.triangles[i]);
+        if (needs == BC_INVALID) {
+            ++invalid;  // validate_scene checked the input; only overflow gets here
+            continue;
+        }
+        const K::ScreenBound bound = K::screen_bound(plan.triangles[i], plan.model.znear, BC_CULL_BBOX);
+        plan.visible[i] = !bound.empty && bound.lo.x <= 1.0 && bound.hi.x >= -1.0 && bound.lo.y <= 1.0 &&
+                          bound.hi.y >= -1.0;
+        if ((needs & BC_NEEDS_MOTION) != 0) plan.any_motion = true;
+        if ((needs & BC_NEEDS_DEFOCUS) != 0) plan.any_defocus = true;
+    }
+    if (invalid > 0) {
+        plan.warnings.push_back("skipped " + std::to_string(invalid) +
+                                " triangles whose clip coordinates overflow");
+    }
+}
+
+// Interleave's tiles of (u, v, t) tuples, one pass per tuple.
+void plan_interleave_passes(const RenderSettings& settings, const InterleaveOptions& options, MethodPlan& plan) {
+    // Spread tuples in what the scene blurs (Aqsis' q).
+    InterleavedTileOptions tile_options;
+    tile_options.width = options.tile_width;
+    tile_options.radius = options.radius;
+    tile_options.motion_weight =
+        plan.any_motion && !plan.any_defocus ? 1.0 : (plan.any_defocus && !plan.any_motion ? 0.0 : 0.5);
+    tile_options.seed = settings.seed;
+    plan.tiles = make_interleaved_tiles(tile_options);
+    plan.passes = plan.tiles.tuple_count;
+    for (const glm::dvec3& tuple : plan.tiles.tuples) {
+        kernelf::PixelSample s;
+        s.offset = glm::vec2(0.0f);
+        s.lens = glm::vec2(static_cast<float>(tuple.x), static_cast<float>(tuple.y));
+        s.time = static_cast<float>(tuple.z);
+        plan.pass_samples.push_back(s);
+    }
+}
+
+}  // namespace
+
+MethodPlan make_method_plan(const Scene& scene, const RenderSettings& settings, const InterleaveOptions& options) {
+    validate_settings(settings);
+    if (settings.method == RenderMethod::stochastic) {
+        throw std::invalid_argument("method plan: 'stochastic' has no fixed passes");
+    }
+    int side = 1;
+    if (settings.method == RenderMethod::interleave) {
+        side = exact_square_root(settings.spp);
+        if (side * side != settings.spp) {
+            throw std::invalid_argument("interleave: samples per pixel must be a square (1, 4, 9, 16, ...), got " +
+                                        std::to_string(settings.spp));
+        }
+    }
+    require_valid_scene(scene);
+    MethodPlan plan;
+    plan.method = settings.method;
+    plan.model = CameraModel(scene.camera, settings.width, settings.height);
+    plan_triangles(scene, plan);
+    plan.per_pixel = settings.spp;
+    switch (settings.method) {
+        case RenderMethod::interleave:
+            plan.scale = side;
+            plan_interleave_passes(settings, options, plan);
+            break;
+        case RenderMethod::interval:
+            plan.passes = settings.spp;
+            break;
+        case RenderMethod::accum:
+        case RenderMethod::stochastic:  // refused above
+            plan.passes = settings.spp;
+            for (int k = 0; k < plan.passes; ++k) {
+                plan.pass_samples.push_back(patternsf::accum_sample(static_cast<std::uint32_t>(k), settings.seed));
+            }
+            break;
+    }
+    return plan;
+}
+
+PassBox method_pass_box(const MethodPlan& plan, int pass, std::size_t triangle) {
+    const K::MovingTriangle& tri = plan.triangles[triangle];
+    const double near = plan.model.znear;
+    PassBox box;
+    if (plan.method == RenderMethod::interval) {
+        double t0 = 0.0, t1 = 1.0;
+        stratum_interval(pass, plan.passes, t0, t1);
+        box.bound = K::screen_bound(restricted(tri, t0, t1), near, BC_CULL_BBOX);
+    } else {
+        const kernelf::PixelSample& s = plan.pass_samples[static_cast<std::size_t>(pass)];
+        box.bound = K::screen_bound(placed(tri, K::vec2(s.lens), double(s.time)), near, BC_CULL_BBOX);
+    }
+    box.rect = cell_rect(plan.model, box.bound, plan.scale);
+    return box;
+}
+
+InterleaveTupleCells interleave_tuple_cells(const MethodPlan& plan, int width, int height) {
+    const InterleavedTiles& tiles = plan.tiles;
+    const int cells_x = width * plan.scale, cells_y = height * plan.scale, tile_w = tiles.width;
+    InterleaveTupleCells table;
+    table.tiles_x = (cells_x + tile_w - 1) / tile_w;
+    table.tiles_y = (cells_y + tile_w - 1) / tile_w;
+    const std::size_t tile_count = static_cast<std::size_t>(table.tiles_x) * static_cast<std::size_t>(table.tiles_y);
+    const auto n = static_cast<std::size_t>(tiles.tuple_count);
+    table.cells.assign(n * tile_count, no_sample_hit);
+    for (int ty = 0; ty < table.tiles_y; ++ty) {
+        for (int tx = 0; tx < table.tiles_x; ++tx) {
+            const std::size_t tile = static_cast<std::size_t>(ty) * static_cast<std::size_t>(table.tiles_x) + static_cast<std::size_t>(tx);
+            const std::size_t prototype =
+                tiles.prototype_of_tile(static_cast<std::uint32_t>(tx), static_cast<std::uint32_t>(ty));
+            for (std::size_t k = 0; k < n; ++k) {
+                const int slot = tiles.tuple_slot[prototype * n + k];
+                const int gx = tx * tile_w + slot % tile_w, gy = ty * tile_w + slot / tile_w;
+                if (gx >= cells_x || gy >= cells_y) continue;  // past the image's edge
+                table.cells[k * tile_count + tile] =
+                    static_cast<std::uint32_t>(gy) * static_cast<std::uint32_t>(cells_x) + static_cast<std::uint32_t>(gx);
+            }
+        }
+    }
+    return table;
+}
+
+Image resolve_method_samples(const Scene& scene, const MethodPlan& plan, const std::vector<std::uint32_t>& ids,
+                             int width, int height) {
+    Image image(width, height);
+    const int per_pixel = plan.per_pixel;
+    for (int py = 0; py < image.height; ++py) {
+        for (int px = 0; px < image.width; ++px) {
+            const std::size_t base = image.index(px, py) * static_cast<std::size_t>(per_pixel);
+            glm::vec3 sum(0.0f);
+            for (int j = 0; j < per_pixel; ++j) {
+                const std::uint32_t id = ids[base + static_cast<std::size_t>(j)];
+                sum += id == no_sample_hit ? scene.background : plan.colours[id];
+            }
+            image.at(px, py) = resolve_box(sum, per_pixel);
+        }
+    }
+    return image;
+}
+
+}  // namespace blurcull::frontend

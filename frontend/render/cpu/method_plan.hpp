@@ -1,0 +1,82 @@
+// What the CPU renderers of interleave, interval and accum (methods.hpp) and
+// the GL backend's methods (gl_methods.cpp) share: every choice of samples
+// and boxes is made here once, so both backends test the same samples against
+// the same boxes.
+#pragma once
+
+#include "render/common/camera_model.hpp"
+#include "render/common/render_types.hpp"
+#include "scene/scene.hpp"
+
+#include <blurcull/kernel.hpp>
+#include <blurcull/interleaved_tiles.hpp>
+#include <blurcull/patterns.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace blurcull::frontend {
+
+struct InterleaveOptions {
+    int tile_width = 6;  // tiles of tile_width^2 lattice cells, N = tile_width^2 tuples (Aqsis: 6)
+    int radius = 2;      // window radius of the tile optimisation's cost
+};
+
+constexpr std::uint32_t no_sample_hit = 0xffffffffu;
+
+// Raster-space rectangle (x right, y down) of lattice cells (pixels when
+// scale = 1), inclusive; empty when x0 > x1.
+struct CellRect {
+    int x0, y0, x1, y1;
+    bool empty() const { return x0 > x1 || y0 > y1; }
+};
+
+// One frame of interleave, interval or accum: checked input, the double
+// precision triangles and colours, and the passes.
+struct MethodPlan {
+    RenderMethod method = RenderMethod::interleave;
+    CameraModel model;
+    std::vector<glm::vec3> colours;
+    std::vector<kernel<double>::MovingTriangle> triangles;
+    std::vector<bool> visible;  // some sample of the screen may see it (its whole-shutter box)
+    bool any_motion = false;
+    bool any_defocus = false;
+    int passes = 0;     // interleave: N tuples; interval: spp strata; accum: spp pinhole passes
+    int scale = 1;      // lattice cells per pixel side: sqrt(spp) for interleave, else 1
+    int per_pixel = 1;  // samples per pixel (spp)
+    // interleave and accum: pass k's lens and time (and accum's sub-pixel offset).
+    std::vector<kernelf::PixelSample> pass_samples;
+    InterleavedTiles tiles;  // interleave only
+    std::vector<std::string> warnings;  // for RenderResult::warnings
+};
+
+// Throws std::invalid_argument (bad settings, unknown method, interleave with
+// a non-square spp) or SceneError.
+MethodPlan make_method_plan(const Scene& scene, const RenderSettings& settings, const InterleaveOptions& options = {});
+
+// The box that pass k tests triangle i (visible) in and its rectangle of
+// lattice cells, one cell wider on each side; empty rect when off screen.
+struct PassBox {
+    kernel<double>::ScreenBound bound;
+    CellRect rect;
+};
+PassBox method_pass_box(const MethodPlan& plan, int pass, std::size_t triangle);
+
+// Interleave: the lattice (width * scale x height * scale cells) is covered by
+// tiles_x x tiles_y tiles of tiles.width^2 cells, each holding every tuple
+// once. Element k * tiles_x * tiles_y + ty * tiles_x + tx is tuple k's cell
+// (gx, gy) in tile (tx, ty) as gy * width * scale + gx, or no_sample_hit when
+// that cell is past the image's edge.
+struct InterleaveTupleCells {
+    int tiles_x = 0, tiles_y = 0;
+    std::vector<std::uint32_t> cells;
+};
+InterleaveTupleCells interleave_tuple_cells(const MethodPlan& plan, int width, int height);
+
+// Pixel (px, py) = mean of the colours of ids[(py W + px) per_pixel + 0 .. per_pixel - 1].
+Image resolve_method_samples(const Scene& scene, const MethodPlan& plan, const std::vector<std::uint32_t>& ids,
+                             int width, int height);
+
+}  // namespace blurcull::frontend

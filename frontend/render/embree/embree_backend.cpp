@@ -1,0 +1,276 @@
+#include "render/embree/embree_backend.hpp"
+
+#include "render/common/camera_model.hpp"
+#include "render/embree/primary_rays.hpp"
+#include "render/common/shading.hpp"
+#include "scene/scene_checks.hpp"
+
+#include <blurcull/kernel.hpp>
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <limits>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace blurcull::frontend {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+const char* error_name(RTCError code) {
+    switch (code) {
+        case RTC_ERROR_NONE: return "no error";
+        case RTC_ERROR_UNKNOWN: return "unknown error";
+        case RTC_ERROR_INVALID_ARGUMENT: return "invalid argument";
+        case RTC_ERROR_INVALID_OPERATION: return "invalid operation";
+        case RTC_ERROR_OUT_OF_MEMORY: return "out of memory";
+        case RTC_ERROR_UNSUPPORTED_CPU: return "unsupported CPU";
+        case RTC_ERROR_CANCELLED: return "cancelled";
+    }
+    return "unrecognised error";
+}
+
+// Owns an Embree device and remembers the first error it reports. Embree
+// calls the error callback from C code, so it records instead of throwing;
+// check() turns the record into an exception at a safe point.
+class Device {
+public:
+    explicit Device(unsigned thread_count) {
+        std::string config = "threads=" + std::to_string(thread_count);
+        handle_ = rtcNewDevice(config.c_str());
+        if (handle_ == nullptr) {
+            throw std::runtime_error(std::string("embree: cannot create device: ") +
+                                     error_name(rtcGetDeviceError(nullptr)));
+        }
+        rtcSetDeviceErrorFunction(handle_, &Device::on_error, this);
+    }
+    ~Device() { rtcReleaseDevice(handle_); }
+    Device(const Device&) = delete;
+    Device& operator=(const Device&) = delete;
+
+    RTCDevice get() const { return handle_; }
+
+    void check(const char* step) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (!first_error_.empty()) throw std::runtime_error(std::string("embree: ") + step + ": " + first_error_);
+    }
+
+private:
+    static void on_error(void* user, RTCError code, const char* message) {
+        auto* self = static_cast<Device*>(user);
+        std::lock_guard<std::mutex> lock(self->mutex_);
+        if (!self->first_error_.empty()) return;
+        self->first_error_ = error_name(code);
+        if (message != nullptr && message[0] != '\0') self->first_error_ += std::string(" (") + message + ")";
+    }
+
+    RTCDevice handle_ = nullptr;
+    std::mutex mutex_;
+    std::string first_error_;
+};
+
+class SceneHandle {
+public:
+    explicit SceneHandle(RTCScene handle) : handle_(handle) {}
+    ~SceneHandle() {
+        if (handle_ != nullptr) rtcReleaseScene(handle_);
+    }
+    SceneHandle(const SceneHandle&) = delete;
+    SceneHandle& operator=(const SceneHandle&) = delete;
+    RTCScene get() const { return handle_; }
+
+private:
+    RTCScene handle_;
+};
+
+// One triangle mesh with two time steps holding the VIEW-space vertex
+// positions at shutter open and close; Embree interpolates them linearly in
+// ray.time, which is exactly the shared motion model.
+void add_moving_mesh(Device& device, RTCScene rtc_scene, const Scene& scene, const CameraModel& model) {
+    if (scene.triangles.empty()) return;
+    constexpr std::size_t embree_limit = std::numeric_limits<std::uint32_t>::max();
+    if (scene.position_open.size() > embree_limit || scene.triangles.size() > embree_limit) {
+        throw std::invalid_argument("scene '" + scene.name + "' has too many vertices or triangles for Embree");
+    }
+    RTCGeometry geometry = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
+    device.check("creating the triangle geometry");
+    rtcSetGeometryTimeStepCount(geometry, 2);
+    const std::size_t vertex_count = scene.position_open.size();
+    for (unsigned shutter_end = 0; shutter_end < 2; ++shutter_end) {
+        auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+            geometry, RTC_BUFFER_TYPE_VERTEX, shutter_end, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vertex_count));
+        if (vertices == nullptr) {
+            rtcReleaseGeometry(geometry);
+            device.check("allocating the vertex buffer");
+            throw std::runtime_error("embree: cannot allocate the vertex buffer");
+        }
+        for (std::size_t v = 0; v < vertex_count; ++v) {
+            glm::vec3 view = model.view_position(scene, v, static_cast<int>(shutter_end));
+            vertices[3 * v + 0] = view.x;
+            vertices[3 * v + 1] = view.y;
+            vertices[3 * v + 2] = view.z;
+        }
+    }
+    auto* indices = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
+        geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), scene.triangles.size()));
+    if (indices == nullptr) {
+        rtcReleaseGeometry(geometry);
+        device.check("allocating the index buffer");
+        throw std::runtime_error("embree: cannot allocate the index buffer");
+    }
+    for (std::size_t t = 0; t < scene.triangles.size(); ++t) {
+        indices[3 * t + 0] = scene.triangles[t].x;
+        indices[3 * t + 1] = scene.triangles[t].y;
+        indices[3 * t + 2] = scene.triangles[t].z;
+    }
+    rtcCommitGeometry(geometry);
+    rtcAttachGeometry(rtc_scene, geometry);
+    rtcReleaseGeometry(geometry);  // the scene holds its own reference
+    device.check("committing the triangle geometry");
+}
+
+RTCBuildQuality rtc_build_quality(EmbreeBuildQuality quality) {
+    switch (quality) {
+        case EmbreeBuildQuality::low: return RTC_BUILD_QUALITY_LOW;
+        case EmbreeBuildQuality::medium: return RTC_BUILD_QUALITY_MEDIUM;
+        case EmbreeBuildQuality::high: return RTC_BUILD_QUALITY_HIGH;
+    }
+    return RTC_BUILD_QUALITY_MEDIUM;
+}
+
+unsigned resolve_thread_count(int requested) {
+    if (requested > 0) return static_cast<unsigned>(requested);
+    return std::max(1u, std::thread::hardware_concurrency());
+}
+
+}  // namespace
+
+RenderResult render_embree(const Scene& scene, const RenderSettings& settings, const EmbreeOptions& options) {
+    const Clock::time_point start = Clock::now();
+    validate_settings(settings);
+    const RenderMethodInfo& method = render_method_info(settings.method);
+    if (!takes(method.backends, Backend::embree)) {
+        throw std::invalid_argument(std::string("render method ") + method.name + ": " +
+                                    only_backends_take_it(method.backends) + " (backend embree)");
+    }
+    require_valid_scene(scene);
+    const CameraModel model(scene.camera, settings.width, settings.height);
+    const unsigned thread_count = resolve_thread_count(settings.threads);
+
+    RenderResult result;
+    RenderStats& stats = result.stats;
+    stats.triangles = scene.triangles.size();
+
+    Clock::time_point phase_start = Clock::now();
+    const std::vector<glm::vec3> colours = shade_all(scene);
+    stats.ms_per_phase.emplace_back("shade", ms_since(phase_start));
+
+    phase_start = Clock::now();
+    Device device(thread_count);
+    SceneHandle rtc_scene(rtcNewScene(device.get()));
+    device.check("creating the scene");
+    rtcSetSceneFlags(rtc_scene.get(), options.robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
+    rtcSetSceneBuildQuality(rtc_scene.get(), rtc_build_quality(options.build_quality));
+    add_moving_mesh(device, rtc_scene.get(), scene, model);
+    rtcCommitScene(rtc_scene.get());
+    device.check("building the BVH");
+    stats.ms_per_phase.emplace_back("build BVH", ms_since(phase_start));
+
+    phase_start = Clock::now();
+    const int width = settings.width;
+    const int height = settings.height;
+    const auto spp = static_cast<std::uint32_t>(settings.spp);
+    result.image = Image(width, height);
+    Image& image = result.image;
+    std::atomic<int> next_row{0};
+    std::atomic<int> rows_done{0};
+    std::atomic<std::uint64_t> total_hits{0};
+    bool progress_shown = false;
+
+    // Rows are handed out dynamically; each pixel's samples are summed in a
+    // fixed order by one thread, so the image does not depend on the schedule.
+    const auto trace_rows = [&](bool reports_progress) {
+        PrimaryRayTracer tracer(rtc_scene.get(), options.tracing);
+        std::vector<PrimaryRay> rays(static_cast<std::size_t>(width) * spp);
+        std::vector<std::uint32_t> prim_ids(rays.size());
+        std::uint64_t hits = 0;
+        int last_percent = -1;
+        for (int py = next_row.fetch_add(1); py < height; py = next_row.fetch_add(1)) {
+            // A row's rays, pixel by pixel in sample order, traced together.
+            for (int px = 0; px < width; ++px) {
+                for (std::uint32_t j = 0; j < spp; ++j) {
+                    const kernelf::PixelSample sample = kernelf::pixel_sample(
+                        static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py), j, spp, settings.seed);
+                    const Ray ray = model.lens_ray(model.sample_ndc(px, py, sample.offset), sample.lens);
+                    rays[static_cast<std::size_t>(px) * spp + j] =
+                        PrimaryRay{ray.origin.x,    ray.origin.y,    ray.origin.z,    ray.t_near,
+                                   ray.direction.x, ray.direction.y, ray.direction.z, sample.time};
+                }
+            }
+            tracer.trace(rays.data(), rays.size(), prim_ids.data());
+            for (int px = 0; px < width; ++px) {
+                glm::vec3 sum(0.0f);
+                for (std::uint32_t j = 0; j < spp; ++j) {
+                    const std::uint32_t id = prim_ids[static_cast<std::size_t>(px) * spp + j];
+                    if (id != no_primitive) {
+                        sum += colours[id];
+                        ++hits;
+                    } else {
+                        sum += scene.background;
+                    }
+                }
+                image.at(px, py) = sum;
+            }
+            const int done = rows_done.fetch_add(1) + 1;
+            if (reports_progress && ms_since(start) > 1000.0) {
+                const int percent = static_cast<int>(100LL * done / height);
+                if (percent != last_percent) {
+                    std::fprintf(stderr, "\rembree: %3d%%", percent);
+                    std::fflush(stderr);
+                    last_percent = percent;
+                    progress_shown = true;
+                }
+            }
+        }
+        total_hits.fetch_add(hits);
+    };
+
+    std::vector<std::thread> helpers;
+    try {
+        for (unsigned i = 1; i < std::min<unsigned>(thread_count, static_cast<unsigned>(height)); ++i) {
+            helpers.emplace_back(trace_rows, false);
+        }
+    } catch (...) {
+        next_row.store(height);  // let the started helpers stop early
+        for (std::thread& helper : helpers) helper.join();
+        throw;
+    }
+    trace_rows(settings.progress);
+    for (std::thread& helper : helpers) helper.join();
+    if (progress_shown) std::fprintf(stderr, "\rembree: 100%%\n");
+    device.check("tracing");
+    stats.ms_per_phase.emplace_back("trace", ms_since(phase_start));
+
+    phase_start = Clock::now();
+    for (glm::vec3& pixel : image.pixels) pixel = resolve_box(pixel, settings.spp);
+    stats.ms_per_phase.emplace_back("resolve", ms_since(phase_start));
+
+    stats.samples_tested = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) * spp;
+    stats.samples_hit = total_hits.load();
+    stats.ms_total = ms_since(start);
+    return result;
+}
+
+}  // namespace blurcull::frontend

@@ -1,0 +1,91 @@
+// The OpenGL backend: the same stochastic rasterization as render_cpu (same
+// samples, same shading, same per-sample depth test) on a headless OpenGL 4.5
+// context, with the kernel's GLSL emitted from the C++ headers. Design and
+// numbers: docs/gl-backend.md.
+#pragma once
+
+#include "render/common/render_types.hpp"
+#include "scene/scene.hpp"
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace blurcull::gl {
+class HeadlessContext;
+}
+
+namespace blurcull::frontend {
+
+struct GlOptions {
+    // Every triangle through the moving path (per-sample kernel test), even
+    // static in-focus ones: to measure what the static path saves.
+    bool force_full_path = false;
+    // Fill GlRenderer::render's sample_ids.
+    bool keep_sample_ids = false;
+    // Smallest side, in pixels, of the cells a moving triangle's sample bounds
+    // are computed for (each triangle gets at most 4 x 4 cells).
+    int cell_pixels = 8;
+    // Time each step of the passes (samples, static, moving, resolve; summed
+    // over passes, added to ms_per_phase) with a glFinish after each: the
+    // frame gets slightly slower, since the steps no longer overlap.
+    bool time_steps = false;
+    // Samples per pixel each static draw covers (a multiple of 4): 0 for as
+    // many as fit (the whole frame unless pixels x spp exceeds 4M), 4 for a
+    // draw per pass of four samples. The image is the same either way.
+    int static_group_samples = 0;
+};
+
+// Sample j of pixel (px, py) is at sample_ids[(py * width + px) * spp + j]:
+// the index of the triangle it shows, or no_triangle for the background.
+constexpr std::uint32_t no_triangle = 0xffffffffu;
+
+// A headless context with the backend's programs compiled; renders any number
+// of frames. Throws gl::GlError (a std::runtime_error) when no context can be
+// made or a shader does not compile.
+class GlRenderer {
+public:
+    GlRenderer();
+    // On a given context, e.g. HeadlessContext::from_current for a window's:
+    // render() leaves its program, vertex array and texture bound and the
+    // viewport, depth test, depth clamp and clip control changed (the caller
+    // resets what it needs).
+    explicit GlRenderer(gl::HeadlessContext&& context);
+    GlRenderer(GlRenderer&&) noexcept;
+    GlRenderer& operator=(GlRenderer&&) noexcept;
+    ~GlRenderer();
+
+    // settings.method stochastic renders as described above; interleave,
+    // interval and accum as the CPU renderers of render/cpu/methods.hpp
+    // (gl_sampling_methods.hpp; their sample_ids are in that layout, spp per pixel).
+    // Throws std::invalid_argument for bad settings, SceneError for a bad
+    // scene, gl::GlError when the image does not fit the context's limits.
+    RenderResult render(const Scene& scene, const RenderSettings& settings, const GlOptions& options = {},
+                        std::vector<std::uint32_t>* sample_ids = nullptr);
+
+    // E.g. "egl_surfaceless, llvmpipe (LLVM 15.0.6, 256 bits), 4.5 (Core Profile) Mesa 22.3.6".
+    std::string description() const;
+
+    struct State;
+
+private:
+    std::unique_ptr<State> state_;
+};
+
+// One frame, like render_cpu: a context and programs are made for the call
+// (their compile time is the "compile" phase of ms_per_phase, included in
+// ms_total). settings.threads is used only by the host side of the
+// interleave / interval / accum methods (their per-pass boxes).
+RenderResult render_gl(const Scene& scene, const RenderSettings& settings, const GlOptions& options = {});
+
+// Whether a headless OpenGL 4.5 context can be made here; when not, and
+// `reason` is given, says why.
+bool gl_available(std::string* reason = nullptr);
+
+// Whether a headless context can be made and runs on hardware (its
+// GL_RENDERER is not Mesa's llvmpipe, softpipe or swrast); when not, and
+// `reason` is given, says why. `blurcull render --backend auto` uses gl then.
+bool gl_hardware_available(std::string* reason = nullptr);
+
+}  // namespace blurcull::frontend

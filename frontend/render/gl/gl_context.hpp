@@ -1,0 +1,157 @@
+// A headless OpenGL 4.5 core context for tests and the GL backend: EGL
+// surfaceless (Mesa's EGL_PLATFORM_SURFACELESS_MESA, no window system, no
+// config, no surface) first, OSMesa as the fallback. Both libraries are opened
+// at run time, so a binary that links this still starts where neither is
+// installed; it only fails, with a message, when it asks for a context.
+//
+// A surfaceless context has no usable default framebuffer: render into an FBO.
+// HeadlessContext::from_current wraps instead a context someone else made and
+// made current (`blurcull view`'s GLFW window), so the same renderer draws there.
+#pragma once
+
+#include "render/gl/gl_functions.hpp"
+
+#include <cstddef>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace blurcull::gl {
+
+// Any failure to create a context, compile a shader or run GL.
+class GlError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+// current: made and owned by the caller, see HeadlessContext::from_current.
+enum class ContextKind { egl_surfaceless, osmesa, current };
+
+const char* context_kind_name(ContextKind kind);
+
+// Parses "egl" or "osmesa"; throws GlError naming the bad value.
+ContextKind parse_context_kind(std::string_view name);
+
+class HeadlessContext {
+public:
+    // The kind named by the environment variable BLURCULL_GL_CONTEXT ("egl" or
+    // "osmesa") if set, else EGL surfaceless, then OSMesa. Throws GlError
+    // listing why each tried kind failed.
+    static HeadlessContext create();
+    // Exactly this kind; throws GlError when it cannot be created.
+    static HeadlessContext create(ContextKind kind);
+    // The context current on the calling thread, made by the caller (e.g. a
+    // GLFW window), with its entry points loaded by `loader` (e.g.
+    // glfwGetProcAddress; `loader_name` names it in errors). The caller keeps
+    // it current and alive while this object is used; make_current() does
+    // nothing and destruction does not destroy it. Throws GlError when no
+    // context is current, an entry point is missing or it is not OpenGL 4.5.
+    static HeadlessContext from_current(void (*(*loader)(const char*))(), const char* loader_name);
+
+    HeadlessContext(HeadlessContext&& other) noexcept;
+    HeadlessContext& operator=(HeadlessContext&& other) noexcept;
+    HeadlessContext(const HeadlessContext&) = delete;
+    HeadlessContext& operator=(const HeadlessContext&) = delete;
+    ~HeadlessContext();
+
+    // The entry points, loaded for this context; every pointer is set.
+    const Functions& gl() const;
+    ContextKind kind() const;
+    std::string renderer() const;  // GL_RENDERER, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
+    std::string version() const;   // GL_VERSION
+    // Makes this context current on the calling thread (create() already did).
+    void make_current() const;
+
+    struct State;
+
+private:
+    explicit HeadlessContext(std::unique_ptr<State> state);
+    std::unique_ptr<State> state_;
+};
+
+// Throws GlError("<what>: GL error 0x....") when glGetError reports one.
+void check_gl(const Functions& gl, const char* what);
+
+// One shader stage given as the strings glShaderSource concatenates, e.g.
+// {kernel_glsl(), my_main}.
+struct ShaderStage {
+    GLenum type = GL_COMPUTE_SHADER;
+    std::vector<std::string_view> sources;
+};
+
+// A linked program object; deleted with this object.
+class Program {
+public:
+    // Compiles and links; throws GlError with the compiler's or linker's log.
+    Program(const Functions& gl, const std::vector<ShaderStage>& stages);
+    Program(Program&& other) noexcept;
+    Program& operator=(Program&&) = delete;
+    Program(const Program&) = delete;
+    Program& operator=(const Program&) = delete;
+    ~Program();
+    GLuint id() const { return id_; }
+
+private:
+    const Functions* gl_;
+    GLuint id_;
+};
+
+// An immutable-storage 2D texture: GL_TEXTURE_2D, or GL_TEXTURE_2D_MULTISAMPLE
+// with `samples` samples at fixed locations; deleted with this object.
+class Texture {
+public:
+    Texture(const Functions& gl, GLenum target, GLenum format, int width, int height, int samples = 0);
+    Texture(const Texture&) = delete;
+    Texture& operator=(const Texture&) = delete;
+    ~Texture();
+    GLuint id() const { return id_; }
+    GLenum target() const { return target_; }
+
+private:
+    const Functions* gl_;
+    GLenum target_;
+    GLuint id_ = 0;
+};
+
+// A framebuffer object; deleted with this object.
+class Framebuffer {
+public:
+    explicit Framebuffer(const Functions& gl);
+    Framebuffer(const Framebuffer&) = delete;
+    Framebuffer& operator=(const Framebuffer&) = delete;
+    ~Framebuffer();
+    GLuint id() const { return id_; }
+
+private:
+    const Functions* gl_;
+    GLuint id_ = 0;
+};
+
+// A buffer object (e.g. an SSBO) holding `bytes` bytes, copied from `data`
+// when it is not null; deleted with this object.
+class Buffer {
+public:
+    Buffer(const Functions& gl, GLenum target, std::size_t bytes, const void* data = nullptr,
+           GLenum usage = GL_DYNAMIC_COPY);
+    Buffer(Buffer&& other) noexcept;
+    Buffer& operator=(Buffer&&) = delete;
+    Buffer(const Buffer&) = delete;
+    Buffer& operator=(const Buffer&) = delete;
+    ~Buffer();
+    GLuint id() const { return id_; }
+    std::size_t size() const { return bytes_; }
+    // Binds it to an indexed binding point of its target (SSBO binding = N in GLSL).
+    void bind_base(GLuint index) const;
+    // Copies bytes [offset, offset + bytes) out; throws GlError when out of range.
+    void read(void* out, std::size_t bytes, std::size_t offset = 0) const;
+
+private:
+    const Functions* gl_;
+    GLenum target_;
+    GLuint id_;
+    std::size_t bytes_;
+};
+
+}  // namespace blurcull::gl

@@ -1,0 +1,27 @@
+// The interleave, interval and accum methods (frontend/render/gl/gl_sampling_methods.cpp):
+// per pass, one quad per listed triangle over the framebuffer cells that may
+// hold its samples (tiles for interleave, pixels otherwise), from the
+// rectangle the host computed for that pass (method_pass_box, the same boxes
+// the CPU renderers test in).
+struct MethodBox {
+    ivec4 quad;   // framebuffer cells x0, y0, x1, y1 (inclusive, row 0 at the top)
+    ivec4 rect;   // lattice cells (pixels but for interleave) x0, y0, x1, y1, inclusive
+    vec4 box;     // screen box lo.xy, hi.xy (NDC), rounded inwards to float
+    ivec4 index;  // x: the triangle
+};
+layout(std430, binding = 9) readonly buffer Boxes { MethodBox boxes[]; };
+
+uniform vec2 target_size;  // framebuffer width, height
+
+flat out int g_box;
+
+void main() {
+    int b = gl_VertexID / 6, k = gl_VertexID % 6;
+    g_box = b;
+    ivec4 r = boxes[b].quad;
+    bool right = k == 1 || k == 4 || k == 5;
+    bool top = k == 2 || k == 3 || k == 5;
+    float x = float(right ? r.z + 1 : r.x);
+    float y = float(top ? r.y : r.w + 1);
+    gl_Position = vec4(-1.0 + 2.0 * x / target_size.x, 1.0 - 2.0 * y / target_size.y, 0.5, 1.0);
+}

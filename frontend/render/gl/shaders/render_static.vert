@@ -1,0 +1,20 @@
+// Static, in-focus triangles (the static list, in index order): three
+// vertices per triangle (glDrawArrays, GL_TRIANGLES), the one triangle
+// render_setup.comp chose to hold every pixel the triangle's samples can be
+// in. Triangles off screen get a degenerate one.
+layout(std430, binding = 1) readonly buffer Infos { TriangleInfo infos[]; };
+layout(std430, binding = 10) readonly buffer StaticList { uint static_list[]; };
+
+flat out int g_index;
+
+void main() {
+    int i = int(static_list[gl_VertexID / 3]);
+    g_index = i;
+    if (infos[i].path != PATH_STATIC) {
+        gl_Position = vec4(-2.0, -2.0, 0.0, 1.0);
+        return;
+    }
+    int k = gl_VertexID % 3;
+    vec2 window = k == 0 ? infos[i].outline01.xy : k == 1 ? infos[i].outline01.zw : infos[i].outline2.xy;
+    gl_Position = vec4(window / image_size * 2.0 - 1.0, 0.5, 1.0);
+}

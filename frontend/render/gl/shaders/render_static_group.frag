@@ -1,0 +1,64 @@
+// Static path, once per group of samples (usually the whole frame) instead of
+// once per 4-sample pass: llvmpipe's cost is per primitive, so each static
+// triangle is set up once and its fragment (one per pixel, no gl_SampleID)
+// loops over the group's samples of the pixel (render_samples.comp, same
+// values as the passes see). Per covered sample, the winner is what the
+// per-pass draw in index order with the GREATER depth test kept: the larger
+// depth key near / w (clamped to [0, 1] as the depth buffer clamps
+// gl_FragDepth), on equal keys the lower index. group_depths takes the
+// largest key (atomicMax: positive floats order as their bits); a triangle
+// below it has lost. Otherwise a compare-and-swap loop on group_ids against
+// the current holder's key, recomputed (bc_covers() is deterministic): lock-free
+// (a failed swap means another triangle progressed), and the holder only
+// ever improves, so it ends as the nearest, lowest-index triangle.
+layout(std430, binding = 1) readonly buffer Infos { TriangleInfo infos[]; };
+layout(std430, binding = 2) buffer Counters { uint tested; uint hit; };
+GROUP_SAMPLE_BUFFERS
+layout(std430, binding = 14) buffer GroupIds { uint group_ids[]; };
+layout(std430, binding = 15) buffer GroupDepths { uint group_depths[]; };
+
+flat in int g_index;
+
+uvec2 fragment_pixel() {
+    return uvec2(uint(gl_FragCoord.x), uint(image_size.y) - 1u - uint(gl_FragCoord.y));
+}
+
+void main() {
+    uvec2 pixel = fragment_pixel();
+    // The rect holds every sample in the box: none outside it can be covered.
+    ivec4 rect = infos[g_index].rect;
+    if (int(pixel.x) < rect.x || int(pixel.x) > rect.z || int(pixel.y) < rect.y || int(pixel.y) > rect.w) return;
+    uint first = (pixel.y * uint(image_size.x) + pixel.x) * group_samples;
+    ScreenBound b;
+    b.empty = false;
+    b.lo = infos[g_index].box.xy;
+    b.hi = infos[g_index].box.zw;
+    b.hull_count = 0;
+    uint tested_here = 0u, hit_here = 0u;
+    for (uint k = 0u; k < group_samples; ++k) {
+        if (pass_base + k >= spp) break;
+        uint slot = first + k;
+        vec4 ndc_lens = group_ndc_lens[slot];
+        if (!bc_screen_contains(b, ndc_lens.xy)) continue;
+        ++tested_here;
+        float key = static_depth_key(g_index, slot);
+        if (key < 0.0) continue;
+        ++hit_here;
+        if (!(key > 0.0)) continue;  // the depth test against the cleared 0 would drop it
+        uint bits = floatBitsToUint(key);
+        if (atomicMax(group_depths[slot], bits) > bits) continue;
+        uint mine = uint(g_index);
+        uint current = group_ids[slot];
+        while (true) {
+            if (current != 0xffffffffu) {
+                float other = static_depth_key(int(current), slot);
+                if (!(key > other || (key == other && mine < current))) break;
+            }
+            uint seen = atomicCompSwap(group_ids[slot], current, mine);
+            if (seen == current) break;
+            current = seen;
+        }
+    }
+    if (tested_here > 0u) atomicAdd(tested, tested_here);
+    if (hit_here > 0u) atomicAdd(hit, hit_here);
+}

@@ -1,0 +1,86 @@
+#include "scene/gltf/loader.hpp"
+
+#include "scene/gltf/animation.hpp"
+#include "scene/gltf/camera.hpp"
+#include "scene/gltf/diagnostics.hpp"
+#include "scene/gltf/meshes.hpp"
+#include "scene/gltf/nodes.hpp"
+#include "scene/gltf/parse.hpp"
+#include "scene/gltf/validate.hpp"
+#include "scene/scene_builder.hpp"
+#include "scene/scene_checks.hpp"
+#include "scene/scene_name.hpp"
+
+#include <cmath>
+
+namespace blurcull::frontend::gltf {
+
+namespace {
+
+namespace tg = tinygltf;
+
+void check_options(const GltfOptions& o, const Diagnostics& diagnostics) {
+    if (!std::isfinite(o.shutter_open) || !std::isfinite(o.shutter_close) || o.shutter_close < o.shutter_open) {
+        diagnostics.fail("shutter interval [" + std::to_string(o.shutter_open) + ", " +
+                         std::to_string(o.shutter_close) + "] is not a finite, ordered interval");
+    }
+    const std::string problem = blur_and_aspect_problem(o.blur_scale, o.aspect);
+    if (!problem.empty()) diagnostics.fail(problem);
+    if (!std::isfinite(o.lens_radius) || o.lens_radius < 0.0f) {
+        diagnostics.fail("lens radius " + std::to_string(o.lens_radius) + " must be finite and non-negative");
+    }
+    if (!std::isfinite(o.focus_distance)) diagnostics.fail("focus distance is not finite");
+}
+
+// World matrices of every node at animation time t.
+std::vector<glm::mat4> pose_at(const tg::Model& model, const NodeTree& tree, const AnimationSamplers& samplers,
+                               const GltfOptions& options, float t, Diagnostics& diagnostics) {
+    std::vector<NodeTransform> transforms = file_transforms(model);
+    apply_animation(model, samplers, options.animation_index, t, transforms, diagnostics);
+    return world_matrices(tree, std::move(transforms));
+}
+
+}  // namespace
+
+Scene build_scene(const std::string& path, const GltfOptions& options, const WarningSink& warn) {
+    Diagnostics diagnostics(path, warn);
+    check_options(options, diagnostics);
+    const tg::Model model = parse_file(diagnostics);
+    const NodeTree tree = validate_model(model, diagnostics);
+    const AnimationSamplers samplers = read_animations(model, diagnostics);
+
+    const float t_open = options.shutter_open;
+    const float t_close = options.shutter_open + (options.shutter_close - options.shutter_open) * options.blur_scale;
+    const std::vector<int> rendered = rendered_nodes(model, tree);
+    NodePoses poses;
+    poses.open = pose_at(model, tree, samplers, options, t_open, diagnostics);
+    poses.close = pose_at(model, tree, samplers, options, t_close, diagnostics);
+
+    Scene scene;
+    scene.name = stem(path);
+    add_mesh_instances(model, rendered, poses, scene, diagnostics);
+    if (scene.triangles.empty()) diagnostics.fail("no triangles to render");
+    setup_camera(model, rendered, poses, options, scene, diagnostics);
+    return scene;
+}
+
+void validate_loaded_scene(Scene& scene, const std::string& path) {
+    try {
+        validate_scene(scene);
+    } catch (const SceneError& error) {
+        throw SceneError(path + ": " + error.what());
+    }
+    scene.validated = true;
+}
+
+}  // namespace blurcull::frontend::gltf
+
+namespace blurcull::frontend {
+
+Scene load_gltf_scene(const std::string& path, const GltfOptions& options, const WarningSink& warn) {
+    Scene scene = gltf::build_scene(path, options, warn);
+    gltf::validate_loaded_scene(scene, path);
+    return scene;
+}
+
+}  // namespace blurcull::frontend

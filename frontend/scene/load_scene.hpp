@@ -1,0 +1,43 @@
+// One entry point for "a scene by name or path, with the image's aspect and
+// the user's blur, shutter, lens and focus settings": picks the built-in
+// scene or the glTF loader by the rule of scene_name.hpp, applies the
+// settings, and validates the result once. The backends trust what it
+// returns (scene.hpp).
+#pragma once
+
+#include "scene/scene.hpp"
+#include "scene/scene_error.hpp"
+#include "scene/warnings.hpp"
+
+#include <string>
+
+namespace blurcull::frontend {
+
+struct SceneSettings {
+    float aspect = 4.0f / 3.0f;  // width / height of the image
+    // Multiplies every blur: a built-in scene's motion and lens, a glTF
+    // file's shutter interval, and the lens radius / f-number set here.
+    double blur_scale = 1.0;
+    bool has_shutter = false;    // else the scene's own shutter
+    // glTF: animation seconds. Built-in scenes: fractions of their nominal
+    // shutter [0, 1], whose linear motion is re-sampled there.
+    float shutter_open = 0.0f;
+    float shutter_close = 1.0f;
+    double lens_radius = -1.0;   // >= 0: the lens radius (times blur_scale); < 0: the scene's own
+    double fstop = -1.0;         // > 0: the lens radius of this f-number (times blur_scale)
+    double focus = -1.0;         // > 0: the focus distance
+};
+
+// Lens radius for an f-number: R = f / (2 N), with the focal length of a
+// 35 mm camera (24 mm sensor height) of the same vertical field of view, in
+// scene units taken as metres.
+float lens_radius_for_fstop(float yfov, double fstop);
+
+// The built-in scene or glTF file `name_or_path` with `settings` applied,
+// validated. Throws SceneError: for a file of another type ("<name>:
+// unsupported scene file type (expected .gltf or .glb)"), an unknown
+// built-in name, or anything the loaders reject. glTF warnings go to `warn`.
+Scene load_scene(const std::string& name_or_path, const SceneSettings& settings = SceneSettings{},
+                 const WarningSink& warn = {});
+
+}  // namespace blurcull::frontend

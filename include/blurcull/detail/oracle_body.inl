@@ -1,0 +1,66 @@
+// Shared C++/GLSL text (see dialect.hpp): the exact coverage test (the
+// oracle every bound must contain), and when the bounds can say anything about
+// it. Needs coc_motion_body.inl.
+
+// ---- the exact coverage test (the oracle) ------------------------------------
+
+// Homogeneous 2D rasterization (Olano and Greer 1997): with the sheared
+// vertices V_i as columns of M, the ray through (s, 1) meets the triangle in
+// front of the eye iff all components of adj(M) (s, 1) share the sign of
+// det(M). The hit depth is det / sum(adj(M) (s, 1)). Correct for vertices
+// behind the eye; samples whose hit lies closer than `near` are not covered.
+BC_FN bool covers(BC_IN(MovingTriangle) tri, vec2 s, vec2 uv, real t, real near, BC_OUT(real) depth) {
+    depth = real(0);
+    vec3 v0 = vertex_at(tri, 0, t, uv);
+    vec3 v1 = vertex_at(tri, 1, t, uv);
+    vec3 v2 = vertex_at(tri, 2, t, uv);
+    vec3 ray = vec3(s.x, s.y, real(1));
+    vec3 n12 = cross(v1, v2);
+    real e0 = bc_dot3(n12, ray);
+    real e1 = bc_dot3(cross(v2, v0), ray);
+    real e2 = bc_dot3(cross(v0, v1), ray);
+    real det = bc_dot3(v0, n12);
+    if (!(det != real(0))) return false;  // zero area seen edge-on (or NaN)
+    if (det < real(0)) {
+        e0 = -e0;
+        e1 = -e1;
+        e2 = -e2;
+        det = -det;
+    }
+    if (!(e0 >= real(0) && e1 >= real(0) && e2 >= real(0))) return false;
+    real sum = e0 + e1 + e2;
+    if (!(sum > real(0))) return false;
+    depth = det / sum;
+    return depth >= near;
+}
+
+// The exact test sees a sheared vertex (x + u c, y + v c, w). Where the
+// shear is more than BC_SWAMP_RATIO times the vertex's own (x, y, w), the
+// double oracle's rounding of x + u c (relative error 2^-53) erases most of
+// the vertex; with two such vertices at one time the edge between them is
+// their cross product, whose true value (~ |c| (|x| + |w|)) is then far below
+// its rounding error (~ 2^-53 c^2), and the oracle's sign tests (its verdict)
+// are decided by rounding anywhere on the screen. No bound can contain such
+// answers: screen_bound and sample_bounds keep every sample (docs/kernel.md,
+// "Where the oracle is decided by rounding"). Vertices are checked at the
+// shutter ends, where the stress families put them; the positions between
+// interpolate away from the ends' magnitudes.
+#define BC_SWAMP_RATIO 1.0e9
+
+// Whether the bounds can say anything: every value finite (else BC_INVALID's
+// fallback), and no two vertices at one shutter end swamped by their lens
+// shear. One pass, sharing the finiteness test's loads and abs().
+BC_FN bool bc_triangle_boundable(BC_IN(MovingTriangle) tri) {
+    int swamped_open = 0;
+    int swamped_close = 0;
+    for (int j = 0; j < 6; ++j) {
+        vec3 p = tri.p[j];
+        vec2 c = tri.c[j];
+        if (!bc_finite(p.x) || !bc_finite(p.y) || !bc_finite(p.z) || !bc_finite(c.x) || !bc_finite(c.y)) return false;
+        if (abs(c.x) + abs(c.y) > real(BC_SWAMP_RATIO) * (abs(p.x) + abs(p.y) + abs(p.z))) {
+            if (j < 3) swamped_open = swamped_open + 1;
+            else swamped_close = swamped_close + 1;
+        }
+    }
+    return swamped_open < 2 && swamped_close < 2;
+}

@@ -1,0 +1,124 @@
+// Shared C++/GLSL text (see dialect.hpp): the per-footprint sample bounds
+// that a renderer tests each sample against, dispatched by cull mode to
+// dual_space_body.inl or two_stage_body.inl, and the shutter interval they
+// leave. Needs every other kernel body.
+
+struct SampleBounds {
+    bool empty;    // no sample of the footprint can be covered
+    vec2 u_range;  // lens u in [u_range.x, u_range.y]
+    vec2 v_range;
+    // Time as lines over the lens: t >= u_time_a.x + u_time_a.y u and
+    // t <= u_time_a.z + u_time_a.w u, likewise for u_time_b, and over v for
+    // v_time_a and v_time_b. Two-stage puts the lines of footprint condition A
+    // in *_a and those of condition B in *_b; dual-space puts its one time
+    // interval in *_a (slopes 0) and leaves *_b open ([0, 1]).
+    vec4 u_time_a;
+    vec4 u_time_b;
+    vec4 v_time_a;
+    vec4 v_time_b;
+};
+
+// ---- per-footprint sample bounds ------------------------------------------------
+
+// Bounds that keep every sample: the whole lens [-1, 1]^2 and shutter [0, 1].
+BC_FN SampleBounds no_sample_bounds() {
+    SampleBounds r;
+    r.empty = false;
+    r.u_range = vec2(real(-1), real(1));
+    r.v_range = vec2(real(-1), real(1));
+    r.u_time_a = vec4(real(0), real(0), real(1), real(0));
+    r.u_time_b = r.u_time_a;
+    r.v_time_a = r.u_time_a;
+    r.v_time_b = r.u_time_a;
+    return r;
+}
+
+// Bounds on the lens and time of every sample in the screen footprint
+// [s_lo, s_hi] (a pixel or a tile) that the triangle can cover.
+// BC_CULL_BBOX and BC_CULL_HULL bound only the screen (see screen_bound).
+BC_FN SampleBounds sample_bounds(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi, int cull) {
+    SampleBounds r = no_sample_bounds();
+    if (cull != BC_CULL_DUALSPACE && cull != BC_CULL_TWO_STAGE) return r;
+    if (!bc_triangle_boundable(tri)) return r;
+    // The caller's sample positions were rounded too.
+    vec2 pad = vec2(bc_err(max(real(1), max(abs(s_lo.x), abs(s_hi.x)))),
+                    bc_err(max(real(1), max(abs(s_lo.y), abs(s_hi.y)))));
+    s_lo = s_lo - pad;
+    s_hi = s_hi + pad;
+    for (int axis = 0; axis < 2; ++axis) {
+        vec2 lens;
+        vec4 lines_a = vec4(real(0), real(0), real(1), real(0));
+        vec4 lines_b = lines_a;
+        if (cull == BC_CULL_DUALSPACE) {
+            vec2 tr;
+            if (!bc_dual_time_bounds(tri, axis, s_lo[axis], s_hi[axis], tr)) {
+                r.empty = true;
+                return r;
+            }
+            lines_a = vec4(tr.x, real(0), tr.y, real(0));
+            lens = bc_dual_lens_bounds(tri, axis, s_lo[axis], s_hi[axis]);
+        } else {
+            BcEdgeCrossings crossings = bc_edge_crossings(tri, axis, s_lo[axis], s_hi[axis]);
+            lens = bc_two_stage_lens_bounds(tri, axis, crossings);
+            if (lens.x > lens.y) {
+                r.empty = true;
+                return r;
+            }
+            // Without motion along this axis, and on one side of the focal
+            // plane, the lens bounds are already where A and B both hold: the
+            // time bounds would find the same range and times [0, 1].
+            if (bc_axis_moves(tri, axis) || !bc_one_coc_sign(tri, axis)) {
+                if (!bc_two_stage_time_bounds(tri, axis, s_lo[axis], s_hi[axis], crossings, lens, lines_a, lines_b)) {
+                    r.empty = true;
+                    return r;
+                }
+            }
+        }
+        if (lens.x > lens.y) {
+            r.empty = true;
+            return r;
+        }
+        if (axis == 0) {
+            r.u_range = lens;
+            r.u_time_a = lines_a;
+            r.u_time_b = lines_b;
+        } else {
+            r.v_range = lens;
+            r.v_time_a = lines_a;
+            r.v_time_b = lines_b;
+        }
+    }
+    return r;
+}
+
+// The shutter interval that holds every sample sample_passes lets through:
+// each time line, linear in u (v), is extremal at an end of the lens range.
+// (lo > hi when the bounds are empty.) Lets a renderer whose samples are
+// sorted by time visit only that interval.
+BC_FN vec2 sample_time_range(BC_IN(SampleBounds) b) {
+    if (b.empty) return vec2(real(1), real(0));
+    vec4 u = vec4(b.u_range.x, b.u_range.y, b.v_range.x, b.v_range.y);
+    real lo = max(max(min(b.u_time_a.x + b.u_time_a.y * u.x, b.u_time_a.x + b.u_time_a.y * u.y),
+                      min(b.u_time_b.x + b.u_time_b.y * u.x, b.u_time_b.x + b.u_time_b.y * u.y)),
+                  max(min(b.v_time_a.x + b.v_time_a.y * u.z, b.v_time_a.x + b.v_time_a.y * u.w),
+                      min(b.v_time_b.x + b.v_time_b.y * u.z, b.v_time_b.x + b.v_time_b.y * u.w)));
+    real hi = min(min(max(b.u_time_a.z + b.u_time_a.w * u.x, b.u_time_a.z + b.u_time_a.w * u.y),
+                      max(b.u_time_b.z + b.u_time_b.w * u.x, b.u_time_b.z + b.u_time_b.w * u.y)),
+                  min(max(b.v_time_a.z + b.v_time_a.w * u.z, b.v_time_a.z + b.v_time_a.w * u.w),
+                      max(b.v_time_b.z + b.v_time_b.w * u.z, b.v_time_b.z + b.v_time_b.w * u.w)));
+    // A line's value inside the range can round a hair past its ends' values.
+    real pad = bc_err(real(1) + max(abs(lo), abs(hi)));
+    return vec2(max(lo - pad, real(0)), min(hi + pad, real(1)));
+}
+
+// Whether sample (uv, t) lies inside the bounds: false means the triangle
+// cannot cover it (the caller skips the exact test).
+BC_FN bool sample_passes(BC_IN(SampleBounds) b, vec2 uv, real t) {
+    if (b.empty) return false;
+    if (uv.x < b.u_range.x || uv.x > b.u_range.y || uv.y < b.v_range.x || uv.y > b.v_range.y) return false;
+    if (t < b.u_time_a.x + b.u_time_a.y * uv.x || t > b.u_time_a.z + b.u_time_a.w * uv.x) return false;
+    if (t < b.v_time_a.x + b.v_time_a.y * uv.y || t > b.v_time_a.z + b.v_time_a.w * uv.y) return false;
+    if (t < b.u_time_b.x + b.u_time_b.y * uv.x || t > b.u_time_b.z + b.u_time_b.w * uv.x) return false;
+    if (t < b.v_time_b.x + b.v_time_b.y * uv.y || t > b.v_time_b.z + b.v_time_b.w * uv.y) return false;
+    return true;
+}

@@ -1,0 +1,202 @@
+// Shared C++/GLSL text (see dialect.hpp): the per-triangle screen bound (the
+// clipped, CoC-grown box and the convex hull) and its tests. Needs
+// coc_motion_body.inl and oracle_body.inl. The cull modes are defined here
+// because screen_bound is the first function that reads them.
+
+// Which bounds screen_bound and sample_bounds compute (docs/kernel.md).
+#define BC_CULL_BBOX 0
+#define BC_CULL_HULL 1
+#define BC_CULL_DUALSPACE 2
+#define BC_CULL_TWO_STAGE 3
+
+#define BC_HULL_MAX 24
+
+struct ScreenBound {
+    bool empty;                   // the triangle is never in front of the near plane
+    vec2 lo;                      // screen box (NDC), widened by the margins
+    vec2 hi;
+    int hull_count;               // > 0: also inside these edges
+    vec3 hull_edge[BC_HULL_MAX];  // inside when dot(edge.xy, s) + edge.z >= 0
+};
+
+// ---- screen bounds -------------------------------------------------------------
+
+// Screen extent along one axis of everything the triangle can show in front of
+// the near plane. Along the axis the triangle at any (t, u) lies in the convex
+// hull of the 12 points (x_ik +- |c_ik|, w_ik); its part with w >= near has
+// as vertices those points with w >= near and the crossings of point pairs
+// with w = near (the thesis's 6 edges and 3 motion paths, plus the lens and
+// the diagonals, which its motion makes necessary). x / w is extremal there.
+// Returns (lo, hi); lo > hi when nothing is in front of the near plane.
+BC_FN vec2 bc_axis_extent(BC_IN(MovingTriangle) tri, int axis, real near_plane) {
+    // The oracle rounds a hit depth just short of the near plane up to it, so
+    // the extent is taken in front of a plane a margin closer to the eye.
+    real near = near_plane - bc_err(near_plane);
+    real lo = bc_huge();
+    real hi = -bc_huge();
+    real magnitude = real(0);
+    for (int j = 0; j < 12; ++j) {
+        int ij = j / 2;
+        real xj = tri.p[ij][axis] + (j % 2 == 0 ? real(-1) : real(1)) * abs(tri.c[ij][axis]);
+        real wj = tri.p[ij].z;
+        real mj = abs(tri.p[ij][axis]) + abs(tri.c[ij][axis]);
+        if (wj >= near) {
+            real sx = xj / wj;
+            lo = min(lo, sx);
+            hi = max(hi, sx);
+            magnitude = max(magnitude, mj / wj);
+        }
+        for (int m = j + 1; m < 12; ++m) {
+            int im = m / 2;
+            real wm = tri.p[im].z;
+            if ((wj < near && wm > near) || (wj > near && wm < near)) {
+                real xm = tri.p[im][axis] + (m % 2 == 0 ? real(-1) : real(1)) * abs(tri.c[im][axis]);
+                real mm = abs(tri.p[im][axis]) + abs(tri.c[im][axis]);
+                real f = (near - wj) / (wm - wj);
+                real sx = (xj + f * (xm - xj)) / near;
+                lo = min(lo, sx);
+                hi = max(hi, sx);
+                magnitude = max(magnitude, (mj + mm) / near);
+            }
+        }
+    }
+    if (lo > hi) return vec2(real(1), real(-1));
+    real pad = bc_err(real(4) * magnitude + max(abs(lo), abs(hi)));
+    lo = lo - pad;
+    hi = hi + pad;
+    if (!bc_finite(lo) || !bc_finite(hi) || !bc_finite(pad)) return vec2(-bc_huge(), bc_huge());
+    return vec2(lo, hi);
+}
+
+BC_FN bool bc_point_less(vec2 a, vec2 b) {
+    return a.x < b.x || (a.x == b.x && a.y < b.y);
+}
+
+BC_FN real bc_turn(vec2 o, vec2 a, vec2 b) {
+    return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
+}
+
+// Convex hull (McGuire et al. 2010) of the lens-shifted vertices at both shutter
+// ends; needs every vertex in front of the near plane (projection keeps
+// convexity only there). Andrew's monotone chain over at most 24 points.
+BC_FN void bc_build_hull(BC_IN(MovingTriangle) tri, real near, BC_INOUT(ScreenBound) b) {
+    b.hull_count = 0;
+    for (int j = 0; j < 6; ++j) {
+        if (!(tri.p[j].z >= near) || !(tri.p[j].z > real(0))) return;
+    }
+    vec2 pts[BC_HULL_MAX];
+    int n = 0;
+    real magnitude = real(0);
+    for (int j = 0; j < 6; ++j) {
+        vec2 c = abs(tri.c[j]);
+        int corners = (c.x == real(0) && c.y == real(0)) ? 1 : 4;
+        for (int q = 0; q < corners; ++q) {
+            vec2 lens = vec2(q % 2 == 0 ? real(-1) : real(1), q / 2 == 0 ? real(-1) : real(1));
+            vec2 sp = vec2(tri.p[j].x + lens.x * c.x, tri.p[j].y + lens.y * c.y) / tri.p[j].z;
+            // insertion sort by (x, y)
+            int k = n;
+            while (k > 0) {
+                if (!bc_point_less(sp, pts[k - 1])) break;
+                pts[k] = pts[k - 1];
+                k = k - 1;
+            }
+            pts[k] = sp;
+            n = n + 1;
+        }
+        magnitude = max(magnitude, (abs(tri.p[j].x) + abs(tri.p[j].y) + c.x + c.y) / tri.p[j].z);
+    }
+    // Turns of points beyond sqrt(huge) / 4 can overflow to NaN, which pops
+    // nothing and would overrun hull[]: the box alone bounds such triangles.
+    real extent = real(0);
+    for (int j = 0; j < n; ++j) extent = max(extent, max(abs(pts[j].x), abs(pts[j].y)));
+    if (!(extent <= real(0.25) * sqrt(bc_huge()))) return;
+    vec2 hull[BC_HULL_MAX + 1];
+    int h = 0;
+    for (int j = 0; j < n; ++j) {  // lower chain
+        while (h >= 2) {
+            if (!(bc_turn(hull[h - 2], hull[h - 1], pts[j]) <= real(0))) break;
+            h = h - 1;
+        }
+        hull[h] = pts[j];
+        h = h + 1;
+    }
+    int lower = h + 1;
+    for (int j = n - 2; j >= 0; --j) {  // upper chain
+        while (h >= lower) {
+            if (!(bc_turn(hull[h - 2], hull[h - 1], pts[j]) <= real(0))) break;
+            h = h - 1;
+        }
+        hull[h] = pts[j];
+        h = h + 1;
+    }
+    h = h - 1;  // the last point repeats the first
+    if (h < 3) return;  // degenerate: the box alone bounds it
+    real scale = bc_err(real(4) * magnitude + real(1));
+    for (int k = 0; k < h; ++k) {
+        vec2 a = hull[k];
+        vec2 e = hull[k + 1] - a;
+        vec2 n2 = vec2(-e.y, e.x);  // inward normal of a counter-clockwise hull
+        real d = -dot(n2, a);
+        // Rounded turns can keep a slightly concave chain, whose edges would
+        // cut off some point: move each edge out until every point is inside.
+        for (int j = 0; j < n; ++j) d = max(d, -dot(n2, pts[j]));
+        d = d + (abs(n2.x) + abs(n2.y)) * scale;
+        if (!bc_finite(d)) return;  // the margin overflowed: the box alone (hull_count stays 0)
+        b.hull_edge[k] = vec3(n2.x, n2.y, d);
+    }
+    b.hull_count = h;
+}
+
+// Per-triangle screen bound: the clipped, CoC-grown box; with cull mode
+// BC_CULL_HULL also the convex hull when no vertex is behind the near plane.
+// Non-finite input or results give the whole screen (never a cull).
+BC_FN ScreenBound screen_bound(BC_IN(MovingTriangle) tri, real near, int cull) {
+    ScreenBound b;
+    b.empty = false;
+    b.lo = vec2(-bc_huge());
+    b.hi = vec2(bc_huge());
+    b.hull_count = 0;
+    for (int k = 0; k < BC_HULL_MAX; ++k) b.hull_edge[k] = vec3(real(0));
+    if (!(near > real(0)) || !bc_triangle_boundable(tri)) return b;
+    vec2 ex = bc_axis_extent(tri, 0, near);
+    vec2 ey = bc_axis_extent(tri, 1, near);
+    b.lo = vec2(ex.x, ey.x);
+    b.hi = vec2(ex.y, ey.y);
+    b.empty = ex.x > ex.y || ey.x > ey.y;
+    if ((cull == BC_CULL_HULL || cull == BC_CULL_TWO_STAGE) && !b.empty) bc_build_hull(tri, near, b);
+    return b;
+}
+
+#define BC_FOOTPRINT_OUTSIDE 0
+#define BC_FOOTPRINT_PARTIAL 1
+#define BC_FOOTPRINT_INSIDE 2
+
+// Where a screen rectangle [lo, hi] lies relative to the bound: entirely
+// outside (no sample in it can pass screen_contains), entirely inside (every
+// sample passes; a renderer may skip the per-sample test), or partly.
+BC_FN int screen_footprint(BC_IN(ScreenBound) b, vec2 lo, vec2 hi) {
+    if (b.empty || hi.x < b.lo.x || lo.x > b.hi.x || hi.y < b.lo.y || lo.y > b.hi.y) return BC_FOOTPRINT_OUTSIDE;
+    bool inside = lo.x >= b.lo.x && hi.x <= b.hi.x && lo.y >= b.lo.y && hi.y <= b.hi.y;
+    for (int k = 0; k < b.hull_count; ++k) {
+        vec3 e = b.hull_edge[k];
+        // The rectangle's corner farthest inside and farthest outside this edge.
+        real best = e.z + max(e.x * lo.x, e.x * hi.x) + max(e.y * lo.y, e.y * hi.y);
+        real worst = e.z + min(e.x * lo.x, e.x * hi.x) + min(e.y * lo.y, e.y * hi.y);
+        // Outside only with room for rounding: a sample's own test sums differently.
+        real slack = bc_err(abs(e.x) * max(abs(lo.x), abs(hi.x)) + abs(e.y) * max(abs(lo.y), abs(hi.y)) + abs(e.z));
+        if (best < -slack) return BC_FOOTPRINT_OUTSIDE;
+        if (!(worst >= real(0))) inside = false;
+    }
+    return inside ? BC_FOOTPRINT_INSIDE : BC_FOOTPRINT_PARTIAL;
+}
+
+// Whether screen position s (NDC) lies inside the bound: false means no
+// sample at s can be covered.
+BC_FN bool screen_contains(BC_IN(ScreenBound) b, vec2 s) {
+    if (b.empty) return false;
+    if (s.x < b.lo.x || s.x > b.hi.x || s.y < b.lo.y || s.y > b.hi.y) return false;
+    for (int k = 0; k < b.hull_count; ++k) {
+        if (b.hull_edge[k].x * s.x + b.hull_edge[k].y * s.y + b.hull_edge[k].z < real(0)) return false;
+    }
+    return true;
+}
