@@ -187,59 +187,39 @@ auto by_variant(CoverageVariant variant, Evaluate evaluate) {
 }
 
 #if BLURCULL_HAS_X86
-// A setup's values on eight lanes, broadcast once per call.
-struct SetupLanes {
-    __m256 x[3], dx[3], cx[3], dcx[3], y[3], dy[3], cy[3], dcy[3], w[3], dw[3];
-    __m256 band[3], negative_band[3], centre_x, centre_y;
-};
-
-__attribute__((target("avx2,fma"))) inline void broadcast_setup(const CoverageSetup& s, SetupLanes& l) {
-    for (int i = 0; i < 3; ++i) {
-        const CoverageVertex& q = s.vertex[i];
-        l.x[i] = _mm256_set1_ps(q.x);
-        l.dx[i] = _mm256_set1_ps(q.dx);
-        l.cx[i] = _mm256_set1_ps(q.cx);
-        l.dcx[i] = _mm256_set1_ps(q.dcx);
-        l.y[i] = _mm256_set1_ps(q.y);
-        l.dy[i] = _mm256_set1_ps(q.dy);
-        l.cy[i] = _mm256_set1_ps(q.cy);
-        l.dcy[i] = _mm256_set1_ps(q.dcy);
-        l.w[i] = _mm256_set1_ps(q.w);
-        l.dw[i] = _mm256_set1_ps(q.dw);
-        l.band[i] = _mm256_set1_ps(s.band[i]);
-        l.negative_band[i] = _mm256_set1_ps(-s.band[i]);
-    }
-    l.centre_x = _mm256_set1_ps(s.centre_x);
-    l.centre_y = _mm256_set1_ps(s.centre_y);
-}
-
 // coordinate_at on eight lanes.
 template <CoverageVariant V>
-__attribute__((target("avx2,fma"))) inline __m256 coordinate8(__m256 base, __m256 delta, __m256 coc, __m256 coc_delta,
+__attribute__((target("avx2,fma"))) inline __m256 coordinate8(float base, float delta, float coc, float coc_delta,
                                                               __m256 t, __m256 lens) {
     constexpr bool moves = V == CoverageVariant::motion || V == CoverageVariant::both;
     constexpr bool sheared = V == CoverageVariant::defocus || V == CoverageVariant::both;
-    const __m256 position = moves ? _mm256_fmadd_ps(t, delta, base) : base;
+    const __m256 position =
+        moves ? _mm256_fmadd_ps(t, _mm256_set1_ps(delta), _mm256_set1_ps(base)) : _mm256_set1_ps(base);
     if (!sheared) return position;
-    const __m256 circle = moves ? _mm256_fmadd_ps(t, coc_delta, coc) : coc;
+    const __m256 circle =
+        moves ? _mm256_fmadd_ps(t, _mm256_set1_ps(coc_delta), _mm256_set1_ps(coc)) : _mm256_set1_ps(coc);
     return _mm256_fmadd_ps(lens, circle, position);
 }
 
 // may_cover_lane's operations in the same order on eight lanes; FMA rounds
-// once in both, so every lane's decision equals may_cover_lane's.
+// once in both, so every lane's decision equals may_cover_lane's. Out of
+// line and broadcasting the setup itself: hoisted out of a loop over
+// batches, the 36 broadcasts spill to the stack, which costs more per call
+// than it saves at 16 spp (two batches a pixel).
 template <CoverageVariant V>
-__attribute__((target("avx2,fma"))) inline std::uint32_t batch_avx2(const SetupLanes& l, const float* sx,
-                                                                    const float* sy, const float* u, const float* v,
-                                                                    const float* t) {
+[[gnu::noinline]] __attribute__((target("avx2,fma"))) std::uint32_t may_cover8_avx2(const CoverageSetup& s, const float* sx,
+                                                                  const float* sy, const float* u, const float* v,
+                                                                  const float* t) {
     constexpr bool moves = V == CoverageVariant::motion || V == CoverageVariant::both;
     const __m256 T = _mm256_loadu_ps(t), U = _mm256_loadu_ps(u), Vl = _mm256_loadu_ps(v);
-    const __m256 SX = _mm256_sub_ps(_mm256_loadu_ps(sx), l.centre_x);
-    const __m256 SY = _mm256_sub_ps(_mm256_loadu_ps(sy), l.centre_y);
+    const __m256 SX = _mm256_sub_ps(_mm256_loadu_ps(sx), _mm256_set1_ps(s.centre_x));
+    const __m256 SY = _mm256_sub_ps(_mm256_loadu_ps(sy), _mm256_set1_ps(s.centre_y));
     __m256 X[3], Y[3], W[3];
     for (int i = 0; i < 3; ++i) {
-        X[i] = coordinate8<V>(l.x[i], l.dx[i], l.cx[i], l.dcx[i], T, U);
-        Y[i] = coordinate8<V>(l.y[i], l.dy[i], l.cy[i], l.dcy[i], T, Vl);
-        W[i] = moves ? _mm256_fmadd_ps(T, l.dw[i], l.w[i]) : l.w[i];
+        const CoverageVertex& q = s.vertex[i];
+        X[i] = coordinate8<V>(q.x, q.dx, q.cx, q.dcx, T, U);
+        Y[i] = coordinate8<V>(q.y, q.dy, q.cy, q.dcy, T, Vl);
+        W[i] = moves ? _mm256_fmadd_ps(T, _mm256_set1_ps(q.dw), _mm256_set1_ps(q.w)) : _mm256_set1_ps(q.w);
     }
     __m256 positive = _mm256_setzero_ps(), negative = _mm256_setzero_ps();
     for (int k = 0; k < 3; ++k) {
@@ -248,24 +228,22 @@ __attribute__((target("avx2,fma"))) inline std::uint32_t batch_avx2(const SetupL
         const __m256 ny = _mm256_fmsub_ps(W[a], X[b], _mm256_mul_ps(X[a], W[b]));
         const __m256 nz = _mm256_fmsub_ps(X[a], Y[b], _mm256_mul_ps(Y[a], X[b]));
         const __m256 e = _mm256_fmadd_ps(nx, SX, _mm256_fmadd_ps(ny, SY, nz));
-        positive = _mm256_or_ps(positive, _mm256_cmp_ps(e, l.band[k], _CMP_GT_OQ));
-        negative = _mm256_or_ps(negative, _mm256_cmp_ps(e, l.negative_band[k], _CMP_LT_OQ));
+        const __m256 band = _mm256_set1_ps(s.band[k]);
+        positive = _mm256_or_ps(positive, _mm256_cmp_ps(e, band, _CMP_GT_OQ));
+        negative = _mm256_or_ps(negative, _mm256_cmp_ps(e, _mm256_sub_ps(_mm256_setzero_ps(), band), _CMP_LT_OQ));
     }
     const int rejected = _mm256_movemask_ps(_mm256_and_ps(positive, negative));
     return ~static_cast<std::uint32_t>(rejected) & 0xFFu;
 }
 
-// Up to four batches of eight, those with a wanted lane, the setup broadcast once.
+// Up to four batches of eight, those with a wanted lane.
 template <CoverageVariant V>
-__attribute__((target("avx2,fma"))) std::uint32_t may_cover32_avx2(const CoverageSetup& s, const float* sx,
-                                                                   const float* sy, const float* u, const float* v,
-                                                                   const float* t, std::uint32_t wanted) {
-    SetupLanes lanes;
-    broadcast_setup(s, lanes);
+std::uint32_t may_cover32_avx2(const CoverageSetup& s, const float* sx, const float* sy, const float* u,
+                               const float* v, const float* t, std::uint32_t wanted) {
     std::uint32_t bits = 0;
     for (int b = 0; b < 32; b += 8) {
         if (((wanted >> b) & 0xFFu) == 0) continue;
-        bits |= batch_avx2<V>(lanes, sx + b, sy + b, u + b, v + b, t + b) << b;
+        bits |= may_cover8_avx2<V>(s, sx + b, sy + b, u + b, v + b, t + b) << b;
     }
     return bits;
 }
