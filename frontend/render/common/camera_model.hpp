@@ -24,6 +24,7 @@
 
 #include "scene/scene.hpp"
 
+#include <blurcull/kernel.hpp>
 #include <glm/glm.hpp>
 
 #include <cmath>
@@ -91,11 +92,13 @@ struct CameraModel {
         lens_radius = camera.lens_radius;
         focus_distance = camera.focus_distance;
         znear = camera.znear;
-        a_x = -k_x * lens_radius;
-        a_y = -k_y * lens_radius;
         // With no lens, b = 0 whatever F is (F may be unset then).
-        b_x = lens_radius > 0.0f ? k_x * lens_radius / focus_distance : 0.0f;
-        b_y = lens_radius > 0.0f ? k_y * lens_radius / focus_distance : 0.0f;
+        const glm::vec2 coc_x = kernelf::camera_coc(k_x, lens_radius, focus_distance);
+        const glm::vec2 coc_y = kernelf::camera_coc(k_y, lens_radius, focus_distance);
+        a_x = coc_x.x;
+        b_x = coc_x.y;
+        a_y = coc_y.x;
+        b_y = coc_y.y;
         view_open = camera.view_open;
         view_close = camera.view_close;
     }
@@ -130,32 +133,29 @@ struct CameraModel {
         ray.origin = glm::vec3(lens_uv.x * lens_radius, lens_uv.y * lens_radius, 0.0f);
         // Pinhole point at depth F is (X F / k_x, Y F / k_y, -F); dividing
         // (that - origin) by F makes direction.z = -1.
-        float lens_slope = lens_radius > 0.0f ? lens_radius / focus_distance : 0.0f;
+        // R / F, 0 with no lens: the CoC slope b of a unit projection scale.
+        const float lens_slope = kernelf::camera_coc(1.0f, lens_radius, focus_distance).y;
         ray.direction = glm::vec3(ndc.x / k_x - lens_uv.x * lens_slope, ndc.y / k_y - lens_uv.y * lens_slope, -1.0f);
         ray.t_near = znear;
         return ray;
     }
 
-    // Raster coordinates (x right, y down, in pixels) <-> NDC.
-    glm::vec2 raster_to_ndc(glm::vec2 raster) const {
-        return glm::vec2(-1.0f + 2.0f * raster.x / static_cast<float>(width),
-                         1.0f - 2.0f * raster.y / static_cast<float>(height));
-    }
-    glm::vec2 ndc_to_raster(glm::vec2 ndc) const {
-        return glm::vec2((ndc.x + 1.0f) * 0.5f * static_cast<float>(width),
-                         (1.0f - ndc.y) * 0.5f * static_cast<float>(height));
-    }
+    // The image size in pixels, as the kernel's raster functions take it.
+    glm::vec2 image_size() const { return glm::vec2(static_cast<float>(width), static_cast<float>(height)); }
 
-    // NDC of a sample at `offset` in [0,1)^2 from the top-left corner of pixel (px, py).
+    // Raster coordinates (x right, y down, in pixels) <-> NDC: kernelf::raster_to_ndc / ndc_to_raster.
+    glm::vec2 raster_to_ndc(glm::vec2 raster) const { return kernelf::raster_to_ndc(raster, image_size()); }
+    glm::vec2 ndc_to_raster(glm::vec2 ndc) const { return kernelf::ndc_to_raster(ndc, image_size()); }
+
+    // NDC of a sample at `offset` in [0,1)^2 from the top-left corner of pixel (px, py):
+    // kernelf::pixel_sample_ndc.
     glm::vec2 sample_ndc(int px, int py, glm::vec2 offset) const {
-        return raster_to_ndc(glm::vec2(static_cast<float>(px) + offset.x, static_cast<float>(py) + offset.y));
+        return kernelf::pixel_sample_ndc(glm::ivec2(px, py), offset, image_size());
     }
 
-    // NDC rectangle covered by pixel (px, py): (X_min, Y_min, X_max, Y_max).
+    // NDC rectangle covered by pixel (px, py): (X_min, Y_min, X_max, Y_max), kernelf::pixel_rect_ndc.
     glm::vec4 pixel_ndc_bounds(int px, int py) const {
-        glm::vec2 top_left = raster_to_ndc(glm::vec2(static_cast<float>(px), static_cast<float>(py)));
-        glm::vec2 bottom_right = raster_to_ndc(glm::vec2(static_cast<float>(px + 1), static_cast<float>(py + 1)));
-        return glm::vec4(top_left.x, bottom_right.y, bottom_right.x, top_left.y);
+        return kernelf::pixel_rect_ndc(glm::ivec4(px, py, px, py), image_size());
     }
 };
 

@@ -11,6 +11,14 @@
 
 namespace blurcull::frontend {
 
+// The clock of every render's timings (RenderStats::ms_total, ms_per_phase).
+using RenderClock = std::chrono::steady_clock;
+
+// Milliseconds from `start` to now.
+inline double ms_since(RenderClock::time_point start) {
+    return std::chrono::duration<double, std::milli>(RenderClock::now() - start).count();
+}
+
 class Progress {
 public:
     using Clock = std::chrono::steady_clock;

@@ -16,7 +16,6 @@ namespace blurcull::frontend {
 using cpu_methods::Clock;
 using cpu_methods::Counters;
 using cpu_methods::K;
-using cpu_methods::ms_since;
 
 RenderResult render_accum(const Scene& scene, const RenderSettings& settings, std::vector<std::uint32_t>* sample_ids) {
     const Clock::time_point start = Clock::now();
@@ -57,13 +56,9 @@ RenderResult render_accum(const Scene& scene, const RenderSettings& settings, st
             for (int py = r.y0; py <= r.y1; ++py) {
                 for (int px = r.x0; px <= r.x1; ++px) {
                     const K::vec2 ndc(model.sample_ndc(px, py, offset));
-                    if (!K::screen_contains(box.bound, ndc)) continue;
-                    ++local.tested;
-                    double z = 0.0;
-                    if (!K::covers(tri, ndc, uv, t, near, z)) continue;
-                    ++local.hit;
                     const std::size_t pixel = static_cast<std::size_t>(py) * width + px;
-                    cpu_methods::depth_test(z, static_cast<std::uint32_t>(index), depth[pixel], pass[pixel]);
+                    cpu_methods::test_pass_sample(tri, box.bound, ndc, uv, t, near, static_cast<std::uint32_t>(index),
+                                                  local, depth[pixel], pass[pixel]);
                 }
             }
         }

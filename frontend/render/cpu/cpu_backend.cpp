@@ -30,34 +30,18 @@ using Clock = std::chrono::steady_clock;
 
 constexpr int tile_size = 16;  // pixels per side of a binning and work tile
 
-double ms_since(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 struct PixelRect {
     int x0, y0, x1, y1;  // inclusive
 };
 
-// Pixels whose footprint meets the NDC box [lo, hi], clamped to the image;
-// empty (x0 > x1) when they miss it.
-template <class Vec2>
-PixelRect pixel_rect(const CameraModel& model, Vec2 lo, Vec2 hi) {
-    const double w = model.width, h = model.height;
-    // raster x = (X + 1) w / 2, raster y = (1 - Y) h / 2 (rows grow downwards)
-    auto clamp_floor = [](double v, int limit) {
-        if (!(v > 0.0)) return 0;  // also NaN
-        if (v >= double(limit)) return limit;
-        return static_cast<int>(std::floor(v));
-    };
-    PixelRect r;
-    r.x0 = clamp_floor((double(lo.x) + 1.0) * 0.5 * w, model.width);
-    r.x1 = clamp_floor((double(hi.x) + 1.0) * 0.5 * w, model.width);
-    r.y0 = clamp_floor((1.0 - double(hi.y)) * 0.5 * h, model.height);
-    r.y1 = clamp_floor((1.0 - double(lo.y)) * 0.5 * h, model.height);
-    r.x1 = std::min(r.x1, model.width - 1);
-    r.y1 = std::min(r.y1, model.height - 1);
-    if (double(lo.x) > 1.0 || double(hi.x) < -1.0 || double(lo.y) > 1.0 || double(hi.y) < -1.0) r.x0 = r.x1 + 1;
-    return r;
+// The pixels that can hold a sample in the NDC box [lo, hi] (kernel's
+// box_cell_rect), clamped to the image; empty (x0 > x1) when it misses it.
+template <class K>
+PixelRect pixel_rect(const CameraModel& model, typename K::vec2 lo, typename K::vec2 hi) {
+    using Real = typename K::real;
+    const glm::ivec4 r = K::box_cell_rect(lo, hi, typename K::vec2(Real(model.width), Real(model.height)));
+    return PixelRect{r.x, r.y, r.z, r.w};
 }
 
 // The NDC box of a pixel rectangle's samples (every pixel of it, whole).
@@ -163,7 +147,7 @@ void set_up_triangles(const Scene& scene, const CameraModel& model, int method, 
             }
             const typename K::ScreenBound bound = K::screen_bound(setup.triangles[i], near, method);
             if (bound.empty) continue;
-            setup.rects[i] = pixel_rect(model, bound.lo, bound.hi);
+            setup.rects[i] = pixel_rect<K>(model, bound.lo, bound.hi);
             const PixelRect& r = setup.rects[i];
             if (r.x0 <= r.x1 && r.y0 <= r.y1)
                 setup.fast_tests[i] = make_coverage_setup<Real>(setup.triangles[i], sample_box(model, r));
@@ -319,20 +303,16 @@ private:
         bool check_screen;  // false while the footprint is inside the screen bound
     };
 
-    // NDC rectangle of a block of pixels (rows grow downwards).
-    typename K::vec2 footprint_lo(int px0, int py1) const {
-        const glm::vec4 corner = frame_.model.pixel_ndc_bounds(px0, py1);
-        return typename K::vec2(corner.x, corner.y);
-    }
-    typename K::vec2 footprint_hi(int px1, int py0) const {
-        const glm::vec4 corner = frame_.model.pixel_ndc_bounds(px1, py0);
-        return typename K::vec2(corner.z, corner.w);
+    // NDC box (lo.xy, hi.xy) of the pixels [px0, px1] x [py0, py1] (rows grow downwards).
+    typename K::vec4 footprint(int px0, int py0, int px1, int py1) const {
+        return typename K::vec4(kernelf::pixel_rect_ndc(glm::ivec4(px0, py0, px1, py1), frame_.model.image_size()));
     }
 
     // The sample bounds of a block or footprint, counted.
     typename K::SampleBounds bounds_of(const Current& current, int px0, int py0, int px1, int py1) {
-        typename K::SampleBounds sb =
-            K::sample_bounds(*current.tri, footprint_lo(px0, py1), footprint_hi(px1, py0), frame_.method);
+        const typename K::vec4 box = footprint(px0, py0, px1, py1);
+        typename K::SampleBounds sb = K::sample_bounds(*current.tri, typename K::vec2(box.x, box.y),
+                                                       typename K::vec2(box.z, box.w), frame_.method);
         ++bounded;
         if (sb.empty) ++bounded_empty;
         return sb;
@@ -377,7 +357,9 @@ private:
     void test_samples(Current& current, int px0, int py0, int px1, int py1, const typename K::SampleBounds& sb) {
         // The screen bound per footprint first: skip it whole, or spare its
         // samples the per-sample screen test.
-        const int state = K::screen_footprint(current.bound, footprint_lo(px0, py1), footprint_hi(px1, py0));
+        const typename K::vec4 box = footprint(px0, py0, px1, py1);
+        const int state =
+            K::screen_footprint(current.bound, typename K::vec2(box.x, box.y), typename K::vec2(box.z, box.w));
         if (state == BC_FOOTPRINT_OUTSIDE) return;
         current.check_screen = state != BC_FOOTPRINT_INSIDE;
         const typename K::vec2 range = frame_.time_sorted && current.needs_bounds ? K::sample_time_range(sb)
@@ -425,18 +407,21 @@ private:
     // The culls before the exact test: bounds, then screen bound.
     bool sample_culled(const Current& current, std::size_t k, const typename K::SampleBounds& sb) const {
         const Sample& s = samples_[k];
-        // The lens/time test first: it is cheaper than a hull and culls more.
+        // kernel::sample_test's chain up to the exact test (the lens/time
+        // bounds first: cheaper than a hull and they cull more); the fast
+        // test and covers follow in test_pixel and test_exactly.
         return !K::sample_passes(sb, s.lens, s.time) ||
                (current.check_screen && !K::screen_contains(current.bound, s.ndc));
     }
 
-    // The exact test of a sample the fast test kept, and the depth test.
+    // The exact test of a sample the fast test kept (sample_test's last
+    // step), and the depth rule.
     void test_exactly(const Current& current, std::size_t k) {
         const Sample& s = samples_[k];
         Real z = Real(0);
         if (!K::covers(*current.tri, s.ndc, s.lens, s.time, frame_.near, z)) return;
         ++hits;
-        if (z < depth_[k]) {
+        if (K::depth_nearer(z, depth_[k])) {
             depth_[k] = z;
             hit_[k] = current.index;
         }

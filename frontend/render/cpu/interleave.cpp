@@ -16,7 +16,6 @@ namespace blurcull::frontend {
 using cpu_methods::Clock;
 using cpu_methods::Counters;
 using cpu_methods::K;
-using cpu_methods::ms_since;
 
 namespace {
 
@@ -68,15 +67,13 @@ TupleSamples tuple_samples_in_tiles(const MethodPlan& plan, const TileLattice& l
         for (int tx = 0; tx < lattice.tiles_x; ++tx) {
             const std::size_t tile = static_cast<std::size_t>(ty) * lattice.tiles_x + tx;
             const int slot = tiles.tuple_slot[prototypes[tile] * n + tuple_base];
-            const int gx = tx * tile_w + slot % tile_w, gy = ty * tile_w + slot / tile_w;
-            samples.cells[tile] = glm::ivec2(gx, gy);
-            if (gx >= lattice.cells_x || gy >= lattice.cells_y) continue;  // past the image's edge
-            const glm::vec2 jitter =
-                patternsf::interleaved_jitter(static_cast<std::uint32_t>(gx), static_cast<std::uint32_t>(gy), seed);
-            const glm::vec2 offset((static_cast<float>(gx % side) + jitter.x) / static_cast<float>(side),
-                                   (static_cast<float>(gy % side) + jitter.y) / static_cast<float>(side));
+            const glm::ivec2 cell = kernelf::interleaved_cell(glm::ivec2(tx, ty), slot, tile_w);
+            samples.cells[tile] = cell;
+            if (cell.x >= lattice.cells_x || cell.y >= lattice.cells_y) continue;  // past the image's edge
+            const glm::vec2 jitter = patternsf::interleaved_jitter(static_cast<std::uint32_t>(cell.x),
+                                                                   static_cast<std::uint32_t>(cell.y), seed);
             samples.ndcs[tile] =
-                K::vec2(plan.model.sample_ndc(gx / side, gy / side, glm::min(offset, glm::vec2(0.99999994f))));
+                K::vec2(kernelf::interleaved_sample_ndc(cell, side, jitter, plan.model.image_size()));
         }
     }
     return samples;
@@ -133,15 +130,10 @@ RenderResult render_interleave(const Scene& scene, const RenderSettings& setting
                     const int gx = cells[tile].x, gy = cells[tile].y;
                     if (gx < r.x0 || gx > r.x1 || gy < r.y0 || gy > r.y1) continue;
                     const int px = gx / side, py = gy / side, sx = gx % side, sy = gy % side;
-                    const K::vec2 ndc = ndcs[tile];
-                    if (!K::screen_contains(box.bound, ndc)) continue;
-                    ++local.tested;
-                    double z = 0.0;
-                    if (!K::covers(tri, ndc, uv, t, near, z)) continue;
-                    ++local.hit;
                     const std::size_t sample =
                         (static_cast<std::size_t>(py) * width + px) * spp + static_cast<std::size_t>(sy * side + sx);
-                    cpu_methods::depth_test(z, static_cast<std::uint32_t>(index), depth[sample], hits[sample]);
+                    cpu_methods::test_pass_sample(tri, box.bound, ndcs[tile], uv, t, near,
+                                                  static_cast<std::uint32_t>(index), local, depth[sample], hits[sample]);
                 }
             }
         }

@@ -16,7 +16,6 @@ namespace blurcull::frontend {
 using cpu_methods::Clock;
 using cpu_methods::Counters;
 using cpu_methods::K;
-using cpu_methods::ms_since;
 
 RenderResult render_interval(const Scene& scene, const RenderSettings& settings, std::vector<std::uint32_t>* sample_ids) {
     const Clock::time_point start = Clock::now();
@@ -63,13 +62,9 @@ RenderResult render_interval(const Scene& scene, const RenderSettings& settings,
             for (int py = r.y0; py <= r.y1; ++py) {
                 for (int px = r.x0; px <= r.x1; ++px) {
                     const cpu_methods::Sample& s = plane[static_cast<std::size_t>(py) * width + px];
-                    if (!K::screen_contains(box.bound, s.ndc)) continue;
-                    ++local.tested;
-                    double z = 0.0;
-                    if (!K::covers(tri, s.ndc, s.lens, s.time, near, z)) continue;
-                    ++local.hit;
                     const std::size_t sample = (static_cast<std::size_t>(py) * width + px) * strata + static_cast<std::size_t>(j);
-                    cpu_methods::depth_test(z, static_cast<std::uint32_t>(index), depth[sample], hits[sample]);
+                    cpu_methods::test_pass_sample(tri, box.bound, s.ndc, s.lens, s.time, near,
+                                                  static_cast<std::uint32_t>(index), local, depth[sample], hits[sample]);
                 }
             }
         }

@@ -23,9 +23,6 @@ void store_counters(RenderStats& stats, const Counters& counters) {
 
 }  // namespace
 
-double ms_since(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 Counters run_items(const RenderSettings& settings, int items, const std::function<void(int, Counters&)>& work) {
     std::atomic<int> next{0};

@@ -1,10 +1,11 @@
 // What the CPU renderers of interleave, interval and accum share besides their
 // MethodPlan: running work items on the settings' threads with per-thread
-// counters, the strict depth test, and the common end of a render.
+// counters, the per-sample test with the depth rule, and the common end of a render.
 #pragma once
 
+#include "render/common/method_plan.hpp"
+#include "render/common/progress.hpp"
 #include "render/common/render_types.hpp"
-#include "render/cpu/method_plan.hpp"
 #include "scene/scene.hpp"
 
 #include <blurcull/kernel.hpp>
@@ -21,9 +22,6 @@ namespace blurcull::frontend::cpu_methods {
 using K = blurcull::kernel<double>;
 using Clock = std::chrono::steady_clock;
 
-// Milliseconds from `start` to now.
-double ms_since(Clock::time_point start);
-
 // One sample: its NDC position, lens position and time.
 struct Sample {
     K::vec2 ndc;
@@ -39,10 +37,22 @@ struct Counters {
 // Items must write disjoint memory; the counters are summed afterwards.
 Counters run_items(const RenderSettings& settings, int items, const std::function<void(int, Counters&)>& work);
 
-// Depth test of one covered sample: strict, so with triangles in index order
-// the first of equal depths wins, as in render_cpu.
-inline void depth_test(double z, std::uint32_t triangle, double& depth, std::uint32_t& hit) {
-    if (z < depth) {
+// One sample of a pass against triangle `triangle` in its pass box `bound`:
+// the kernel's sample_test (screen bound, then the exact test; the passes
+// bound lens and time by their boxes, so no sample bounds), counted in
+// `local`, then the CPU depth rule (depth_nearer: with triangles in index
+// order the first of equal depths wins, as in render_cpu) on the sample's
+// depth and hit.
+inline void test_pass_sample(const K::MovingTriangle& tri, const K::ScreenBound& bound, K::vec2 ndc, K::vec2 lens,
+                             double time, double near, std::uint32_t triangle, Counters& local, double& depth,
+                             std::uint32_t& hit) {
+    double z = 0.0;
+    const int verdict = K::sample_test(tri, bound, true, K::no_sample_bounds(), ndc, lens, time, near, z);
+    if (verdict == BC_SAMPLE_CULLED) return;
+    ++local.tested;
+    if (verdict != BC_SAMPLE_COVERED) return;
+    ++local.hit;
+    if (K::depth_nearer(z, depth)) {
         depth = z;
         hit = triangle;
     }

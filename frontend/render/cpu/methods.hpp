@@ -13,7 +13,7 @@
 #pragma once
 
 #include "render/common/render_types.hpp"
-#include "render/cpu/method_plan.hpp"
+#include "render/common/method_plan.hpp"
 #include "scene/scene.hpp"
 
 #include <cstdint>

@@ -1,8 +1,9 @@
 #include "render/embree/embree_backend.hpp"
 
 #include "render/common/camera_model.hpp"
-#include "render/embree/primary_rays.hpp"
+#include "render/common/progress.hpp"
 #include "render/common/shading.hpp"
+#include "render/embree/primary_rays.hpp"
 #include "scene/scene_checks.hpp"
 
 #include <blurcull/kernel.hpp>
@@ -25,9 +26,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double ms_since(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 const char* error_name(RTCError code) {
     switch (code) {

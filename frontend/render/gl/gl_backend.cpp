@@ -1,11 +1,14 @@
 #include "render/gl/gl_backend.hpp"
 
 #include "render/common/camera_model.hpp"
+#include "render/common/cull_method.hpp"
 #include "render/common/moving_triangle.hpp"
+#include "render/common/progress.hpp"
 #include "render/common/shading.hpp"
 #include "render/gl/gl_context.hpp"
 #include "render/gl/gl_render_targets.hpp"
 #include "render/gl/gl_sampling_methods.hpp"
+#include "render/gl/gpu_layout_shared.h"
 #include "scene/scene_checks.hpp"
 
 #include <blurcull/kernel.hpp>
@@ -28,26 +31,16 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using gl::GlError;
 
-double ms_since(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 // MSAA samples per pass: llvmpipe's maximum; spp / 4 passes reach any spp.
 constexpr int samples_per_pass = 4;
 constexpr std::uint32_t pass_samples = samples_per_pass;
 
-// std430 layouts of the shaders' structs (shaders/render_common.glsl).
-struct GpuTriangle {           // MovingTriangle: vec3 p[6] (stride 16), vec2 c[6]
-    float p[6][4];
-    float c[6][2];
-};
-static_assert(sizeof(GpuTriangle) == 144, "std430 MovingTriangle");
-// TriangleInfo: vec4 box, ivec4 rect, int needs, hull_count, path, padding,
-// vec4 outline01, outline2, hull[BC_HULL_MAX].
-constexpr std::size_t triangle_info_bytes = (4 + 4 + 4 + 4 + 4 + 4 * BC_HULL_MAX) * 4;
-// CellBounds: ivec4 rect, vec4 lens, time_lines_u_a, _u_b, _v_a, _v_b.
-constexpr std::size_t cell_bounds_bytes = 6 * 4 * 4;
-constexpr int cells_max = 16;  // CELLS_MAX
+// The shaders' std430 structs (gpu_layout_shared.h, shared with the GLSL).
+using gpu::CellBounds;
+using gpu::GpuMovingTriangle;
+using gpu::TriangleInfo;
+constexpr int cells_max = BC_GL_CELLS_MAX;
 
 }  // namespace
 
@@ -143,7 +136,7 @@ void check_triangle_limit(std::size_t count) {
 struct FrameTriangles {
     // make_moving_triangle<float> of each, as the kernel's GLSL sees them; at
     // least one entry (GL refuses empty buffers).
-    std::vector<GpuTriangle> gpu;
+    std::vector<GpuMovingTriangle> gpu;
     std::vector<std::int32_t> classes;  // classify() of each (BC_INVALID in the padding)
     // The triangles each path draws, in index order: static_count and
     // moving_count entries, padded to one when empty (GL refuses empty
@@ -169,14 +162,7 @@ FrameTriangles frame_triangles(const Scene& scene, const CameraModel& model, boo
         } else if (out.classes[i] != BC_INVALID) {
             out.moving_list.push_back(static_cast<std::uint32_t>(i));
         }
-        for (int j = 0; j < 6; ++j) {
-            out.gpu[i].p[j][0] = tri.p[j].x;
-            out.gpu[i].p[j][1] = tri.p[j].y;
-            out.gpu[i].p[j][2] = tri.p[j].z;
-            out.gpu[i].p[j][3] = 0.0f;
-            out.gpu[i].c[j][0] = tri.c[j].x;
-            out.gpu[i].c[j][1] = tri.c[j].y;
-        }
+        out.gpu[i] = gpu::to_gpu(tri);
     }
     out.static_count = out.static_list.size();
     out.moving_count = out.moving_list.size();
@@ -314,10 +300,11 @@ private:
     std::optional<IdDepthTarget> id_depth_;  // made by run_setup
 };
 
-// Cells per moving triangle: the cull methods that bound lens and time get
-// their bounds per cell (at most 4 x 4); the others one cell, the rectangle.
-int cells_per_triangle_for(int method) {
-    return method == BC_CULL_DUALSPACE || method == BC_CULL_TWO_STAGE ? cells_max : 1;
+// Cells per moving triangle: the cull methods that bound lens and time
+// (the registry's bounds_samples) get their bounds per cell (at most 4 x 4);
+// the others one cell, the rectangle.
+int cells_per_triangle_for(CullMethod cull) {
+    return cull_method_info(cull).bounds_samples ? cells_max : 1;
 }
 
 StochasticFrame::StochasticFrame(const GlRenderer::State& state, const Scene& scene, const RenderSettings& settings,
@@ -332,16 +319,16 @@ StochasticFrame::StochasticFrame(const GlRenderer::State& state, const Scene& sc
       spp_(static_cast<std::uint32_t>(settings.spp)),
       keep_ids_(keep_ids),
       method_(kernel_cull_method(settings.cull)),
-      cells_per_triangle_(cells_per_triangle_for(method_)),
+      cells_per_triangle_(cells_per_triangle_for(settings.cull)),
       triangles_(frame_triangles(scene, model_, options.force_full_path)),
       cell_count_(triangles_.moving_count * static_cast<std::size_t>(cells_per_triangle_)),
       triangle_buffer_(storage_buffer(gl_, triangles_.gpu)),
-      info_buffer_(storage_buffer(gl_, std::max<std::size_t>(count_, 1) * triangle_info_bytes)),
+      info_buffer_(storage_buffer(gl_, std::max<std::size_t>(count_, 1) * sizeof(TriangleInfo))),
       counters_(gl_),
       colour_buffer_(storage_buffer(gl_, frame_colours(scene))),
       sum_buffer_(storage_buffer(gl_, pixels_ * sizeof(glm::vec4))),
       id_buffer_(storage_buffer(gl_, keep_ids ? pixels_ * spp_ * sizeof(std::uint32_t) : 4)),
-      cell_buffer_(storage_buffer(gl_, std::max<std::size_t>(cell_count_, 1) * cell_bounds_bytes)),
+      cell_buffer_(storage_buffer(gl_, std::max<std::size_t>(cell_count_, 1) * sizeof(CellBounds))),
       pass_sample_buffer_(storage_buffer(gl_, pixels_ * samples_per_pass * sizeof(glm::vec4))),
       pass_time_buffer_(storage_buffer(gl_, pixels_ * samples_per_pass * sizeof(float))),
       class_buffer_(storage_buffer(gl_, triangles_.classes)),

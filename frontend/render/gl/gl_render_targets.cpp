@@ -37,7 +37,8 @@ void require_target_fits(const gl::Functions& gl, int target_width, int target_h
 }
 
 gl::ShaderStage kernel_stage(GLenum type, std::string_view main_name) {
-    return gl::ShaderStage{type, {glsl::kernel_source(), shader_text("render_common.glsl"), shader_text(main_name)}};
+    return gl::ShaderStage{type, {glsl::kernel_source(), shader_text("gpu_layout_shared.h"),
+                                  shader_text("render_common.glsl"), shader_text(main_name)}};
 }
 
 IdDepthTarget::IdDepthTarget(const gl::Functions& gl, int width, int height, int samples, const char* what)

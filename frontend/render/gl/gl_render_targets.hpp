@@ -20,7 +20,7 @@ int get_integer(const gl::Functions& gl, GLenum name);
 void require_target_fits(const gl::Functions& gl, int target_width, int target_height, int width, int height);
 
 // A stage whose main needs the kernel: the emitted kernel GLSL,
-// render_common.glsl, then `main_name`. Throws gl::GlError when a shader was
+// gpu_layout_shared.h, render_common.glsl, then `main_name`. Throws gl::GlError when a shader was
 // not embedded at build time.
 gl::ShaderStage kernel_stage(GLenum type, std::string_view main_name);
 

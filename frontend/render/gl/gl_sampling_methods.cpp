@@ -1,10 +1,11 @@
 #include "render/gl/gl_sampling_methods.hpp"
 
 #include "render/common/camera_model.hpp"
+#include "render/common/method_plan.hpp"
 #include "render/common/moving_triangle.hpp"
 #include "render/common/progress.hpp"
-#include "render/cpu/methods.hpp"
 #include "render/gl/gl_render_targets.hpp"
+#include "render/gl/gpu_layout_shared.h"
 
 #include <blurcull/kernel.hpp>
 
@@ -28,23 +29,10 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using gl::GlError;
 
-double ms_since(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
-// std430 layouts of render_common.glsl's MovingTriangle and render_method.*'s MethodBox.
-struct GpuTriangle {
-    float p[6][4];
-    float c[6][2];
-};
-static_assert(sizeof(GpuTriangle) == 144, "std430 MovingTriangle");
-struct GpuBox {
-    std::int32_t quad[4];
-    std::int32_t rect[4];
-    float box[4];
-    std::int32_t index[4];
-};
-static_assert(sizeof(GpuBox) == 64, "std430 MethodBox");
+// The shaders' std430 structs (gpu_layout_shared.h, shared with the GLSL).
+using gpu::GpuMovingTriangle;
+using GpuBox = gpu::MethodBox;
 
 // The float nearest a double bound on the side that keeps float comparisons
 // exact: for a float s, s >= lo iff s >= up(lo), and s <= hi iff s <= down(hi).
@@ -114,11 +102,10 @@ void pass_boxes_range(const MethodPlan& plan, int pass, const InterleaveTupleCel
             ++out.empty;
             continue;
         }
-        GpuBox gpu{{r.x0, r.y0, r.x1, r.y1},
-                   {r.x0, r.y0, r.x1, r.y1},
-                   {round_up(box.bound.lo.x), round_up(box.bound.lo.y), round_down(box.bound.hi.x),
-                    round_down(box.bound.hi.y)},
-                   {static_cast<std::int32_t>(i), 0, 0, 0}};
+        GpuBox gpu{glm::ivec4(r.x0, r.y0, r.x1, r.y1), glm::ivec4(r.x0, r.y0, r.x1, r.y1),
+                   glm::vec4(round_up(box.bound.lo.x), round_up(box.bound.lo.y), round_down(box.bound.hi.x),
+                             round_down(box.bound.hi.y)),
+                   glm::ivec4(static_cast<std::int32_t>(i), 0, 0, 0)};
         if (table != nullptr) {
             const int tx0 = r.x0 / tile_w, ty0 = r.y0 / tile_w, tx1 = r.x1 / tile_w, ty1 = r.y1 / tile_w;
             bool any = false;
@@ -193,20 +180,10 @@ MethodTarget method_target(const MethodPlan& plan, int width, int height) {
 
 // The kernel's float triangles, as the stochastic path uploads them; at least
 // one entry (GL refuses empty buffers).
-std::vector<GpuTriangle> gpu_triangles(const Scene& scene, const CameraModel& model) {
+std::vector<GpuMovingTriangle> gpu_triangles(const Scene& scene, const CameraModel& model) {
     const std::size_t count = scene.triangles.size();
-    std::vector<GpuTriangle> triangles(std::max<std::size_t>(count, 1));
-    for (std::size_t i = 0; i < count; ++i) {
-        const kernelf::MovingTriangle tri = make_moving_triangle<float>(scene, model, i);
-        for (int j = 0; j < 6; ++j) {
-            triangles[i].p[j][0] = tri.p[j].x;
-            triangles[i].p[j][1] = tri.p[j].y;
-            triangles[i].p[j][2] = tri.p[j].z;
-            triangles[i].p[j][3] = 0.0f;
-            triangles[i].c[j][0] = tri.c[j].x;
-            triangles[i].c[j][1] = tri.c[j].y;
-        }
-    }
+    std::vector<GpuMovingTriangle> triangles(std::max<std::size_t>(count, 1));
+    for (std::size_t i = 0; i < count; ++i) triangles[i] = gpu::to_gpu(make_moving_triangle<float>(scene, model, i));
     return triangles;
 }
 
@@ -263,8 +240,9 @@ MethodFrame::MethodFrame(const gl::Functions& gl, const GlMethodPrograms& progra
       per_pixel_(static_cast<std::size_t>(plan.per_pixel)),
       table_(interleave_ ? interleave_tuple_cells(plan, settings.width, settings.height) : InterleaveTupleCells{}),
       triangle_buffer_([&] {
-          const std::vector<GpuTriangle> triangles = gpu_triangles(scene, plan.model);
-          return gl::Buffer(gl, GL_SHADER_STORAGE_BUFFER, triangles.size() * sizeof(GpuTriangle), triangles.data());
+          const std::vector<GpuMovingTriangle> triangles = gpu_triangles(scene, plan.model);
+          return gl::Buffer(gl, GL_SHADER_STORAGE_BUFFER, triangles.size() * sizeof(GpuMovingTriangle),
+                            triangles.data());
       }()),
       counters_(gl),
       box_buffer_(gl, GL_SHADER_STORAGE_BUFFER, std::max<std::size_t>(scene.triangles.size(), 1) * sizeof(GpuBox)),

@@ -2,10 +2,12 @@
 // (std430), as Blender's *_shared.h structs are: the C++ side includes this
 // header and checks every size and offset with static_assert; the GLSL side
 // gets the same text after the kernel's GLSL (which defines BC_HULL_MAX and
-// MovingTriangle) and before render_common.glsl. Every member is a 16-byte
-// vec4 / ivec4, whose std430 offsets are those of the C++ struct of
-// glm::vec4 / glm::ivec4; the one struct that is not (MovingTriangle, vec3
-// p[6] at stride 16) is the kernel's in GLSL and GpuMovingTriangle here.
+// MovingTriangle) and before render_common.glsl (frontend/render/gl/CMakeLists.txt
+// embeds it beside the shader mains). Every member is a 16-byte vec4 / ivec4
+// or four 4-byte ints filling 16 bytes, whose std430 offsets are those of the
+// C++ struct of glm::vec4 / glm::ivec4 / int; the one struct that is not
+// (MovingTriangle, vec3 p[6] at stride 16) is the kernel's in GLSL and
+// GpuMovingTriangle here.
 // docs/gl-backend.md, "Buffers".
 #ifndef BLURCULL_GPU_LAYOUT_SHARED_H
 #define BLURCULL_GPU_LAYOUT_SHARED_H
@@ -26,7 +28,7 @@ using ivec4 = glm::ivec4;
 // with the method's sample bounds for its pixels (render_bounds.comp).
 #define BC_GL_CELLS_MAX 16
 
-// TriangleInfo.meta.z: which path draws the triangle.
+// TriangleInfo.path: which path draws the triangle.
 #define BC_GL_PATH_NONE 0
 #define BC_GL_PATH_STATIC 1
 #define BC_GL_PATH_MOVING 2
@@ -35,7 +37,10 @@ using ivec4 = glm::ivec4;
 struct TriangleInfo {
     vec4 box;        // screen_bound: lo.xy, hi.xy (NDC)
     ivec4 rect;      // box_cell_rect of box: pixels x0, y0, x1, y1 (inclusive, row 0 at the top)
-    ivec4 meta;      // x: classify(), y: hull_count, z: path (BC_GL_PATH_*)
+    int needs;       // bc_classify(): 0 (static, in focus), BC_NEEDS_* bits, or BC_INVALID
+    int hull_count;  // screen_bound's hull edges in hull[]
+    int path;        // the path that draws it: BC_GL_PATH_*
+    int padding;     // 0; the four ints fill the 16 bytes before outline01 (std430)
     vec4 outline01;  // static path: the one triangle it draws (window pixels,
     vec4 outline2;   // y up), vertices 0, 1 in outline01 and 2 in outline2.xy
     vec4 hull[BC_HULL_MAX];  // the hull's edges (xyz)
@@ -45,14 +50,18 @@ struct TriangleInfo {
 struct CellBounds {
     ivec4 rect;  // pixels x0, y0, x1, y1; empty when x0 > x1
     vec4 lens;   // SampleBounds u_range, v_range
-    vec4 tx;
-    vec4 tx2;
-    vec4 ty;
-    vec4 ty2;
+    // SampleBounds' time lines (sample_passes): each holds (a, b, c, d) for
+    // a + b u <= t <= c + d u, over the lens u (time_lines_u_*) or v
+    // (time_lines_v_*). Two-stage: _a from the footprint's far edge (condition
+    // A), _b from its near edge (B); dual-space: _a the time range, _b [0, 1].
+    vec4 time_lines_u_a;  // SampleBounds.u_time_a
+    vec4 time_lines_u_b;  // SampleBounds.u_time_b
+    vec4 time_lines_v_a;  // SampleBounds.v_time_a
+    vec4 time_lines_v_b;  // SampleBounds.v_time_b
 };
 
 // One (pass, triangle) box of the interleave, interval and accum methods
-// (gl_methods.cpp fills it from method_pass_box; render_method.*).
+// (gl_sampling_methods.cpp fills it from method_pass_box; render_method.*).
 struct MethodBox {
     ivec4 quad;   // framebuffer cells x0, y0, x1, y1 (inclusive, row 0 at the top)
     ivec4 rect;   // lattice cells (pixels but for interleave) x0, y0, x1, y1, inclusive
@@ -80,11 +89,14 @@ inline GpuMovingTriangle to_gpu(const kernelf::MovingTriangle& tri) {
 
 static_assert(sizeof(vec4) == 16 && sizeof(ivec4) == 16, "std430 vec4 / ivec4");
 static_assert(sizeof(TriangleInfo) == (5 + BC_HULL_MAX) * 16, "std430 TriangleInfo");
-static_assert(offsetof(TriangleInfo, rect) == 16 && offsetof(TriangleInfo, meta) == 32 &&
+static_assert(offsetof(TriangleInfo, rect) == 16 && offsetof(TriangleInfo, needs) == 32 &&
+                  offsetof(TriangleInfo, hull_count) == 36 && offsetof(TriangleInfo, path) == 40 &&
+                  offsetof(TriangleInfo, padding) == 44 &&
                   offsetof(TriangleInfo, outline01) == 48 && offsetof(TriangleInfo, outline2) == 64 &&
                   offsetof(TriangleInfo, hull) == 80,
               "std430 TriangleInfo offsets");
-static_assert(sizeof(CellBounds) == 6 * 16 && offsetof(CellBounds, lens) == 16 && offsetof(CellBounds, ty2) == 80,
+static_assert(sizeof(CellBounds) == 6 * 16 && offsetof(CellBounds, lens) == 16 &&
+                  offsetof(CellBounds, time_lines_u_a) == 32 && offsetof(CellBounds, time_lines_v_b) == 80,
               "std430 CellBounds");
 static_assert(sizeof(MethodBox) == 64 && offsetof(MethodBox, rect) == 16 && offsetof(MethodBox, box) == 32 &&
                   offsetof(MethodBox, index) == 48,

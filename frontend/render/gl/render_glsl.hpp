@@ -7,7 +7,8 @@
 
 namespace blurcull::glsl {
 
-// The text of frontend/render/gl/shaders/<name> (e.g. "render_setup.comp");
+// The text of frontend/render/gl/shaders/<name> (e.g. "render_setup.comp"),
+// or of frontend/render/gl/gpu_layout_shared.h for "gpu_layout_shared.h";
 // empty when there is no such file.
 std::string_view render_shader_source(std::string_view name);
 

@@ -8,7 +8,7 @@ layout(std430, binding = 6) writeonly buffer Cells { CellBounds cells[]; };
 layout(std430, binding = 11) readonly buffer MovingList { uint moving_list[]; };  // index order
 
 uniform int moving_count;
-uniform int cells_per_triangle;  // 1, or CELLS_MAX when the method bounds lens and time
+uniform int cells_per_triangle;  // 1, or BC_GL_CELLS_MAX when the method bounds lens and time
 uniform int method;
 uniform int cell_pixels;         // the smallest cell side, in pixels
 
@@ -20,7 +20,7 @@ void main() {
     SampleBounds sb = bc_no_sample_bounds();
     out_cell.rect = ivec4(0, 0, -1, -1);
     ivec4 r = infos[i].rect;
-    if (infos[i].path == PATH_MOVING) {
+    if (infos[i].path == BC_GL_PATH_MOVING) {
         int width = r.z - r.x + 1, height = r.w - r.y + 1;
         int columns = cells_per_triangle == 1 ? 1 : clamp((width + cell_pixels - 1) / cell_pixels, 1, 4);
         int rows = cells_per_triangle == 1 ? 1 : clamp((height + cell_pixels - 1) / cell_pixels, 1, 4);
@@ -33,11 +33,9 @@ void main() {
         if (row < rows && column < columns && c.x <= c.z && c.y <= c.w) {
             out_cell.rect = c;
             if (cells_per_triangle > 1 && infos[i].needs != 0) {
-                // The footprint as the CPU backend forms it (pixel_ndc_bounds of the corner pixels).
-                vec2 top_left = grid_ndc(c.x, c.y);
-                vec2 bottom_right = grid_ndc(c.z + 1, c.w + 1);
-                sb = bc_sample_bounds(triangles[i], vec2(top_left.x, bottom_right.y),
-                                   vec2(bottom_right.x, top_left.y), method);
+                // The footprint as the CPU backend forms it.
+                vec4 footprint = bc_pixel_rect_ndc(c, image_size);
+                sb = bc_sample_bounds(triangles[i], footprint.xy, footprint.zw, method);
                 if (sb.empty) out_cell.rect = ivec4(0, 0, -1, -1);
             }
         }

@@ -1,6 +1,6 @@
 // The interleave, interval and accum methods: one invocation per framebuffer
 // cell (one sample each; no MSAA), the pass's sample of that cell, the
-// triangle's box for the pass, then the exact bc_covers() and gl_FragDepth =
+// triangle's box for the pass, then bc_sample_test() and gl_FragDepth =
 // near / w with a strict GREATER depth test, as the stochastic path.
 //  * interleave (method_kind 0): one framebuffer cell per tile of the
 //    width*s x height*s lattice; in the pass of tuple k, tile t's cell is
@@ -9,12 +9,6 @@
 //  * interval (1): pixel p's sample of stratum pass_index, computed by
 //    render_method_samples.comp;
 //  * accum (2): every pixel at the pass's offset, lens and time.
-struct MethodBox {
-    ivec4 quad;
-    ivec4 rect;
-    vec4 box;
-    ivec4 index;
-};
 layout(std430, binding = 9) readonly buffer Boxes { MethodBox boxes[]; };
 layout(std430, binding = 2) buffer Counters { uint tested; uint hit; };
 // tuple_cell[k * tile_count + t]: gy * lattice_width + gx of tuple k's cell in
@@ -37,8 +31,7 @@ flat in int g_box;
 layout(location = 0) out uint out_id;
 
 void main() {
-    // The cell (row 0 at the top) of this fragment: GL's window rows grow upwards.
-    uvec2 cell = uvec2(uint(gl_FragCoord.x), uint(target_size.y) - 1u - uint(gl_FragCoord.y));
+    uvec2 cell = fragment_cell(gl_FragCoord.xy, target_size);
     vec2 ndc;
     vec2 lens = pass_lens;
     float time = pass_t;
@@ -49,10 +42,7 @@ void main() {
         ivec4 r = boxes[g_box].rect;
         if (int(cell.x) < r.x || int(cell.x) > r.z || int(cell.y) < r.y || int(cell.y) > r.w) discard;
         vec2 jitter = bc_interleaved_jitter(cell.x, cell.y, seed);
-        precise vec2 offset = (vec2(float(cell.x % scale), float(cell.y % scale)) + jitter) / float(scale);
-        // The largest float below 1, as the CPU clamps it.
-        offset = min(offset, vec2(uintBitsToFloat(0x3f7fffffu)));
-        ndc = sample_ndc(cell.x / scale, cell.y / scale, offset);
+        ndc = bc_interleaved_sample_ndc(ivec2(cell), int(scale), jitter, image_size);
     } else if (method_kind == 1) {
         uint p = cell.y * uint(image_size.x) + cell.x;
         ndc = pass_ndc_lens[p].xy;
@@ -66,12 +56,13 @@ void main() {
     b.lo = boxes[g_box].box.xy;
     b.hi = boxes[g_box].box.zw;
     b.hull_count = 0;
-    if (!bc_screen_contains(b, ndc)) discard;
-    atomicAdd(tested, 1u);
     int triangle = boxes[g_box].index.x;
     float depth;
-    if (!bc_covers(triangles[triangle], ndc, lens, time, near_plane, depth)) discard;
+    int verdict = bc_sample_test(triangles[triangle], b, true, bc_no_sample_bounds(), ndc, lens, time, near_plane, depth);
+    if (verdict == BC_SAMPLE_CULLED) discard;
+    atomicAdd(tested, 1u);
+    if (verdict != BC_SAMPLE_COVERED) discard;
     atomicAdd(hit, 1u);
-    gl_FragDepth = near_plane / depth;
+    gl_FragDepth = bc_depth_key(near_plane, depth);
     out_id = uint(triangle);
 }

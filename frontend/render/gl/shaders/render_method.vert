@@ -3,12 +3,6 @@
 // hold its samples (tiles for interleave, pixels otherwise), from the
 // rectangle the host computed for that pass (method_pass_box, the same boxes
 // the CPU renderers test in).
-struct MethodBox {
-    ivec4 quad;   // framebuffer cells x0, y0, x1, y1 (inclusive, row 0 at the top)
-    ivec4 rect;   // lattice cells (pixels but for interleave) x0, y0, x1, y1, inclusive
-    vec4 box;     // screen box lo.xy, hi.xy (NDC), rounded inwards to float
-    ivec4 index;  // x: the triangle
-};
 layout(std430, binding = 9) readonly buffer Boxes { MethodBox boxes[]; };
 
 uniform vec2 target_size;  // framebuffer width, height
@@ -23,5 +17,5 @@ void main() {
     bool top = k == 2 || k == 3 || k == 5;
     float x = float(right ? r.z + 1 : r.x);
     float y = float(top ? r.y : r.w + 1);
-    gl_Position = vec4(-1.0 + 2.0 * x / target_size.x, 1.0 - 2.0 * y / target_size.y, 0.5, 1.0);
+    gl_Position = vec4(bc_raster_to_ndc(vec2(x, y), target_size), 0.5, 1.0);
 }

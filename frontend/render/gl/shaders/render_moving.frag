@@ -1,6 +1,6 @@
 // Moving path, one invocation per sample (gl_SampleID makes it run at sample
 // rate): sample pass_base + gl_SampleID of the pattern (render_samples.comp), culled by the cell's
-// bounds and the screen bound, then the exact bc_covers(); its depth goes to
+// bounds and the screen bound, then the exact bc_covers() (bc_sample_test); its depth goes to
 // gl_FragDepth (near / w), so the depth test is per sample.
 layout(std430, binding = 1) readonly buffer Infos { TriangleInfo infos[]; };
 layout(std430, binding = 2) buffer Counters { uint tested; uint hit; };
@@ -14,15 +14,10 @@ flat in vec4 g_time_lines_v_a;
 flat in vec4 g_time_lines_v_b;
 layout(location = 0) out uint out_id;
 
-// The pixel (row 0 at the top) of this fragment: GL's window rows grow upwards.
-uvec2 fragment_pixel() {
-    return uvec2(uint(gl_FragCoord.x), uint(image_size.y) - 1u - uint(gl_FragCoord.y));
-}
-
 void main() {
     uint j = pass_base + uint(gl_SampleID);
     if (j >= spp) discard;
-    uvec2 pixel = fragment_pixel();
+    uvec2 pixel = fragment_cell(gl_FragCoord.xy, image_size);
     uint slot = (pixel.y * uint(image_size.x) + pixel.x) * 4u + uint(gl_SampleID);
     vec4 ndc_lens = pass_ndc_lens[slot];
     PixelSample s;
@@ -37,7 +32,6 @@ void main() {
     sb.u_time_b = g_time_lines_u_b;
     sb.v_time_a = g_time_lines_v_a;
     sb.v_time_b = g_time_lines_v_b;
-    if (!bc_sample_passes(sb, s.lens, s.time)) discard;
     vec2 ndc = ndc_lens.xy;
     ScreenBound b;
     b.empty = false;
@@ -47,12 +41,13 @@ void main() {
     for (int k = 0; k < BC_HULL_MAX; ++k) {
         b.hull_edge[k] = k < b.hull_count ? infos[g_index].hull[k].xyz : vec3(0.0);
     }
-    if (!bc_screen_contains(b, ndc)) discard;
-    atomicAdd(tested, 1u);
     float depth;
-    if (!bc_covers(triangles[g_index], ndc, s.lens, s.time, near_plane, depth)) discard;
+    int verdict = bc_sample_test(triangles[g_index], b, true, sb, ndc, s.lens, s.time, near_plane, depth);
+    if (verdict == BC_SAMPLE_CULLED) discard;
+    atomicAdd(tested, 1u);
+    if (verdict != BC_SAMPLE_COVERED) discard;
     atomicAdd(hit, 1u);
-    gl_FragDepth = near_plane / depth;
+    gl_FragDepth = bc_depth_key(near_plane, depth);
     gl_SampleMask[0] = 1 << gl_SampleID;
     out_id = uint(g_index);
 }

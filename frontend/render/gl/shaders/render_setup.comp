@@ -31,7 +31,9 @@ bool grown_outline(MovingTriangle tri, out vec2 outline[3]) {
     for (int k = 0; k < 3; ++k) {
         outline[k] = vec2(0.0);
         if (!(tri.p[k].z >= near_plane)) return false;
-        v[k] = (tri.p[k].xy / tri.p[k].z + 1.0) * 0.5 * image_size;
+        // Window y grows upwards: the raster position of the NDC mirrored in y.
+        vec2 ndc = tri.p[k].xy / tri.p[k].z;
+        v[k] = bc_ndc_to_raster(vec2(ndc.x, -ndc.y), image_size);
     }
     float area2 = cross2(v[1] - v[0], v[2] - v[0]);
     if (!(abs(area2) > 1e-6)) return false;
@@ -52,12 +54,6 @@ bool grown_outline(MovingTriangle tri, out vec2 outline[3]) {
     return true;
 }
 
-int clamp_floor(float v, int limit) {
-    if (!(v > 0.0)) return 0;  // also NaN
-    if (v >= float(limit)) return limit;
-    return int(floor(v));
-}
-
 void main() {
     int i = int(gl_GlobalInvocationID.x);
     if (i >= triangle_count) return;
@@ -70,7 +66,7 @@ void main() {
     int needs = classes[i];
     info.needs = needs;
     info.hull_count = 0;
-    info.path = PATH_NONE;
+    info.path = BC_GL_PATH_NONE;
     info.padding = 0;
     for (int k = 0; k < BC_HULL_MAX; ++k) info.hull[k] = vec4(0.0);
     if (needs == BC_INVALID) {
@@ -89,24 +85,15 @@ void main() {
     for (int k = 0; k < BC_HULL_MAX; ++k) {
         if (k < b.hull_count) info.hull[k] = vec4(b.hull_edge[k], 0.0);
     }
-    int w = int(image_size.x), h = int(image_size.y);
-    // The pixels the box reaches, widened by RECT_MARGIN pixels on each side:
-    // this rounding is float (a few ulps of the image size), the exact
-    // containment test is screen_contains in the fragment shader. A whole
-    // pixel of margin would make a sub-pixel triangle's rectangle 3 x 3
-    // pixels, several of llvmpipe's 4 x 4 blocks.
-    const float RECT_MARGIN = 1.0 / 64.0;
-    ivec4 r = ivec4(clamp_floor((b.lo.x + 1.0) * 0.5 * image_size.x - RECT_MARGIN, w),
-                    clamp_floor((1.0 - b.hi.y) * 0.5 * image_size.y - RECT_MARGIN, h),
-                    clamp_floor((b.hi.x + 1.0) * 0.5 * image_size.x + RECT_MARGIN, w),
-                    clamp_floor((1.0 - b.lo.y) * 0.5 * image_size.y + RECT_MARGIN, h));
-    r = ivec4(max(r.x, 0), max(r.y, 0), min(r.z, w - 1), min(r.w, h - 1));
-    if (b.lo.x > 1.0 || b.hi.x < -1.0 || b.lo.y > 1.0 || b.hi.y < -1.0 || r.x > r.z || r.y > r.w) {
+    // The pixels that can hold a sample in the box (the exact containment
+    // test is screen_contains in the fragment shader); empty off screen.
+    ivec4 r = bc_box_cell_rect(b.lo, b.hi, image_size);
+    if (r.x > r.z || r.y > r.w) {
         infos[i] = info;
         return;
     }
     info.rect = r;
-    info.path = is_static ? PATH_STATIC : PATH_MOVING;
+    info.path = is_static ? BC_GL_PATH_STATIC : BC_GL_PATH_MOVING;
     // The static path draws one triangle per static triangle (llvmpipe's
     // cost here is per primitive, not per fragment): the triangle grown by a
     // pixel, or, when that is larger (small or thin triangles: a thin

@@ -13,7 +13,7 @@ layout(location = 0) out uint out_id;
 void main() {
     uint j = pass_base + uint(gl_SampleID);
     if (j >= spp) discard;
-    uvec2 pixel = uvec2(uint(gl_FragCoord.x), uint(image_size.y) - 1u - uint(gl_FragCoord.y));
+    uvec2 pixel = fragment_cell(gl_FragCoord.xy, image_size);
     uint slot = (pixel.y * uint(image_size.x) + pixel.x) * group_samples + (j - group_base);
     uint id = group_ids[slot];
     if (id == 0xffffffffu) discard;

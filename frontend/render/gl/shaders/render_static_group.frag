@@ -3,9 +3,9 @@
 // triangle is set up once and its fragment (one per pixel, no gl_SampleID)
 // loops over the group's samples of the pixel (render_samples.comp, same
 // values as the passes see). Per covered sample, the winner is what the
-// per-pass draw in index order with the GREATER depth test kept: the larger
-// depth key near / w (clamped to [0, 1] as the depth buffer clamps
-// gl_FragDepth), on equal keys the lower index. group_depths takes the
+// per-pass draw in index order with the GREATER depth test kept
+// (bc_depth_key_wins): the larger depth key bc_depth_key (near / w, clamped to
+// [0, 1] as the depth buffer clamps gl_FragDepth), on equal keys the lower index. group_depths takes the
 // largest key (atomicMax: positive floats order as their bits); a triangle
 // below it has lost. Otherwise a compare-and-swap loop on group_ids against
 // the current holder's key, recomputed (bc_covers() is deterministic): lock-free
@@ -19,12 +19,8 @@ layout(std430, binding = 15) buffer GroupDepths { uint group_depths[]; };
 
 flat in int g_index;
 
-uvec2 fragment_pixel() {
-    return uvec2(uint(gl_FragCoord.x), uint(image_size.y) - 1u - uint(gl_FragCoord.y));
-}
-
 void main() {
-    uvec2 pixel = fragment_pixel();
+    uvec2 pixel = fragment_cell(gl_FragCoord.xy, image_size);
     // The rect holds every sample in the box: none outside it can be covered.
     ivec4 rect = infos[g_index].rect;
     if (int(pixel.x) < rect.x || int(pixel.x) > rect.z || int(pixel.y) < rect.y || int(pixel.y) > rect.w) return;
@@ -39,11 +35,14 @@ void main() {
         if (pass_base + k >= spp) break;
         uint slot = first + k;
         vec4 ndc_lens = group_ndc_lens[slot];
-        if (!bc_screen_contains(b, ndc_lens.xy)) continue;
+        float depth;
+        int verdict = bc_sample_test(triangles[g_index], b, true, bc_no_sample_bounds(), ndc_lens.xy, ndc_lens.zw,
+                                     group_time[slot], near_plane, depth);
+        if (verdict == BC_SAMPLE_CULLED) continue;
         ++tested_here;
-        float key = static_depth_key(g_index, slot);
-        if (key < 0.0) continue;
+        if (verdict != BC_SAMPLE_COVERED) continue;
         ++hit_here;
+        float key = bc_depth_key(near_plane, depth);
         if (!(key > 0.0)) continue;  // the depth test against the cleared 0 would drop it
         uint bits = floatBitsToUint(key);
         if (atomicMax(group_depths[slot], bits) > bits) continue;
@@ -52,7 +51,7 @@ void main() {
         while (true) {
             if (current != 0xffffffffu) {
                 float other = static_depth_key(int(current), slot);
-                if (!(key > other || (key == other && mine < current))) break;
+                if (!bc_depth_key_wins(key, mine, other, current)) break;
             }
             uint seen = atomicCompSwap(group_ids[slot], current, mine);
             if (seen == current) break;

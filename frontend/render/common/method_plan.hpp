@@ -1,7 +1,8 @@
-// What the CPU renderers of interleave, interval and accum (methods.hpp) and
-// the GL backend's methods (gl_methods.cpp) share: every choice of samples
-// and boxes is made here once, so both backends test the same samples against
-// the same boxes.
+// What the CPU renderers of interleave, interval and accum
+// (render/cpu/methods.hpp) and the GL backend's methods
+// (render/gl/gl_sampling_methods.cpp) share: every choice of samples and boxes
+// is made here once, so both backends test the same samples against the same
+// boxes.
 #pragma once
 
 #include "render/common/camera_model.hpp"
@@ -56,8 +57,8 @@ struct MethodPlan {
 // a non-square spp) or SceneError.
 MethodPlan make_method_plan(const Scene& scene, const RenderSettings& settings, const InterleaveOptions& options = {});
 
-// The box that pass k tests triangle i (visible) in and its rectangle of
-// lattice cells, one cell wider on each side; empty rect when off screen.
+// The box that pass k tests triangle i (visible) in and the lattice cells
+// that can hold a sample in it (box_cell_rect); empty rect when off screen.
 struct PassBox {
     kernel<double>::ScreenBound bound;
     CellRect rect;

@@ -1,4 +1,4 @@
-#include "render/cpu/method_plan.hpp"
+#include "render/common/method_plan.hpp"
 
 #include "render/common/moving_triangle.hpp"
 #include "render/common/shading.hpp"
@@ -38,24 +38,14 @@ K::MovingTriangle restricted(const K::MovingTriangle& tri, double t0, double t1)
     return result;
 }
 
-// Raster-space rectangle (x right, y down, in units of 1/scale pixel) of the
-// lattice cells that may hold a sample inside the NDC box, clamped to the
-// lattice, one cell wider on each side so float rounding of sample positions
-// cannot push a sample out of it; empty (x0 > x1) when the box misses the screen.
+// The lattice cells (x right, y down, scale x scale per pixel) that can hold
+// a sample inside the bound (kernel's box_cell_rect, clamped to the lattice);
+// empty (x0 > x1) when the bound is empty or misses the screen.
 CellRect cell_rect(const CameraModel& model, const K::ScreenBound& bound, int scale) {
-    CellRect r{0, 0, -1, -1};
-    if (bound.empty || bound.lo.x > 1.0 || bound.hi.x < -1.0 || bound.lo.y > 1.0 || bound.hi.y < -1.0) return r;
-    const int cells_x = model.width * scale, cells_y = model.height * scale;
-    auto cell = [](double v, int limit) {
-        if (!(v > 0.0)) return 0;  // also NaN
-        if (v >= double(limit)) return limit - 1;
-        return static_cast<int>(std::floor(v));
-    };
-    r.x0 = std::max(cell((bound.lo.x + 1.0) * 0.5 * cells_x, cells_x) - 1, 0);
-    r.x1 = std::min(cell((bound.hi.x + 1.0) * 0.5 * cells_x, cells_x) + 1, cells_x - 1);
-    r.y0 = std::max(cell((1.0 - bound.hi.y) * 0.5 * cells_y, cells_y) - 1, 0);
-    r.y1 = std::min(cell((1.0 - bound.lo.y) * 0.5 * cells_y, cells_y) + 1, cells_y - 1);
-    return r;
+    if (bound.empty) return CellRect{0, 0, -1, -1};
+    const K::vec2 cells(double(model.width * scale), double(model.height * scale));
+    const glm::ivec4 r = K::box_cell_rect(bound.lo, bound.hi, cells);
+    return CellRect{r.x, r.y, r.z, r.w};
 }
 
 int exact_square_root(int n) {
@@ -191,7 +181,8 @@ InterleaveTupleCells interleave_tuple_cells(const MethodPlan& plan, int width, i
                 tiles.prototype_of_tile(static_cast<std::uint32_t>(tx), static_cast<std::uint32_t>(ty));
             for (std::size_t k = 0; k < n; ++k) {
                 const int slot = tiles.tuple_slot[prototype * n + k];
-                const int gx = tx * tile_w + slot % tile_w, gy = ty * tile_w + slot / tile_w;
+                const glm::ivec2 cell = K::interleaved_cell(glm::ivec2(tx, ty), slot, tile_w);
+                const int gx = cell.x, gy = cell.y;
                 if (gx >= cells_x || gy >= cells_y) continue;  // past the image's edge
                 table.cells[k * tile_count + tile] =
                     static_cast<std::uint32_t>(gy) * static_cast<std::uint32_t>(cells_x) + static_cast<std::uint32_t>(gx);
