@@ -11,7 +11,7 @@
 //                                                  setup, the sample test, the exact test on
 //                                                  the samples that pass
 //   pixel_and_triangle/<precision>/<method>/<workload>  the same plus the per-triangle setup
-// <method> is bbox, hull, dualspace, clip2 (the pixel benchmarks also have none:
+// <method> is bbox, hull, dualspace, clip2, edges (the pixel benchmarks also have none:
 // the exact test on every sample); <workload> is motion, defocus, both or
 // adversarial (the other generator families, mixed).
 //
@@ -50,7 +50,8 @@ constexpr std::size_t kFixedConfigs = 256;   // configurations per fixed (callgr
 constexpr std::size_t kSamplesPerPixel = 16;
 constexpr double kPixelWidth = 2.0 / 1024.0;  // one pixel of a 1024-wide screen, in NDC
 constexpr int kNoCull = -1;                   // pixel baseline: exact test on every sample
-constexpr std::array<int, 5> kPixelMethods{kNoCull, BC_CULL_BBOX, BC_CULL_HULL, BC_CULL_DUALSPACE, BC_CULL_TWO_STAGE};
+constexpr std::array<int, 6> kPixelMethods{kNoCull,           BC_CULL_BBOX,      BC_CULL_HULL,
+                                          BC_CULL_DUALSPACE, BC_CULL_TWO_STAGE, BC_CULL_EDGES};
 
 enum class Workload { motion, defocus, both, adversarial };
 constexpr std::array<Workload, 4> kWorkloads{Workload::motion, Workload::defocus, Workload::both,

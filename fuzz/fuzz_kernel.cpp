@@ -22,7 +22,8 @@ namespace {
 using Kf = blurcull::kernelf;
 using Kd = blurcull::kerneld;
 
-constexpr int kMethods[] = {BC_CULL_BBOX, BC_CULL_HULL, BC_CULL_DUALSPACE, BC_CULL_TWO_STAGE};
+constexpr int kMethods[] = {BC_CULL_BBOX, BC_CULL_HULL, BC_CULL_DUALSPACE, BC_CULL_TWO_STAGE, BC_CULL_EDGES};
+constexpr int kMethodCount = sizeof kMethods / sizeof kMethods[0];
 constexpr std::size_t kHeaderFloats = 36 + 1 + 4;
 
 struct Reader {
@@ -88,7 +89,7 @@ void check_fallback(const typename K::MovingTriangle& tri, typename K::real near
         const typename K::ScreenBound sb = K::screen_bound(tri, near, method);
         const typename K::SampleBounds b = K::sample_bounds(tri, lo, hi, method);
         if (sb.empty || sb.hull_count != 0 || b.empty || b.u_range != typename K::vec2(-1, 1) ||
-            b.v_range != typename K::vec2(-1, 1)) {
+            b.v_range != typename K::vec2(-1, 1) || b.edges.piece[0].mode != BC_EDGE_NONE) {
             std::fprintf(stderr, "fuzz_kernel: NaN/Inf input without the documented fallback (method %d)\n", method);
             std::abort();
         }
@@ -121,10 +122,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     check_fallback<Kf>(tri, near, lo, hi);
     check_fallback<Kd>(tri_d, double(near), lo_d, hi_d);
 
-    Kf::ScreenBound screen_f[4];
-    Kf::SampleBounds bounds_f[4];
-    Kd::ScreenBound screen_d[4];
-    Kd::SampleBounds bounds_d[4];
+    Kf::ScreenBound screen_f[kMethodCount];
+    Kf::SampleBounds bounds_f[kMethodCount];
+    Kd::ScreenBound screen_d[kMethodCount];
+    Kd::SampleBounds bounds_d[kMethodCount];
     for (int method : kMethods) {
         screen_f[method] = Kf::screen_bound(tri, near, method);
         bounds_f[method] = Kf::sample_bounds(tri, lo, hi, method);

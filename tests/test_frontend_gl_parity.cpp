@@ -1,6 +1,6 @@
 // GPU/host parity of the shared kernel: a GLSL 4.50 compute shader built from
 // the emitted blurcull_kernel.glsl runs screen_bound + screen_contains,
-// sample_bounds + sample_passes (all four methods), covers, classify and
+// sample_bounds + sample_passes (all five methods), covers, classify and
 // pixel_sample on host-generated inputs in a headless Mesa context; the host
 // runs kernel<float> on the same float inputs. Every decision must agree, every
 // bound value within kMaxBoundUlps (docs/glsl.md states the tolerance and the
@@ -8,22 +8,7 @@
 //
 // No GL context (no Mesa): fails when CI=true, else skips with a message.
 
-// Host code must not contract a*b+c into an fma: llvmpipe does not fuse
-// (design brief, section 8). Before any include, so the kernel's functions
-// instantiated below are compiled this way too.
-#if defined(__clang__)
-#pragma clang fp contract(off)
-#elif defined(__GNUC__)
-#pragma GCC optimize("fp-contract=off")
-#endif
-
-#include "frontend_test_helpers.hpp"
-#include "kernel_generators.hpp"
-#include "render/gl/gl_context.hpp"
-
-#include <blurcull/glsl/kernel_glsl.hpp>
-
-#include <doctest/doctest.h>
+#include "gl_parity_helpers.hpp"
 
 #include <algorithm>
 #include <array>
@@ -40,7 +25,7 @@
 
 using namespace blurcull;
 using namespace blurcull::testing;
-using blurcull::frontend::test::is_ci;
+using blurcull::frontend::test::context_or_skip;
 using Kf = kernel<float>;
 
 namespace {
@@ -67,7 +52,8 @@ constexpr int kInputKeys = 4;  // px, py, index, spp
 // lens, time).
 constexpr int kScreenUints = 1 + 2 + 2 + 1 + 3 * BC_HULL_MAX;
 constexpr int kSampleUints = 1 + 2 + 2 + 4 * 4;
-constexpr int kConfigUints = 4 * (kScreenUints + kSampleUints) + 1;
+constexpr int kMethods = 5;  // BC_CULL_BBOX .. BC_CULL_EDGES
+constexpr int kConfigUints = kMethods * (kScreenUints + kSampleUints) + 1;
 constexpr int kInputUints = 2 + 5;
 
 // The shader's main: the library (blurcull_kernel.glsl) comes before it.
@@ -85,7 +71,8 @@ const int CONFIG_FLOATS = 36;
 const int INPUT_FLOATS = 5;
 const int SCREEN_UINTS = 6 + 3 * BC_HULL_MAX;
 const int SAMPLE_UINTS = 21;
-const int CONFIG_UINTS = 4 * (SCREEN_UINTS + SAMPLE_UINTS) + 1;
+const int METHODS = 5;
+const int CONFIG_UINTS = METHODS * (SCREEN_UINTS + SAMPLE_UINTS) + 1;
 const int INPUT_UINTS = 7;
 
 void put(int at, float value) { config_out[at] = floatBitsToUint(value); }
@@ -110,11 +97,11 @@ void main() {
 
     bool first = id % samples_per_config == 0u;
     uint decisions = 0u;
-    for (int method = 0; method < 4; ++method) {
+    for (int method = 0; method < METHODS; ++method) {
         ScreenBound sb = bc_screen_bound(tri, near, method);
         SampleBounds b = bc_sample_bounds(tri, s_lo, s_hi, method);
         if (bc_screen_contains(sb, s)) decisions |= 1u << (1 + method);
-        if (bc_sample_passes(b, uv, t)) decisions |= 1u << (5 + method);
+        if (bc_sample_passes(b, uv, t)) decisions |= 1u << (1 + METHODS + method);
         if (!first) continue;
         int o = config * CONFIG_UINTS + method * (SCREEN_UINTS + SAMPLE_UINTS);
         config_out[o] = sb.empty ? 1u : 0u;
@@ -157,7 +144,10 @@ constexpr std::uint32_t kPixelSeed = 0x5eedu;
 const char* const kDecisionNames[] = {
     "covers",
     "screen_contains bbox", "screen_contains hull", "screen_contains dualspace", "screen_contains clip2",
-    "sample_passes bbox", "sample_passes hull", "sample_passes dualspace", "sample_passes clip2"};
+    "screen_contains edges",
+    "sample_passes bbox", "sample_passes hull", "sample_passes dualspace", "sample_passes clip2",
+    "sample_passes edges"};
+constexpr int kDecisionBits = 1 + 2 * kMethods;
 
 // The sample-bound values in output order, two uints per name.
 const char* const kSampleFieldNames[] = {"u_range",  "v_range",  "u_time_a", "u_time_a", "u_time_b",
@@ -185,17 +175,6 @@ std::int64_t ulp_distance(float a, float b) {
     };
     std::int64_t d = ordered(a) - ordered(b);
     return d < 0 ? -d : d;
-}
-
-// A context, or nothing after saying why (and failing in CI).
-std::optional<gl::HeadlessContext> context_or_skip(std::optional<gl::ContextKind> kind = std::nullopt) {
-    try {
-        return kind ? gl::HeadlessContext::create(*kind) : gl::HeadlessContext::create();
-    } catch (const gl::GlError& e) {
-        if (is_ci()) FAIL("no headless OpenGL 4.5 context in CI: " << std::string(e.what()));
-        MESSAGE("SKIPPED: no headless OpenGL 4.5 context (" << std::string(e.what()) << "); CI=true makes this a failure");
-        return std::nullopt;
-    }
 }
 
 struct Inputs {
@@ -300,9 +279,9 @@ HostResults run_host(const Inputs& in) {
         Kf::vec2 s_lo(c[31], c[32]);
         Kf::vec2 s_hi(c[33], c[34]);
         std::uint32_t* co = &out.configs[static_cast<std::size_t>(n) * kConfigUints];
-        std::array<Kf::ScreenBound, 4> screens;
-        std::array<Kf::SampleBounds, 4> bounds;
-        for (int method = 0; method < 4; ++method) {
+        std::array<Kf::ScreenBound, kMethods> screens;
+        std::array<Kf::SampleBounds, kMethods> bounds;
+        for (int method = 0; method < kMethods; ++method) {
             const Kf::ScreenBound& sb = screens[static_cast<std::size_t>(method)] = Kf::screen_bound(tri, near, method);
             const Kf::SampleBounds& b = bounds[static_cast<std::size_t>(method)] =
                 Kf::sample_bounds(tri, s_lo, s_hi, method);
@@ -336,9 +315,10 @@ HostResults run_host(const Inputs& in) {
             Kf::vec2 uv(s[2], s[3]);
             float t = s[4];
             std::uint32_t decisions = 0u;
-            for (int method = 0; method < 4; ++method) {
+            for (int method = 0; method < kMethods; ++method) {
                 if (Kf::screen_contains(screens[static_cast<std::size_t>(method)], pos)) decisions |= 1u << (1 + method);
-                if (Kf::sample_passes(bounds[static_cast<std::size_t>(method)], uv, t)) decisions |= 1u << (5 + method);
+                if (Kf::sample_passes(bounds[static_cast<std::size_t>(method)], uv, t))
+                    decisions |= 1u << (1 + kMethods + method);
             }
             float depth = 0.0f;
             if (Kf::covers(tri, pos, uv, t, near, depth)) decisions |= 1u;
@@ -369,7 +349,7 @@ struct Comparison {
     std::int64_t max_offset_time_ulps = 0;
     std::int64_t max_lens_ulps = 0;
     std::string first_mismatch;
-    std::array<long, 9> host_true{};  // per decision bit: how often the host said true
+    std::array<long, kDecisionBits> host_true{};  // per decision bit: how often the host said true
     long inputs = 0;
     std::map<std::string, std::int64_t> max_ulps_by_name;  // values that differ, by field
     std::string worst_value;
@@ -413,11 +393,11 @@ void note_value(Comparison& cmp, std::uint32_t host, std::uint32_t gpu, const st
 
 Comparison compare(const Inputs& in, const HostResults& host, const GpuResults& gpu) {
     Comparison cmp;
-    const char* methods[] = {"bbox", "hull", "dualspace", "clip2"};
+    const char* methods[] = {"bbox", "hull", "dualspace", "clip2", "edges"};
     for (int n = 0; n < in.config_count; ++n) {
         const std::uint32_t* h = &host.configs[static_cast<std::size_t>(n) * kConfigUints];
         const std::uint32_t* g = &gpu.configs[static_cast<std::size_t>(n) * kConfigUints];
-        for (int method = 0; method < 4; ++method) {
+        for (int method = 0; method < kMethods; ++method) {
             int o = method * (kScreenUints + kSampleUints);
             std::string m = methods[method];
             note_decision(cmp, h[o] != 0u, g[o] != 0u, "screen_bound.empty " + m, n);
@@ -437,7 +417,7 @@ Comparison compare(const Inputs& in, const HostResults& host, const GpuResults& 
             const std::uint32_t* hi = &host.inputs[id * kInputUints];
             const std::uint32_t* gi = &gpu.inputs[id * kInputUints];
             ++cmp.inputs;
-            for (int bit = 0; bit < 9; ++bit) {
+            for (int bit = 0; bit < kDecisionBits; ++bit) {
                 note_decision(cmp, (hi[0] >> bit) & 1u, (gi[0] >> bit) & 1u, kDecisionNames[bit], n);
                 cmp.host_true[static_cast<std::size_t>(bit)] += (hi[0] >> bit) & 1u;
             }
@@ -466,7 +446,7 @@ void check_parity(const gl::HeadlessContext& context, int config_count, std::uin
             << " ULP; pixel_sample offset/time max " << cmp.max_offset_time_ulps << " ULP, lens max "
             << cmp.max_lens_ulps << " ULP");
     std::string true_counts;
-    for (int bit = 0; bit < 9; ++bit)
+    for (int bit = 0; bit < kDecisionBits; ++bit)
         true_counts += std::string(bit ? ", " : "") + kDecisionNames[bit] + " " + std::to_string(cmp.host_true[static_cast<std::size_t>(bit)]);
     MESSAGE("  true of " << cmp.inputs << " inputs: " << true_counts);
     for (const auto& [name, count] : cmp.mismatch_by_name) MESSAGE("  " << name << ": " << count << " differ");
@@ -480,11 +460,11 @@ void check_parity(const gl::HeadlessContext& context, int config_count, std::uin
     // The comparison saw real work: bound values, and every per-sample
     // decision taken both ways (bbox and hull never cull by sample_passes).
     CHECK(cmp.values > 100000);
-    for (int bit = 0; bit < 9; ++bit) {
+    for (int bit = 0; bit < kDecisionBits; ++bit) {
         CAPTURE(kDecisionNames[bit]);
         long trues = cmp.host_true[static_cast<std::size_t>(bit)];
         CHECK(trues > 0);
-        if (bit != 5 && bit != 6) CHECK(trues < cmp.inputs);
+        if (bit != 1 + kMethods + BC_CULL_BBOX && bit != 1 + kMethods + BC_CULL_HULL) CHECK(trues < cmp.inputs);
     }
 }
 

@@ -8,22 +8,9 @@
 //
 // No GL context (no Mesa): fails when CI=true, else skips with a message.
 
-// Host code must not contract a*b+c into an fma (llvmpipe does not fuse).
-#if defined(__clang__)
-#pragma clang fp contract(off)
-#elif defined(__GNUC__)
-#pragma GCC optimize("fp-contract=off")
-#endif
-
-#include "frontend_test_helpers.hpp"
-#include "kernel_generators.hpp"
+#include "gl_parity_helpers.hpp"
 
 #include "render/gl/gpu_layout_shared.h"
-
-#include <blurcull/glsl/kernel_glsl.hpp>
-#include "render/gl/gl_context.hpp"
-
-#include <doctest/doctest.h>
 
 #include <cmath>
 #include <cstdint>
@@ -37,7 +24,7 @@
 
 using namespace blurcull;
 using namespace blurcull::testing;
-using blurcull::frontend::test::is_ci;
+using blurcull::frontend::test::context_or_skip;
 using Kf = kernel<float>;
 
 namespace {
@@ -130,16 +117,6 @@ std::uint32_t bits_of(float x) {
     std::uint32_t b;
     std::memcpy(&b, &x, sizeof b);
     return b;
-}
-
-std::optional<gl::HeadlessContext> context_or_skip() {
-    try {
-        return gl::HeadlessContext::create();
-    } catch (const gl::GlError& e) {
-        if (is_ci()) FAIL("no headless OpenGL 4.5 context in CI: " << std::string(e.what()));
-        MESSAGE("SKIPPED: no headless OpenGL 4.5 context (" << std::string(e.what()) << "); CI=true makes this a failure");
-        return std::nullopt;
-    }
 }
 
 float edge_offset(Rng& rng) {

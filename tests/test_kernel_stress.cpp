@@ -201,7 +201,7 @@ struct Counts {
     std::uint64_t nonfinite_bounds = 0; // a bound with NaN/Inf outside the documented fallback
     std::uint64_t bad_fallbacks = 0;    // BC_INVALID input without the documented fallback
     std::uint64_t unrounded = 0;        // the oracle's triangle is not exactly the rounded one (a harness bug)
-    std::uint64_t false_culls[4] = {};
+    std::uint64_t false_culls[method_count] = {};
 };
 
 template <class K>
@@ -229,6 +229,13 @@ bool bounds_finite(const typename K::ScreenBound& sb, const typename K::SampleBo
         for (const typename K::vec4& line : {b.u_time_a, b.u_time_b, b.v_time_a, b.v_time_b}) {
             if (!f_or(line.x, -inf) || !f(line.y) || !f_or(line.z, inf) || !f(line.w)) return false;
         }
+        for (const typename K::BcEdgePlanes& e : b.edges.piece) {
+            if (e.mode == BC_EDGE_NONE) continue;
+            if (!f(e.time.x) || !f(e.time.y)) return false;
+            for (int k = 0; k < 3; ++k) {
+                if (!f(e.du[k]) || !f(e.dv[k]) || !f(e.dt[k]) || !f(e.hi[k]) || !f(e.lo[k])) return false;
+            }
+        }
     }
     return true;
 }
@@ -241,7 +248,8 @@ bool is_documented_fallback(const typename K::ScreenBound& sb, const typename K:
     const real huge = std::numeric_limits<real>::max();
     return !sb.empty && sb.hull_count == 0 && sb.lo == typename K::vec2(-huge) && sb.hi == typename K::vec2(huge) &&
            b.empty == none.empty && b.u_range == none.u_range && b.v_range == none.v_range && b.u_time_a == none.u_time_a &&
-           b.u_time_b == none.u_time_b && b.v_time_a == none.v_time_a && b.v_time_b == none.v_time_b;
+           b.u_time_b == none.u_time_b && b.v_time_a == none.v_time_a && b.v_time_b == none.v_time_b &&
+           b.edges.piece[0].mode == BC_EDGE_NONE;
 }
 
 template <class Real>
@@ -264,8 +272,8 @@ void run_config(const Config& cfg, Rng& rng, Stress stress, int sample_count, Co
     const bool swamped = !invalid && !K::bc_triangle_boundable(tri);
     if (swamped) ++counts.swamped;
 
-    typename K::ScreenBound screen[4];
-    typename K::SampleBounds bounds[4];
+    typename K::ScreenBound screen[method_count];
+    typename K::SampleBounds bounds[method_count];
     for (int method : all_methods) {
         screen[method] = K::screen_bound(tri, near, method);
         bounds[method] = K::sample_bounds(tri, lo, hi, method);
@@ -355,11 +363,12 @@ void check_stress(const char* precision) {
         std::printf("%-6s %-13s %6" PRIu64 " configs %6" PRIu64 " invalid %6" PRIu64 " swamped %8" PRIu64
                     " samples %7" PRIu64 " covered (%7" PRIu64 " bounded) | non-finite bounds %" PRIu64
                     ", bad fallbacks %" PRIu64
-                    " | false culls bbox %" PRIu64 " hull %" PRIu64 " dualspace %" PRIu64 " clip2 %" PRIu64 "\n",
+                    " | false culls bbox %" PRIu64 " hull %" PRIu64 " dualspace %" PRIu64 " clip2 %" PRIu64
+                    " edges %" PRIu64 "\n",
                     precision, stress_name(stress), c.configs, c.invalid, c.swamped, c.samples, c.covered,
                     c.covered_bounded, c.nonfinite_bounds,
                     c.bad_fallbacks, c.false_culls[BC_CULL_BBOX], c.false_culls[BC_CULL_HULL],
-                    c.false_culls[BC_CULL_DUALSPACE], c.false_culls[BC_CULL_TWO_STAGE]);
+                    c.false_culls[BC_CULL_DUALSPACE], c.false_culls[BC_CULL_TWO_STAGE], c.false_culls[BC_CULL_EDGES]);
         CAPTURE(stress_name(stress));
         CHECK(c.nonfinite_bounds == 0);
         CHECK(c.bad_fallbacks == 0);

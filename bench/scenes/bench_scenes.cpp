@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -44,14 +45,16 @@ const Published published[] = {
     {"forest", "motion + defocus", "170k", {0.4, 0.2}, {5, 2}, {19, 13}},
 };
 
-const CullMethod methods[] = {CullMethod::bbox, CullMethod::hull, CullMethod::dualspace, CullMethod::two_stage};
+const CullMethod methods[] = {CullMethod::bbox, CullMethod::hull, CullMethod::dualspace, CullMethod::two_stage,
+                              CullMethod::edges};
+constexpr int kMethods = static_cast<int>(std::size(methods));
 
 struct Row {
     std::string scene;
     int blur = 1;
     std::size_t triangles = 0;
-    double ste[4] = {};
-    double ms[4] = {};  // median
+    double ste[kMethods] = {};
+    double ms[kMethods] = {};  // median
 };
 
 using blurcull::bench::median;
@@ -70,9 +73,9 @@ std::string markdown(const std::vector<Row>& rows, int width, int height, int sp
        << " --repeat " << repeat << " --footprint " << footprint << " --markdown docs/benchmarks.md --csv docs/ste_table.csv`.\n"
        << "The thesis columns are Table 4.1 of the clip-space sample culling thesis (GTX 580, its own scenes);\n"
        << "our scenes mirror its workloads procedurally, so compare trends, not digits.\n\n";
-    md << "| scene | blur | STE bbox | STE hull | STE dualspace | STE clip2 | time bbox | hull | dualspace | clip2 |"
-          " thesis STE bbox / dual-space / thesis |\n";
-    md << "|---|---|---|---|---|---|---|---|---|---|---|\n";
+    md << "| scene | blur | STE bbox | STE hull | STE dualspace | STE clip2 | STE edges | time bbox | hull | dualspace |"
+          " clip2 | edges | thesis STE bbox / dual-space / thesis |\n";
+    md << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const Row& r : rows) {
         const Published* p = nullptr;
         for (const Published& q : published)
@@ -84,10 +87,11 @@ std::string markdown(const std::vector<Row>& rows, int width, int height, int sp
             thesis = line;
         }
         std::snprintf(line, sizeof line,
-                      "| %s (%zu) | x%d | %.1f%% | %.1f%% | %.1f%% | %.1f%% | %.0f ms | %.2f | %.2f | %.2f | %s |\n",
+                      "| %s (%zu) | x%d | %.1f%% | %.1f%% | %.1f%% | %.1f%% | %.1f%% | %.0f ms | %.2f | %.2f | %.2f | "
+                      "%.2f | %s |\n",
                       r.scene.c_str(), r.triangles, r.blur, 100 * r.ste[0], 100 * r.ste[1], 100 * r.ste[2],
-                      100 * r.ste[3], r.ms[0], r.ms[1] / r.ms[0], r.ms[2] / r.ms[0], r.ms[3] / r.ms[0],
-                      thesis.c_str());
+                      100 * r.ste[3], 100 * r.ste[4], r.ms[0], r.ms[1] / r.ms[0], r.ms[2] / r.ms[0], r.ms[3] / r.ms[0],
+                      r.ms[4] / r.ms[0], thesis.c_str());
         md << line;
     }
     return md.str();
@@ -144,21 +148,21 @@ int main(int argc, char** argv) {
                 row.scene = name;
                 row.blur = blur;
                 row.triangles = scene.triangles.size();
-                std::vector<double> times[4];
+                std::vector<double> times[kMethods];
                 // Interleave the methods across repeats so drifting load hits all alike.
                 for (int r = 0; r < repeat; ++r) {
-                    for (int m = 0; m < 4; ++m) {
+                    for (int m = 0; m < kMethods; ++m) {
                         settings.cull = methods[m];
                         RenderResult result = render_cpu(scene, settings, cpu);
                         row.ste[m] = result.stats.ste();
                         times[m].push_back(result.stats.ms_total);
                     }
                 }
-                for (int m = 0; m < 4; ++m) row.ms[m] = median(times[m]);
-                std::fprintf(stderr, "%s x%d: STE %.1f/%.1f/%.1f/%.1f%%, time %.0f ms, ratios %.2f/%.2f/%.2f\n",
+                for (int m = 0; m < kMethods; ++m) row.ms[m] = median(times[m]);
+                std::fprintf(stderr, "%s x%d: STE %.1f/%.1f/%.1f/%.1f/%.1f%%, time %.0f ms, ratios %.2f/%.2f/%.2f/%.2f\n",
                              name.c_str(), blur, 100 * row.ste[0], 100 * row.ste[1], 100 * row.ste[2],
-                             100 * row.ste[3], row.ms[0], row.ms[1] / row.ms[0], row.ms[2] / row.ms[0],
-                             row.ms[3] / row.ms[0]);
+                             100 * row.ste[3], 100 * row.ste[4], row.ms[0], row.ms[1] / row.ms[0],
+                             row.ms[2] / row.ms[0], row.ms[3] / row.ms[0], row.ms[4] / row.ms[0]);
                 rows.push_back(row);
             }
         }
@@ -170,7 +174,7 @@ int main(int argc, char** argv) {
             if (!csv) throw std::runtime_error("cannot write '" + csv_path + "'");
             csv << "scene,blur,triangles,method,ste,ms_median,time_ratio_to_bbox,width,height,spp,footprint\n";
             for (const Row& r : rows)
-                for (int m = 0; m < 4; ++m)
+                for (int m = 0; m < kMethods; ++m)
                     csv << r.scene << "," << r.blur << "," << r.triangles << "," << to_string(methods[m]) << ","
                         << r.ste[m] << "," << r.ms[m] << "," << r.ms[m] / r.ms[0] << "," << width << "," << height
                         << "," << spp << "," << footprint << "\n";

@@ -6,3 +6,5 @@
 #include "patterns.hpp"
 #include "pattern_names.hpp"
 #include "interleaved_tiles.hpp"
+#include "secondary_clusters.hpp"
+#include "layer_trace.hpp"

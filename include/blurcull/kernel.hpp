@@ -30,7 +30,9 @@
 //           box), BC_CULL_HULL 1 (box and convex hull), BC_CULL_DUALSPACE 2
 //           (box, plus the lens and time bounds of Laine et al. 2011),
 //           BC_CULL_TWO_STAGE 3 (box and hull, plus the clip-space two-stage
-//           lens and time bounds of Wu et al. 2015). Switching is this one value.
+//           lens and time bounds of Wu et al. 2015), BC_CULL_EDGES 4 (two-stage,
+//           plus a plane in (u, v, t) per triangle edge; docs/kernel.md, "Edge
+//           bounds"). Switching is this one value.
 //
 // Types
 //   MovingTriangle  p[6]: clip (x, y, w) of vertex i at shutter open (p[i]) and
@@ -96,7 +98,7 @@
 // ScreenBound screen_bound(MovingTriangle tri, real near, int cull)
 //   Where on the screen the triangle can cover anything, over every t and uv:
 //   the box of its part in front of the near plane, grown by the CoC and the
-//   rounding margins, and with cull BC_CULL_HULL or BC_CULL_TWO_STAGE also the
+//   rounding margins, and with cull BC_CULL_HULL, BC_CULL_TWO_STAGE or BC_CULL_EDGES also the
 //   convex hull of the lens-shifted vertices (McGuire et al. 2010) when every
 //   vertex is in front of the near plane (else hull_count = 0, the box alone).
 //   empty = true: never in front of the near plane. Fallback, the whole screen
@@ -122,7 +124,10 @@
 //   footprint [s_lo, s_hi] (NDC, s_lo <= s_hi: a pixel or a tile) that the
 //   triangle can cover, per axis: a lens range, and time between lines in u
 //   (v). BC_CULL_DUALSPACE computes them as in detail/dual_space_body.inl,
-//   BC_CULL_TWO_STAGE as in detail/two_stage_body.inl. empty = true: no sample
+//   BC_CULL_TWO_STAGE as in detail/two_stage_body.inl, BC_CULL_EDGES as
+//   two-stage plus the edge planes of detail/edge_bounds_body.inl over the
+//   lens ranges and shutter interval two-stage leaves (none when a plane is not
+//   finite). empty = true: no sample
 //   of the footprint can be covered. Fallback, no_sample_bounds(): cull
 //   BC_CULL_BBOX or BC_CULL_HULL (they bound only the screen), non-finite input,
 //   a swamped triangle (as for screen_bound). An axis whose bound cannot be
@@ -191,10 +196,57 @@
 //   Pass k of the accumulation buffer: one lens position, time and sub-pixel
 //   offset for every pixel (rotated Halton points, different per seed).
 //
+// ---- Secondary rays (detail/{dodecahedron,clusters,virtual_view,layer_trace}_body.inl) ----
+//
+// Depth of field through mirrors and glass after Xie, Sun and Wang (JCST 2013);
+// docs/secondary-rays.md derives each formula. Positions in scene units,
+// directions of any length unless said.
+//
+// int dodecahedron_facet(vec3 d)
+//   The facet 0..11 of the regular dodecahedron whose normal maximises n . d
+//   (three weighted sums of |d|, then the signs); ties: lowest family, a zero
+//   component counts as positive; zero or NaN input gives a valid face.
+// vec3 dodecahedron_normal(int face)
+//   Unit normal of a facet (0, +-phi, +-1) ... / sqrt(1 + phi^2); zero outside 0..11.
+// ClusterSums cluster_sums_empty(), cluster_sums_add(ClusterSums s, vec3 position, vec3 direction)
+// vec3 cluster_mean_position(ClusterSums s)
+//   Running sums over a cluster's pixels (positions, unit specular
+//   directions, count) and their mean position (zero for no pixel).
+// uint cluster_target_size(uint total_pixels, uint wanted_clusters)
+// uint clusters_for_facet(uint facet_pixels, uint target_size, uint max_clusters)
+//   The cluster rule: ceil(total / wanted) pixels per cluster, and per facet
+//   round(pixels / target) clusters in [1, min(max_clusters <= 3, pixels)].
+// int kmeans_nearest(vec3 position, vec3 centres[3], int count)
+// uint kmeans_first_centre(uint count, uint seed, int facet)
+//   k-means by position: the nearest centre (lowest on ties), the seeded start.
+// VirtualViewFit virtual_view_begin(ClusterSums sums, real tan_half_fov, real min_near)
+// VirtualViewFit virtual_view_begin_along(ClusterSums sums, vec3 axis, real tan_half_fov, real min_near)
+// VirtualViewFit virtual_view_add(VirtualViewFit f, vec3 position, vec3 direction)
+// VirtualView virtual_view_finish(VirtualViewFit f)
+//   The virtual viewpoint of a cluster: along the mean specular direction (or
+//   a given axis), backed off from the mean position by the smallest distance
+//   that holds every pixel in the square frustum tan_half_fov (closed form);
+//   near plane at the closest pixel. flags: BC_VIEW_DIRECTION_OUTSIDE (a ray
+//   leaves every such frustum), BC_VIEW_EMPTY, BC_VIEW_BAD_PARAMETERS,
+//   BC_VIEW_NOT_FINITE. Helpers: virtual_view_basis, virtual_view_point_backoff,
+//   virtual_view_direction_inside.
+// LayerView layer_view_from(VirtualView v, real far, int size)
+// vec3 layer_project(LayerView v, vec3 p)
+// LayerSegment layer_segment(LayerView v, vec3 origin, vec3 direction, real s_max, vec2 depth_range)
+// vec4 layer_footprint(LayerView v, LayerSegment seg), int layer_step_count(LayerView v, LayerSegment seg)
+// LayerTrace layer_trace_begin(LayerView v, LayerSegment seg, int layer_count, real thickness)
+// LayerTrace layer_trace_step(LayerView v, LayerSegment seg, LayerTrace t, real depths[BC_LAYERS_MAX])
+//   Image-space tracing (Lee et al. 2009/2010): a ray clipped to a layer
+//   view's frustum and a min/max depth interval, stepped texel by texel; the
+//   caller reads the layers' depths at the texel the trace names and passes
+//   them to layer_trace_step until done; t.hit is the first hit, refined.
+//
 // Host-only C++ beside the kernel (not GLSL): make_pattern_tile (patterns.hpp),
 // sample_pattern_name and parse_sample_pattern (pattern_names.hpp), the
 // interleaved tile set make_interleaved_tiles and its cost
-// (interleaved_tiles.hpp). Each has its own doc comment.
+// (interleaved_tiles.hpp), the clustering and viewpoint drivers
+// cluster_reflector_pixels and fit_virtual_view (secondary_clusters.hpp), the
+// tracing loop trace_layers (layer_trace.hpp). Each has its own doc comment.
 #pragma once
 
 #include "detail/dialect.hpp"
@@ -246,8 +298,13 @@ struct kernel {
 #include "detail/screen_bound_body.inl"
 #include "detail/dual_space_body.inl"
 #include "detail/two_stage_body.inl"
+#include "detail/edge_bounds_body.inl"
 #include "detail/sample_bounds_body.inl"
 #include "detail/raster_body.inl"
+#include "detail/dodecahedron_body.inl"
+#include "detail/clusters_body.inl"
+#include "detail/virtual_view_body.inl"
+#include "detail/layer_trace_body.inl"
 };
 
 using kernelf = kernel<float>;

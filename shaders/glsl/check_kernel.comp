@@ -8,6 +8,40 @@ layout(std430, binding = 0) buffer CheckData {
     float values[];
 };
 
+// The secondary-ray functions (docs/secondary-rays.md).
+float check_secondary_rays(vec3 d, vec3 p) {
+    int face = bc_dodecahedron_facet(d);
+    vec3 normal = bc_dodecahedron_normal(face);
+    ClusterSums sums = bc_cluster_sums_add(bc_cluster_sums_empty(), p, normal);
+    vec3 mean = bc_cluster_mean_position(sums);
+    uint k = bc_clusters_for_facet(sums.count, bc_cluster_target_size(100u, 24u), 3u) + bc_kmeans_first_centre(5u, 7u, face);
+    vec3 centres[BC_CLUSTERS_PER_FACET_MAX] = vec3[BC_CLUSTERS_PER_FACET_MAX](p, mean, d);
+    int nearest = bc_kmeans_nearest(p, centres, int(k));
+    vec3 right;
+    vec3 up;
+    bc_virtual_view_basis(normal, right, up);
+    VirtualViewFit fit = bc_virtual_view_begin(sums, values[50], values[51]);
+    VirtualViewFit along = bc_virtual_view_begin_along(sums, normal, values[50], values[51]);
+    float backoff = bc_virtual_view_point_backoff(fit, p) + bc_virtual_view_point_backoff(along, d);
+    bool inside = bc_virtual_view_direction_inside(normal, right, up, values[50], d);
+    VirtualView view = bc_virtual_view_finish(bc_virtual_view_add(fit, p, normal));
+    LayerView layer = bc_layer_view_from(view, values[52], 16);
+    vec3 projected = bc_layer_project(layer, p + d);
+    LayerSegment seg = bc_layer_segment(layer, p, d, values[53], vec2(values[54], values[55]));
+    vec4 box = bc_layer_footprint(layer, seg);
+    int steps = bc_layer_step_count(layer, seg);
+    LayerTrace trace = bc_layer_trace_begin(layer, seg, 2, values[56]);
+    for (int k = 0; k < trace.steps; ++k) {
+        if (trace.done) break;
+        float depths[BC_LAYERS_MAX];
+        for (int l = 0; l < BC_LAYERS_MAX; ++l) depths[l] = values[64 + l * 4 + (trace.y & 1) * 2 + (trace.x & 1)];
+        trace = bc_layer_trace_step(layer, seg, trace, depths);
+    }
+    LayerHit hit = trace.hit;
+    return float(face) + mean.x + float(nearest) + up.x + backoff + float(inside) + view.near + projected.z + box.x +
+           float(steps) + hit.s + float(hit.hit);
+}
+
 void main() {
     MovingTriangle tri;
     for (int j = 0; j < 6; ++j) {
@@ -32,7 +66,8 @@ void main() {
     int footprint_state = bc_screen_footprint(screen, s - vec2(0.01), s + vec2(0.01));
     SampleBounds none = bc_no_sample_bounds();
     SampleBounds bounds = bc_sample_bounds(tri, s - vec2(0.01), s + vec2(0.01), cull);
-    bool passes = bc_sample_passes(bounds, uv, t) || bc_sample_passes(none, uv, t);
+    SampleBounds edge_bounds = bc_sample_bounds(tri, s - vec2(0.01), s + vec2(0.01), BC_CULL_EDGES);
+    bool passes = bc_sample_passes(bounds, uv, t) || bc_sample_passes(none, uv, t) || bc_sample_passes(edge_bounds, uv, t);
     vec2 time_range = bc_sample_time_range(bounds);
     uint px = uint(values[43]);
     uint py = uint(values[44]);
@@ -61,10 +96,12 @@ void main() {
     bool wins = bc_depth_nearer(hit_depth, depth) || bc_depth_key_wins(key, px, depth, py);
     vec2 camera_ab = bc_camera_coc(values[37], values[38], values[39]);
 
+    float secondary = check_secondary_rays(vec3(values[45], values[46], values[47]), vec3(values[48], values[49], values[57]));
+
     values[0] = coc + vertex.x + float(finite) + float(needs) + float(covered) + depth + float(on_screen) + float(footprint_state) +
                 float(passes) + time_range.x + sample_at.offset.x + sample_at.lens.y + sample_at.time + patterned.time +
                 tiled.time + from_setup.time + others[0].time + others[1].time + others[2].time + others[3].time + tuple.x +
                 float(tile) + jitter.x + accum.time + accum.offset.x + accum.lens.y + bc_rotate_unit(jitter.x, jitter.y) +
                 raster.x + sample_pos.y + float(rect.x) + rect_ndc.w + interleaved.x + float(test) + key + float(wins) +
-                camera_ab.y;
+                camera_ab.y + secondary;
 }

@@ -57,6 +57,33 @@
 #define depth_key bc_depth_key
 #define depth_key_wins bc_depth_key_wins
 #define camera_coc bc_camera_coc
+// the dodecahedron's facets (dodecahedron_body.inl)
+#define dodecahedron_normal bc_dodecahedron_normal
+#define dodecahedron_facet bc_dodecahedron_facet
+// clustering reflector pixels (clusters_body.inl)
+#define cluster_sums_empty bc_cluster_sums_empty
+#define cluster_sums_add bc_cluster_sums_add
+#define cluster_mean_position bc_cluster_mean_position
+#define cluster_target_size bc_cluster_target_size
+#define clusters_for_facet bc_clusters_for_facet
+#define kmeans_nearest bc_kmeans_nearest
+#define kmeans_first_centre bc_kmeans_first_centre
+// the virtual viewpoint (virtual_view_body.inl)
+#define virtual_view_basis bc_virtual_view_basis
+#define virtual_view_begin_along bc_virtual_view_begin_along
+#define virtual_view_begin bc_virtual_view_begin
+#define virtual_view_point_backoff bc_virtual_view_point_backoff
+#define virtual_view_direction_inside bc_virtual_view_direction_inside
+#define virtual_view_add bc_virtual_view_add
+#define virtual_view_finish bc_virtual_view_finish
+// image-space tracing (layer_trace_body.inl)
+#define layer_view_from bc_layer_view_from
+#define layer_project bc_layer_project
+#define layer_segment bc_layer_segment
+#define layer_footprint bc_layer_footprint
+#define layer_step_count bc_layer_step_count
+#define layer_trace_begin bc_layer_trace_begin
+#define layer_trace_step bc_layer_trace_step
 // the sample patterns of patterns.hpp (patterns_body.inl)
 #define pattern_random bc_pattern_random
 #define pattern_jittered bc_pattern_jittered

@@ -11,7 +11,8 @@ const std::vector<CullMethodInfo>& cull_methods() {
     // Each entry's formula (docs/architecture.md, "hop test"): the kernel's
     // sample_bounds (include/blurcull/detail/sample_bounds_body.inl) runs
     // screen_bound (screen_bound_body.inl: bbox, hull) and, for the methods
-    // that bound samples, dual_space_body.inl or two_stage_body.inl.
+    // that bound samples, dual_space_body.inl or two_stage_body.inl (and for
+    // edges edge_bounds_body.inl after it).
     static const std::vector<CullMethodInfo> methods = {
         {CullMethod::bbox, "bbox", {}, "the clipped screen box of the triangle over shutter and lens", BC_CULL_BBOX, false,
          rasterizers},
@@ -21,6 +22,9 @@ const std::vector<CullMethodInfo>& cull_methods() {
          BC_CULL_DUALSPACE, true, rasterizers},
         {CullMethod::two_stage, "twostage", {"clip2"}, "the hull, then lens and time bounds per footprint in two stages",
          BC_CULL_TWO_STAGE, true, rasterizers},
+        // The GL backend's per-cell bounds carry the two-stage part, not the edge planes.
+        {CullMethod::edges, "edges", {}, "two-stage, then a plane per triangle edge in lens and time per footprint",
+         BC_CULL_EDGES, true, rasterizers},
     };
     return methods;
 }

@@ -1,9 +1,11 @@
 #include "render/cpu/cpu_backend.hpp"
 
 #include "render/common/camera_model.hpp"
+#include "render/cpu/coverage_test.hpp"
 #include "render/common/moving_triangle.hpp"
 #include "render/common/progress.hpp"
 #include "render/common/shading.hpp"
+#include "render/cpu/parallel_items.hpp"
 #include "scene/scene_checks.hpp"
 
 #include <blurcull/kernel.hpp>
@@ -43,6 +45,37 @@ PixelRect pixel_rect(const CameraModel& model, typename K::vec2 lo, typename K::
     return PixelRect{r.x, r.y, r.z, r.w};
 }
 
+// The NDC box of a pixel rectangle's samples (every pixel of it, whole).
+SampleBox sample_box(const CameraModel& model, const PixelRect& r) {
+    const glm::vec4 top_left = model.pixel_ndc_bounds(r.x0, r.y0);
+    const glm::vec4 bottom_right = model.pixel_ndc_bounds(r.x1, r.y1);
+    return SampleBox{top_left.x, bottom_right.y, bottom_right.z, top_left.w};
+}
+
+// A tile's samples in float, one array per coordinate: the fast coverage
+// test's input (exact: the samples are floats).
+class FloatSamples {
+public:
+    explicit FloatSamples(std::size_t size) : sx_(size), sy_(size), u_(size), v_(size), t_(size) {}
+    void set(std::size_t k, glm::vec2 ndc, glm::vec2 lens, float time) {
+        sx_[k] = ndc.x;
+        sy_[k] = ndc.y;
+        u_[k] = lens.x;
+        v_[k] = lens.y;
+        t_[k] = time;
+    }
+    bool may_cover(const CoverageSetup& setup, std::size_t k) const {
+        return frontend::may_cover(setup, sx_[k], sy_[k], u_[k], v_[k], t_[k]);
+    }
+    // Samples first .. first + 31, those in `wanted` (the arrays are padded by 32).
+    std::uint32_t may_cover32(const CoverageSetup& setup, std::size_t first, std::uint32_t wanted) const {
+        return frontend::may_cover32(setup, &sx_[first], &sy_[first], &u_[first], &v_[first], &t_[first], wanted);
+    }
+
+private:
+    std::vector<float> sx_, sy_, u_, v_, t_;
+};
+
 template <class K>
 struct TileSample {
     typename K::vec2 ndc;
@@ -67,6 +100,9 @@ struct FrameSetup {
     std::vector<PixelRect> rects;
     std::vector<int> classes;
     std::vector<StoredBound> bounds;
+    // The fast coverage test's setup (render/cpu/coverage_test.hpp), for the
+    // samples of the triangle's pixel rectangle.
+    std::vector<CoverageSetup> fast_tests;
     std::vector<typename K::vec3> hull_edges;
     std::size_t invalid = 0;  // triangles skipped: their clip coordinates overflow
     int tiles_x = 0, tiles_y = 0;
@@ -96,6 +132,7 @@ void set_up_triangles(const Scene& scene, const CameraModel& model, int method, 
     setup.rects.resize(count);
     setup.classes.resize(count);
     setup.bounds.resize(count);
+    setup.fast_tests.resize(count);
     const std::size_t chunks = static_cast<std::size_t>(std::max(1, std::min(threads, 64)));
     std::vector<std::vector<typename K::vec3>> chunk_edges(chunks);
     std::vector<std::size_t> chunk_invalid(chunks, 0);
@@ -112,6 +149,9 @@ void set_up_triangles(const Scene& scene, const CameraModel& model, int method, 
             const typename K::ScreenBound bound = K::screen_bound(setup.triangles[i], near, method);
             if (bound.empty) continue;
             setup.rects[i] = pixel_rect<K>(model, bound.lo, bound.hi);
+            const PixelRect& r = setup.rects[i];
+            if (r.x0 <= r.x1 && r.y0 <= r.y1)
+                setup.fast_tests[i] = make_coverage_setup<Real>(setup.triangles[i], sample_box(model, r));
             auto& stored = setup.bounds[i];
             stored.lo = bound.lo;
             stored.hi = bound.hi;
@@ -182,7 +222,8 @@ public:
           by_time_(samples_.size()),
           by_time_t_(samples_.size()),
           depth_(samples_.size()),
-          hit_(samples_.size()) {}
+          hit_(samples_.size()),
+          lanes_(samples_.size() + 32) {}
 
     // Rasterizes work tile `tile` (row-major over the tiles) into its pixels of `image`.
     void render_tile(int tile, Image& image) {
@@ -218,8 +259,9 @@ private:
                 for (std::uint32_t j = 0; j < frame_.spp; ++j) {
                     const kernelf::PixelSample s = kernelf::pixel_sample_from(pattern, j);
                     const std::size_t k = slot(px, py, j);
-                    samples_[k] = Sample{typename K::vec2(frame_.model.sample_ndc(px, py, s.offset)),
-                                         typename K::vec2(s.lens), static_cast<Real>(s.time)};
+                    const glm::vec2 ndc = frame_.model.sample_ndc(px, py, s.offset);
+                    samples_[k] = Sample{typename K::vec2(ndc), typename K::vec2(s.lens), static_cast<Real>(s.time)};
+                    lanes_.set(k, ndc, s.lens, s.time);
                     depth_[k] = std::numeric_limits<Real>::infinity();
                     hit_[k] = none;
                 }
@@ -256,6 +298,7 @@ private:
     struct Current {
         std::uint32_t index;
         const typename K::MovingTriangle* tri;
+        const CoverageSetup* fast;  // its fast coverage test
         typename K::ScreenBound bound;
         bool needs_bounds;  // the method bounds lens and time, and the triangle moves or is defocused
         bool check_screen;  // false while the footprint is inside the screen bound
@@ -282,7 +325,8 @@ private:
     // footprints are smaller than blocks.
     void rasterize_triangle(std::uint32_t index) {
         const PixelRect& r = frame_.setup.rects[index];
-        Current current{index, &frame_.setup.triangles[index], frame_.setup.screen_bound(index),
+        Current current{index, &frame_.setup.triangles[index], &frame_.setup.fast_tests[index],
+                        frame_.setup.screen_bound(index),
                         frame_.cull_bounds && frame_.setup.classes[index] != 0, true};
         const int rx0 = std::max(r.x0, x0_), rx1 = std::min(r.x1, x1_);
         const int ry0 = std::max(r.y0, y0_), ry1 = std::min(r.y1, y1_);
@@ -333,24 +377,50 @@ private:
                 const int local = static_cast<int>(k / frame_.spp);
                 const int px = x0_ + local % tw_, py = y0_ + local / tw_;
                 if (px < px0 || px > px1 || py < py0 || py > py1) continue;
-                test_sample(current, k, sb);
+                if (sample_culled(current, k, sb)) continue;
+                ++tested;
+                if (lanes_.may_cover(*current.fast, k)) test_exactly(current, k);
             }
             return;
         }
         for (int py = py0; py <= py1; ++py)
-            for (int px = px0; px <= px1; ++px)
-                for (std::uint32_t j = 0; j < frame_.spp; ++j) test_sample(current, slot(px, py, j), sb);
+            for (int px = px0; px <= px1; ++px) test_pixel(current, slot(px, py, 0), sb);
     }
 
-    // The per-sample test chain: bounds, screen bound, exact coverage, depth.
-    void test_sample(const Current& current, std::size_t k, const typename K::SampleBounds& sb) {
+    // A pixel's samples from slot `first` on, up to 32 at a time: the culls,
+    // then the fast test on those that passed, then covers on what it kept.
+    void test_pixel(const Current& current, std::size_t first, const typename K::SampleBounds& sb) {
+        const std::uint32_t spp = frame_.spp;
+        for (std::uint32_t j0 = 0; j0 < spp; j0 += 32) {
+            std::uint32_t passed = 0;
+            for (std::uint32_t j = j0; j < std::min(spp, j0 + 32); ++j) {
+                if (sample_culled(current, first + j, sb)) continue;
+                passed |= 1u << (j - j0);
+                ++tested;
+            }
+            if (passed == 0) continue;
+            for (std::uint32_t maybe = passed & lanes_.may_cover32(*current.fast, first + j0, passed); maybe != 0;
+                 maybe &= maybe - 1)
+                test_exactly(current, first + j0 + static_cast<std::uint32_t>(__builtin_ctz(maybe)));
+        }
+    }
+
+    // The culls before the exact test: bounds, then screen bound.
+    bool sample_culled(const Current& current, std::size_t k, const typename K::SampleBounds& sb) const {
+        const Sample& s = samples_[k];
+        // kernel::sample_test's chain up to the exact test (the lens/time
+        // bounds first: cheaper than a hull and they cull more); the fast
+        // test and covers follow in test_pixel and test_exactly.
+        return !K::sample_passes(sb, s.lens, s.time) ||
+               (current.check_screen && !K::screen_contains(current.bound, s.ndc));
+    }
+
+    // The exact test of a sample the fast test kept (sample_test's last
+    // step), and the depth rule.
+    void test_exactly(const Current& current, std::size_t k) {
         const Sample& s = samples_[k];
         Real z = Real(0);
-        const int verdict =
-            K::sample_test(*current.tri, current.bound, current.check_screen, sb, s.ndc, s.lens, s.time, frame_.near, z);
-        if (verdict == BC_SAMPLE_CULLED) return;
-        ++tested;
-        if (verdict != BC_SAMPLE_COVERED) return;
+        if (!K::covers(*current.tri, s.ndc, s.lens, s.time, frame_.near, z)) return;
         ++hits;
         if (K::depth_nearer(z, depth_[k])) {
             depth_[k] = z;
@@ -379,6 +449,7 @@ private:
     std::vector<std::size_t> footprint_start_;
     std::vector<Real> depth_;
     std::vector<std::uint32_t> hit_;
+    FloatSamples lanes_;  // samples_ in float, for the fast coverage test
     int x0_ = 0, y0_ = 0, x1_ = -1, y1_ = -1, tw_ = 0, footprints_x_ = 0;
 };
 
@@ -387,31 +458,21 @@ private:
 // does not depend on the schedule.
 template <class Real>
 void rasterize_tiles(const FrameContext<Real>& frame, int threads, Clock::time_point start, RenderResult& result) {
-    std::atomic<int> next_tile{0};
     std::atomic<std::uint64_t> total_tested{0}, total_hit{0}, total_bounded{0}, total_bounded_empty{0};
     const int tile_count = frame.setup.tiles_x * frame.setup.tiles_y;
     Progress progress(frame.settings.progress, start, tile_count);
-    auto work = [&]() {
-        TileRasterizer<Real> rasterizer(frame);
-        for (int tile = next_tile.fetch_add(1); tile < tile_count; tile = next_tile.fetch_add(1)) {
+    cpu_methods::run_parallel_items(
+        threads, tile_count, [&] { return TileRasterizer<Real>(frame); },
+        [&](TileRasterizer<Real>& rasterizer, int tile) {
             rasterizer.render_tile(tile, result.image);
             progress.advance();
-        }
-        total_tested.fetch_add(rasterizer.tested);
-        total_hit.fetch_add(rasterizer.hits);
-        total_bounded.fetch_add(rasterizer.bounded);
-        total_bounded_empty.fetch_add(rasterizer.bounded_empty);
-    };
-    std::vector<std::thread> helpers;
-    try {
-        for (int i = 1; i < std::min(threads, tile_count); ++i) helpers.emplace_back(work);
-    } catch (...) {
-        next_tile.store(tile_count);
-        for (std::thread& helper : helpers) helper.join();
-        throw;
-    }
-    work();
-    for (std::thread& helper : helpers) helper.join();
+        },
+        [&](const TileRasterizer<Real>& rasterizer) {
+            total_tested.fetch_add(rasterizer.tested);
+            total_hit.fetch_add(rasterizer.hits);
+            total_bounded.fetch_add(rasterizer.bounded);
+            total_bounded_empty.fetch_add(rasterizer.bounded_empty);
+        });
     progress.finish();
     RenderStats& stats = result.stats;
     stats.samples_tested = total_tested.load();
@@ -431,8 +492,7 @@ RenderResult render_cpu_in(const Scene& scene, const RenderSettings& settings, c
     // Only the per-footprint methods bound lens and time; a static, in-focus
     // triangle has neither to bound, whatever the method.
     const bool cull_bounds = cull.bounds_samples;
-    const int threads =
-        settings.threads > 0 ? settings.threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    const int threads = cpu_methods::render_threads(settings);
 
     RenderResult result;
     result.stats.triangles = scene.triangles.size();

@@ -1,7 +1,6 @@
 #include "render/cpu/methods.hpp"
 
 #include "render/common/camera_model.hpp"
-#include "render/common/progress.hpp"
 #include "render/cpu/method_runner.hpp"
 
 #include <blurcull/kernel.hpp>
@@ -13,7 +12,6 @@
 
 namespace blurcull::frontend {
 
-using cpu_methods::Clock;
 using cpu_methods::Counters;
 using cpu_methods::K;
 
@@ -83,11 +81,8 @@ TupleSamples tuple_samples_in_tiles(const MethodPlan& plan, const TileLattice& l
 
 RenderResult render_interleave(const Scene& scene, const RenderSettings& settings, const InterleaveOptions& options,
                                std::vector<std::uint32_t>* sample_ids) {
-    const Clock::time_point start = Clock::now();
-    Clock::time_point phase = Clock::now();
-    RenderSettings interleave_settings = settings;
-    interleave_settings.method = RenderMethod::interleave;
-    const MethodPlan plan = make_method_plan(scene, interleave_settings, options);
+    cpu_methods::MethodRender render(scene, settings, RenderMethod::interleave, options);
+    const MethodPlan& plan = render.plan();
     const CameraModel& model = plan.model;
     const InterleavedTiles& tiles = plan.tiles;
     const int side = plan.scale;
@@ -99,31 +94,19 @@ RenderResult render_interleave(const Scene& scene, const RenderSettings& setting
     const std::size_t sample_count = static_cast<std::size_t>(width) * height * spp;
     std::vector<double> depth(sample_count, std::numeric_limits<double>::infinity());
     std::vector<std::uint32_t> hits(sample_count, no_sample_hit);
-    RenderResult result;
-    result.stats.triangles = scene.triangles.size();
-    result.stats.ms_per_phase.emplace_back("setup", ms_since(phase));
 
     // One work item per tuple: the samples of different tuples are disjoint.
-    phase = Clock::now();
     const double near = model.znear;
-    Progress progress(settings.progress, start, n);
-    const Counters counters = cpu_methods::run_items(settings, n, [&](int k, Counters& local) {
+    const Counters counters = render.run_raster(n, [&](int k, Counters& local) {
         const kernelf::PixelSample& tuple = plan.pass_samples[static_cast<std::size_t>(k)];
         const K::vec2 uv(tuple.lens);
         const double t = tuple.time;
         const TupleSamples tuple_samples = tuple_samples_in_tiles(plan, lattice, prototypes, k, settings.seed);
         const std::vector<glm::ivec2>& cells = tuple_samples.cells;
         const std::vector<K::vec2>& ndcs = tuple_samples.ndcs;
-        for (std::size_t index = 0; index < plan.triangles.size(); ++index) {
-            if (!plan.visible[index]) continue;
-            const K::MovingTriangle& tri = plan.triangles[index];
-            const PassBox box = method_pass_box(plan, k, index);
-            ++local.bounded;
+        cpu_methods::for_each_pass_box(plan, k, local, [&](std::uint32_t triangle, const K::MovingTriangle& tri,
+                                                           const PassBox& box) {
             const CellRect& r = box.rect;
-            if (r.empty()) {
-                ++local.bounded_empty;
-                continue;
-            }
             for (int ty = r.y0 / tile_w; ty <= r.y1 / tile_w; ++ty) {
                 for (int tx = r.x0 / tile_w; tx <= r.x1 / tile_w; ++tx) {
                     const std::size_t tile = static_cast<std::size_t>(ty) * tiles_x + tx;
@@ -132,18 +115,13 @@ RenderResult render_interleave(const Scene& scene, const RenderSettings& setting
                     const int px = gx / side, py = gy / side, sx = gx % side, sy = gy % side;
                     const std::size_t sample =
                         (static_cast<std::size_t>(py) * width + px) * spp + static_cast<std::size_t>(sy * side + sx);
-                    cpu_methods::test_pass_sample(tri, box.bound, ndcs[tile], uv, t, near,
-                                                  static_cast<std::uint32_t>(index), local, depth[sample], hits[sample]);
+                    cpu_methods::test_pass_sample(tri, box.bound, ndcs[tile], uv, t, near, triangle, local,
+                                                  depth[sample], hits[sample]);
                 }
             }
-        }
-        progress.advance();
+        });
     });
-    progress.finish();
-    result.stats.ms_per_phase.emplace_back("raster", ms_since(phase));
-
-    cpu_methods::finish_render(result, scene, plan, hits, counters, width, height, start, sample_ids);
-    return result;
+    return render.finish(hits, counters, sample_ids);
 }
 
 }  // namespace blurcull::frontend

@@ -1,6 +1,7 @@
 // What the CPU renderers of interleave, interval and accum share besides their
 // MethodPlan: running work items on the settings' threads with per-thread
-// counters, the per-sample test with the depth rule, and the common end of a render.
+// counters, the loop over a pass's boxes, the per-sample test with the depth
+// rule, and the frame of a render (plan, phases, progress, resolve, statistics).
 #pragma once
 
 #include "render/common/method_plan.hpp"
@@ -58,11 +59,54 @@ inline void test_pass_sample(const K::MovingTriangle& tri, const K::ScreenBound&
     }
 }
 
-// The common end of every renderer here: resolve the per-sample hits into the
-// image, record the resolve's time, the counters, the plan's warnings and the
-// total time; hand the hits to sample_ids when given.
-void finish_render(RenderResult& result, const Scene& scene, const MethodPlan& plan, std::vector<std::uint32_t>& hits,
-                   const Counters& counters, int width, int height, Clock::time_point start,
-                   std::vector<std::uint32_t>* sample_ids);
+// Calls visit(triangle, tri, box) for every visible triangle of the plan whose
+// pass box for `pass` holds a lattice cell, in index order (the depth rule
+// needs it); counts every box in local.bounded, the empty ones in
+// local.bounded_empty.
+template <class VisitBox>
+void for_each_pass_box(const MethodPlan& plan, int pass, Counters& local, VisitBox&& visit) {
+    for (std::size_t index = 0; index < plan.triangles.size(); ++index) {
+        if (!plan.visible[index]) continue;
+        const PassBox box = method_pass_box(plan, pass, index);
+        ++local.bounded;
+        if (box.rect.empty()) {
+            ++local.bounded_empty;
+            continue;
+        }
+        visit(static_cast<std::uint32_t>(index), plan.triangles[index], box);
+    }
+}
+
+// The frame every renderer here shares: the clock and the plan (construction),
+// the setup and raster phases with progress (run_raster), the resolve and the
+// statistics (finish). What runs between construction and run_raster is timed
+// as the method's setup.
+class MethodRender {
+public:
+    // Starts the clock and makes the plan of `method` for the scene.
+    MethodRender(const Scene& scene, const RenderSettings& settings, RenderMethod method,
+                 const InterleaveOptions& options = {});
+
+    // The plan made at construction.
+    const MethodPlan& plan() const { return plan_; }
+
+    // Ends the setup phase, runs work(item, counters) for item = 0 .. items-1
+    // on the settings' threads (see run_items) with progress, times it as the
+    // raster phase and returns the summed counters.
+    Counters run_raster(int items, const std::function<void(int, Counters&)>& work);
+
+    // Resolves the per-sample hits into the image and returns the result with
+    // the counters, the plan's warnings and the times; hands the hits to
+    // sample_ids when given.
+    RenderResult finish(std::vector<std::uint32_t>& hits, const Counters& counters,
+                        std::vector<std::uint32_t>* sample_ids);
+
+private:
+    const Scene& scene_;
+    const RenderSettings& settings_;
+    Clock::time_point start_, phase_;
+    MethodPlan plan_;
+    RenderResult result_;
+};
 
 }  // namespace blurcull::frontend::cpu_methods

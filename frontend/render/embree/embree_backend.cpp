@@ -3,6 +3,7 @@
 #include "render/common/camera_model.hpp"
 #include "render/common/progress.hpp"
 #include "render/common/shading.hpp"
+#include "render/embree/primary_rays.hpp"
 #include "scene/scene_checks.hpp"
 
 #include <blurcull/kernel.hpp>
@@ -138,6 +139,15 @@ void add_moving_mesh(Device& device, RTCScene rtc_scene, const Scene& scene, con
     device.check("committing the triangle geometry");
 }
 
+RTCBuildQuality rtc_build_quality(EmbreeBuildQuality quality) {
+    switch (quality) {
+        case EmbreeBuildQuality::low: return RTC_BUILD_QUALITY_LOW;
+        case EmbreeBuildQuality::medium: return RTC_BUILD_QUALITY_MEDIUM;
+        case EmbreeBuildQuality::high: return RTC_BUILD_QUALITY_HIGH;
+    }
+    return RTC_BUILD_QUALITY_MEDIUM;
+}
+
 unsigned resolve_thread_count(int requested) {
     if (requested > 0) return static_cast<unsigned>(requested);
     return std::max(1u, std::thread::hardware_concurrency());
@@ -145,7 +155,7 @@ unsigned resolve_thread_count(int requested) {
 
 }  // namespace
 
-RenderResult render_embree(const Scene& scene, const RenderSettings& settings) {
+RenderResult render_embree(const Scene& scene, const RenderSettings& settings, const EmbreeOptions& options) {
     const Clock::time_point start = Clock::now();
     validate_settings(settings);
     const RenderMethodInfo& method = render_method_info(settings.method);
@@ -169,7 +179,8 @@ RenderResult render_embree(const Scene& scene, const RenderSettings& settings) {
     Device device(thread_count);
     SceneHandle rtc_scene(rtcNewScene(device.get()));
     device.check("creating the scene");
-    rtcSetSceneFlags(rtc_scene.get(), RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneFlags(rtc_scene.get(), options.robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
+    rtcSetSceneBuildQuality(rtc_scene.get(), rtc_build_quality(options.build_quality));
     add_moving_mesh(device, rtc_scene.get(), scene, model);
     rtcCommitScene(rtc_scene.get());
     device.check("building the BVH");
@@ -189,33 +200,30 @@ RenderResult render_embree(const Scene& scene, const RenderSettings& settings) {
     // Rows are handed out dynamically; each pixel's samples are summed in a
     // fixed order by one thread, so the image does not depend on the schedule.
     const auto trace_rows = [&](bool reports_progress) {
-        RTCIntersectContext context;
-        rtcInitIntersectContext(&context);
+        PrimaryRayTracer tracer(rtc_scene.get(), options.tracing);
+        std::vector<PrimaryRay> rays(static_cast<std::size_t>(width) * spp);
+        std::vector<std::uint32_t> prim_ids(rays.size());
         std::uint64_t hits = 0;
         int last_percent = -1;
         for (int py = next_row.fetch_add(1); py < height; py = next_row.fetch_add(1)) {
+            // A row's rays, pixel by pixel in sample order, traced together.
             for (int px = 0; px < width; ++px) {
-                glm::vec3 sum(0.0f);
                 for (std::uint32_t j = 0; j < spp; ++j) {
                     const kernelf::PixelSample sample = kernelf::pixel_sample(
                         static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py), j, spp, settings.seed);
                     const Ray ray = model.lens_ray(model.sample_ndc(px, py, sample.offset), sample.lens);
-                    RTCRayHit query{};
-                    query.ray.org_x = ray.origin.x;
-                    query.ray.org_y = ray.origin.y;
-                    query.ray.org_z = ray.origin.z;
-                    query.ray.dir_x = ray.direction.x;
-                    query.ray.dir_y = ray.direction.y;
-                    query.ray.dir_z = ray.direction.z;
-                    query.ray.tnear = ray.t_near;
-                    query.ray.tfar = std::numeric_limits<float>::infinity();
-                    query.ray.time = sample.time;
-                    query.ray.mask = 0xFFFFFFFFu;
-                    query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-                    query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-                    rtcIntersect1(rtc_scene.get(), &context, &query);
-                    if (query.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
-                        sum += colours[query.hit.primID];
+                    rays[static_cast<std::size_t>(px) * spp + j] =
+                        PrimaryRay{ray.origin.x,    ray.origin.y,    ray.origin.z,    ray.t_near,
+                                   ray.direction.x, ray.direction.y, ray.direction.z, sample.time};
+                }
+            }
+            tracer.trace(rays.data(), rays.size(), prim_ids.data());
+            for (int px = 0; px < width; ++px) {
+                glm::vec3 sum(0.0f);
+                for (std::uint32_t j = 0; j < spp; ++j) {
+                    const std::uint32_t id = prim_ids[static_cast<std::size_t>(px) * spp + j];
+                    if (id != no_primitive) {
+                        sum += colours[id];
                         ++hits;
                     } else {
                         sum += scene.background;

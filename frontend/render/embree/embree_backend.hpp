@@ -3,6 +3,7 @@
 #pragma once
 
 #include "render/common/render_types.hpp"
+#include "render/embree/embree_options.hpp"
 #include "scene/scene.hpp"
 
 namespace blurcull::frontend {
@@ -13,7 +14,9 @@ namespace blurcull::frontend {
 // stats.samples_tested = rays traced, stats.samples_hit = rays that hit.
 // Throws std::invalid_argument for bad settings (a settings.method other than
 // stochastic among them), SceneError for a bad scene
-// (validate_scene), std::runtime_error for Embree failures.
-RenderResult render_embree(const Scene& scene, const RenderSettings& settings);
+// (validate_scene), std::runtime_error for Embree failures. `options` choose
+// how the rays are traced (every choice gives the same image; the defaults
+// are the fastest).
+RenderResult render_embree(const Scene& scene, const RenderSettings& settings, const EmbreeOptions& options = {});
 
 }  // namespace blurcull::frontend

@@ -302,7 +302,8 @@ private:
 
 // Cells per moving triangle: the cull methods that bound lens and time
 // (the registry's bounds_samples) get their bounds per cell (at most 4 x 4);
-// the others one cell, the rectangle.
+// the others one cell, the rectangle. The cells carry the two-stage part of
+// BC_CULL_EDGES, not its edge planes.
 int cells_per_triangle_for(CullMethod cull) {
     return cull_method_info(cull).bounds_samples ? cells_max : 1;
 }

@@ -1,6 +1,7 @@
 // Shared C++/GLSL text (see dialect.hpp): the per-footprint sample bounds
 // that a renderer tests each sample against, dispatched by cull mode to
-// dual_space_body.inl or two_stage_body.inl, and the shutter interval they
+// dual_space_body.inl, two_stage_body.inl or (two-stage plus edge planes)
+// edge_bounds_body.inl, and the shutter interval they
 // leave. Needs every other kernel body.
 
 struct SampleBounds {
@@ -16,6 +17,7 @@ struct SampleBounds {
     vec4 u_time_b;
     vec4 v_time_a;
     vec4 v_time_b;
+    BcEdgeBounds edges;  // BC_CULL_EDGES: the edges' planes in (u, v, t); none for the other modes
 };
 
 // ---- per-footprint sample bounds ------------------------------------------------
@@ -30,7 +32,28 @@ BC_FN SampleBounds no_sample_bounds() {
     r.u_time_b = r.u_time_a;
     r.v_time_a = r.u_time_a;
     r.v_time_b = r.u_time_a;
+    r.edges = bc_no_edge_bounds();
     return r;
+}
+
+// The shutter interval that holds every sample sample_passes lets through:
+// each time line, linear in u (v), is extremal at an end of the lens range.
+// (lo > hi when the bounds are empty.) Lets a renderer whose samples are
+// sorted by time visit only that interval.
+BC_FN vec2 sample_time_range(BC_IN(SampleBounds) b) {
+    if (b.empty) return vec2(real(1), real(0));
+    vec4 u = vec4(b.u_range.x, b.u_range.y, b.v_range.x, b.v_range.y);
+    real lo = max(max(min(b.u_time_a.x + b.u_time_a.y * u.x, b.u_time_a.x + b.u_time_a.y * u.y),
+                      min(b.u_time_b.x + b.u_time_b.y * u.x, b.u_time_b.x + b.u_time_b.y * u.y)),
+                  max(min(b.v_time_a.x + b.v_time_a.y * u.z, b.v_time_a.x + b.v_time_a.y * u.w),
+                      min(b.v_time_b.x + b.v_time_b.y * u.z, b.v_time_b.x + b.v_time_b.y * u.w)));
+    real hi = min(min(max(b.u_time_a.z + b.u_time_a.w * u.x, b.u_time_a.z + b.u_time_a.w * u.y),
+                      max(b.u_time_b.z + b.u_time_b.w * u.x, b.u_time_b.z + b.u_time_b.w * u.y)),
+                  min(max(b.v_time_a.z + b.v_time_a.w * u.z, b.v_time_a.z + b.v_time_a.w * u.w),
+                      max(b.v_time_b.z + b.v_time_b.w * u.z, b.v_time_b.z + b.v_time_b.w * u.w)));
+    // A line's value inside the range can round a hair past its ends' values.
+    real pad = bc_err(real(1) + max(abs(lo), abs(hi)));
+    return vec2(max(lo - pad, real(0)), min(hi + pad, real(1)));
 }
 
 // Bounds on the lens and time of every sample in the screen footprint
@@ -38,7 +61,7 @@ BC_FN SampleBounds no_sample_bounds() {
 // BC_CULL_BBOX and BC_CULL_HULL bound only the screen (see screen_bound).
 BC_FN SampleBounds sample_bounds(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi, int cull) {
     SampleBounds r = no_sample_bounds();
-    if (cull != BC_CULL_DUALSPACE && cull != BC_CULL_TWO_STAGE) return r;
+    if (cull != BC_CULL_DUALSPACE && cull != BC_CULL_TWO_STAGE && cull != BC_CULL_EDGES) return r;
     if (!bc_triangle_boundable(tri)) return r;
     // The caller's sample positions were rounded too.
     vec2 pad = vec2(bc_err(max(real(1), max(abs(s_lo.x), abs(s_hi.x)))),
@@ -88,27 +111,16 @@ BC_FN SampleBounds sample_bounds(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi
             r.v_time_b = lines_b;
         }
     }
+    if (cull == BC_CULL_EDGES) {
+        // The edge planes over the box the two-stage bounds leave.
+        vec2 times = sample_time_range(r);
+        if (times.x > times.y) {
+            r.empty = true;
+            return r;
+        }
+        r.edges = bc_edge_bounds(tri, s_lo, s_hi, r.u_range, r.v_range, times);
+    }
     return r;
-}
-
-// The shutter interval that holds every sample sample_passes lets through:
-// each time line, linear in u (v), is extremal at an end of the lens range.
-// (lo > hi when the bounds are empty.) Lets a renderer whose samples are
-// sorted by time visit only that interval.
-BC_FN vec2 sample_time_range(BC_IN(SampleBounds) b) {
-    if (b.empty) return vec2(real(1), real(0));
-    vec4 u = vec4(b.u_range.x, b.u_range.y, b.v_range.x, b.v_range.y);
-    real lo = max(max(min(b.u_time_a.x + b.u_time_a.y * u.x, b.u_time_a.x + b.u_time_a.y * u.y),
-                      min(b.u_time_b.x + b.u_time_b.y * u.x, b.u_time_b.x + b.u_time_b.y * u.y)),
-                  max(min(b.v_time_a.x + b.v_time_a.y * u.z, b.v_time_a.x + b.v_time_a.y * u.w),
-                      min(b.v_time_b.x + b.v_time_b.y * u.z, b.v_time_b.x + b.v_time_b.y * u.w)));
-    real hi = min(min(max(b.u_time_a.z + b.u_time_a.w * u.x, b.u_time_a.z + b.u_time_a.w * u.y),
-                      max(b.u_time_b.z + b.u_time_b.w * u.x, b.u_time_b.z + b.u_time_b.w * u.y)),
-                  min(max(b.v_time_a.z + b.v_time_a.w * u.z, b.v_time_a.z + b.v_time_a.w * u.w),
-                      max(b.v_time_b.z + b.v_time_b.w * u.z, b.v_time_b.z + b.v_time_b.w * u.w)));
-    // A line's value inside the range can round a hair past its ends' values.
-    real pad = bc_err(real(1) + max(abs(lo), abs(hi)));
-    return vec2(max(lo - pad, real(0)), min(hi + pad, real(1)));
 }
 
 // Whether sample (uv, t) lies inside the bounds: false means the triangle
@@ -120,5 +132,5 @@ BC_FN bool sample_passes(BC_IN(SampleBounds) b, vec2 uv, real t) {
     if (t < b.v_time_a.x + b.v_time_a.y * uv.y || t > b.v_time_a.z + b.v_time_a.w * uv.y) return false;
     if (t < b.u_time_b.x + b.u_time_b.y * uv.x || t > b.u_time_b.z + b.u_time_b.w * uv.x) return false;
     if (t < b.v_time_b.x + b.v_time_b.y * uv.y || t > b.v_time_b.z + b.v_time_b.w * uv.y) return false;
-    return true;
+    return bc_edge_bounds_pass(b.edges, uv, t);
 }

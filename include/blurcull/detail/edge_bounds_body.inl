@@ -1,0 +1,406 @@
+// Shared C++/GLSL text (see dialect.hpp): the edge bound (BC_CULL_EDGES).
+//
+// Per edge of the sheared, moving triangle, its edge function at the
+// footprint's rays as a function of the lens position and time jointly: a
+// polynomial in (u, v, t), computed exactly, whose linear part becomes a
+// plane and whose other terms (and the rounding) a radius, over a box of
+// (u, v, t) (docs/kernel.md, "Edge bounds"). A covered sample has every edge
+// function of the sign of the triangle's determinant, so a sample below a
+// plane by more than its radius is culled. The box is the two-stage bounds'
+// range; the per-sample test is three planes.
+
+#define BC_EDGE_NONE 0       // no edge planes: the two-stage bounds alone
+#define BC_EDGE_ONE_SIDED 1  // the determinant keeps one sign on the box
+#define BC_EDGE_TWO_SIDED 2  // it may change sign: every edge one way or every edge the other
+#define BC_EDGE_PIECES 4     // planes per footprint, each over a quarter of the shutter range
+
+// The oracle is double: its rounding of an edge function is at most about
+// 20 double epsilons of (sum |ray|) (sum |V_i|) (sum |V_j|); a bound in any
+// precision leaves it BC_MARGIN of them (docs/kernel.md, "Edge bounds").
+#define BC_ORACLE_EPSILON 2.220446049250313e-16
+
+// A polynomial in the box's coordinates xi_u, xi_v, xi_t (each in [-1, 1]):
+// k[a + 2 b + 4 c] is the coefficient of xi_u^a xi_v^b xi_t^c (a, b <= 1,
+// c <= 3), and r bounds its distance from the exact function it stands for
+// (the rounding so far); m bounds the sum of |k|, so that rounding errors
+// are bounded without summing the coefficients again. Edge functions have
+// degree 1 in u and in v and 2 in t, the determinant 3 in t. Terms that
+// cancel between products cancel here.
+struct BcPoly {
+    real k[16];
+    real r;
+    real m;
+};
+
+BC_FN BcPoly bc_poly_zero() {
+    BcPoly p;
+    for (int n = 0; n < 16; ++n) p.k[n] = real(0);
+    p.r = real(0);
+    p.m = real(0);
+    return p;
+}
+
+// Sum of |coefficients| (<= m, which also counts what cancelled): a bound
+// on |p| over the box, rounding aside.
+BC_FN real bc_poly_norm(BC_IN(BcPoly) p) {
+    real sum = real(0);
+    for (int n = 0; n < 16; ++n) sum = sum + abs(p.k[n]);
+    return sum;
+}
+
+BC_FN BcPoly bc_poly_add(BC_IN(BcPoly) p, BC_IN(BcPoly) q, real sign) {
+    BcPoly result;
+    for (int n = 0; n < 16; ++n) result.k[n] = p.k[n] + sign * q.k[n];
+    result.m = p.m + q.m;
+    result.r = p.r + q.r + bc_err(result.m);
+    return result;
+}
+
+BC_FN BcPoly bc_poly_scale(BC_IN(BcPoly) p, real factor) {
+    BcPoly result;
+    for (int n = 0; n < 16; ++n) result.k[n] = p.k[n] * factor;
+    result.m = p.m * abs(factor);
+    result.r = p.r * abs(factor) + bc_err(result.m);
+    return result;
+}
+
+// p (w0 + w1 xi_t), p of degree <= 2 in t; w_error bounds w's own error.
+BC_FN BcPoly bc_poly_times_t(BC_IN(BcPoly) p, vec2 w, real w_error) {
+    BcPoly result = bc_poly_zero();
+    for (int n = 0; n < 12; ++n) {
+        result.k[n] = result.k[n] + p.k[n] * w.x;
+        result.k[n + 4] = result.k[n + 4] + p.k[n] * w.y;
+    }
+    real norm_w = abs(w.x) + abs(w.y);
+    result.m = p.m * norm_w;
+    result.r = p.r * (norm_w + w_error) + p.m * w_error + bc_err(real(2) * result.m);
+    return result;
+}
+
+// (x0 + x1 u + x2 t + x3 u t)(y0 + y1 v + y2 t + y3 v t), x_error and
+// y_error the factors' own errors.
+BC_FN BcPoly bc_poly_times_uv(vec4 x, real x_error, vec4 y, real y_error) {
+    BcPoly result = bc_poly_zero();
+    result.k[0] = x.x * y.x;              // 1
+    result.k[1] = x.y * y.x;              // u
+    result.k[2] = x.x * y.y;              // v
+    result.k[3] = x.y * y.y;              // u v
+    result.k[4] = x.z * y.x + x.x * y.z;  // t
+    result.k[5] = x.w * y.x + x.y * y.z;  // u t
+    result.k[6] = x.x * y.w + x.z * y.y;  // v t
+    result.k[7] = x.y * y.w + x.w * y.y;  // u v t
+    result.k[8] = x.z * y.z;              // t^2
+    result.k[9] = x.w * y.z;              // u t^2
+    result.k[10] = x.z * y.w;             // v t^2
+    result.k[11] = x.w * y.w;             // u v t^2
+    real nx = abs(x.x) + abs(x.y) + abs(x.z) + abs(x.w);
+    real ny = abs(y.x) + abs(y.y) + abs(y.z) + abs(y.w);
+    result.m = nx * ny;
+    result.r = x_error * (ny + y_error) + nx * y_error + bc_err(real(2) * result.m);
+    return result;
+}
+
+// y_i w_j - y_j w_i for factors y = y0 + y1 xi_a + y2 xi_t + y3 xi_a xi_t
+// (`a` the index of xi_a: 1 for u, 2 for v) and depths w = w0 + w1 xi_t,
+// with their errors: the footprint terms n_x, n_y of an edge.
+BC_FN BcPoly bc_poly_cross_w(vec4 yi, real yi_error, vec2 wi, real wi_error, vec4 yj, real yj_error, vec2 wj,
+                             real wj_error, int a) {
+    BcPoly result = bc_poly_zero();
+    result.k[0] = yi.x * wj.x - yj.x * wi.x;                                   // 1
+    result.k[a] = yi.y * wj.x - yj.y * wi.x;                                   // a
+    result.k[4] = (yi.z * wj.x + yi.x * wj.y) - (yj.z * wi.x + yj.x * wi.y);   // t
+    result.k[4 + a] = (yi.w * wj.x + yi.y * wj.y) - (yj.w * wi.x + yj.y * wi.y); // a t
+    result.k[8] = yi.z * wj.y - yj.z * wi.y;                                   // t^2
+    result.k[8 + a] = yi.w * wj.y - yj.w * wi.y;                               // a t^2
+    real ni = abs(yi.x) + abs(yi.y) + abs(yi.z) + abs(yi.w);
+    real nj = abs(yj.x) + abs(yj.y) + abs(yj.z) + abs(yj.w);
+    real mi = abs(wi.x) + abs(wi.y);
+    real mj = abs(wj.x) + abs(wj.y);
+    result.m = ni * mj + nj * mi;
+    result.r = yi_error * (mj + wj_error) + ni * wj_error + yj_error * (mi + wi_error) + nj * wi_error +
+               bc_err(real(2) * result.m);
+    return result;
+}
+
+// The plane kept of p: p = c0 + cu xi_u + cv xi_v + ct xi_t + rest with
+// |rest| <= radius over the box. xi_t^2 lies in [0, 1], so its terms give
+// half of themselves to the linear part (u t^2 = u / 2 + u (t^2 - 1/2), the
+// rest within 1/2); t^3 gives 3/4 t (Chebyshev: |t^3 - 3t/4| <= 1/4); every
+// other product of coordinates lies in [-1, 1].
+BC_FN vec4 bc_poly_plane(BC_IN(BcPoly) p, BC_OUT(real) radius) {
+    vec4 plane = vec4(p.k[0] + real(0.5) * p.k[8], p.k[1] + real(0.5) * p.k[9], p.k[2] + real(0.5) * p.k[10],
+                      p.k[4] + real(0.75) * p.k[12]);
+    real rest = real(0.5) * (abs(p.k[8]) + abs(p.k[9]) + abs(p.k[10])) + real(0.25) * abs(p.k[12]);
+    rest = rest + abs(p.k[3]) + abs(p.k[5]) + abs(p.k[6]) + abs(p.k[7]) + abs(p.k[11]);
+    rest = rest + abs(p.k[13]) + abs(p.k[14]) + abs(p.k[15]);
+    radius = rest + p.r + bc_err(p.m);
+    return plane;
+}
+
+// +1 or -1 where p keeps that strict sign over the box with `margin` to
+// spare, else 0.
+BC_FN real bc_poly_sign(BC_IN(BcPoly) p, real margin) {
+    real radius = real(0);
+    vec4 plane = bc_poly_plane(p, radius);
+    real spread = abs(plane.y) + abs(plane.z) + abs(plane.w) + radius + margin;
+    if (plane.x > spread) return real(1);
+    if (plane.x < -spread) return real(-1);
+    return real(0);
+}
+
+// The planes of the three edges over one piece of the box (bc_edge_bounds).
+struct BcEdgePlanes {
+    int mode;  // BC_EDGE_*
+    vec2 time; // the box's shutter range: the planes hold only inside it
+    vec3 du;   // per edge: coefficient of u
+    vec3 dv;   // of v
+    vec3 dt;   // of t
+    vec3 hi;   // constant + radius: a covered sample has du u + dv v + dt t + hi >= 0 for every edge ...
+    vec3 lo;   // constant - radius: ... or (two-sided only) <= 0 with lo for every edge
+};
+
+BC_FN BcEdgePlanes bc_no_edge_planes() {
+    BcEdgePlanes e;
+    e.mode = BC_EDGE_NONE;
+    e.time = vec2(real(0), real(1));
+    e.du = vec3(real(0));
+    e.dv = vec3(real(0));
+    e.dt = vec3(real(0));
+    e.hi = vec3(real(0));
+    e.lo = vec3(real(0));
+    return e;
+}
+
+// Centre and half-width of [lo, hi], the half-width grown so that the
+// centre +- it still holds both ends after rounding.
+BC_FN vec2 bc_box_axis(real lo, real hi) {
+    return vec2(real(0.5) * (lo + hi), real(0.5) * (hi - lo) + bc_err(abs(lo) + abs(hi)));
+}
+
+// (1 - t) f0 + t f1 at t = t_box.x + t_box.y xi_t, as (constant, coefficient of xi_t).
+BC_FN vec2 bc_lerp_t(real f0, real f1, vec2 t_box) {
+    real d = f1 - f0;
+    return vec2(f0 + d * t_box.x, d * t_box.y);
+}
+
+// Vertex i's offset along one axis from the ray through the footprint
+// centre, d = (x - s w) + u c at lens u = box.x + box.y xi and time t, as
+// (1, xi, xi_t, xi xi_t) coefficients; its error bound goes to `error`.
+BC_FN vec4 bc_edge_offset(BC_IN(MovingTriangle) tri, int i, int axis, real s, vec2 box, vec2 t_box,
+                          BC_OUT(real) error) {
+    vec3 p0 = tri.p[i];
+    vec3 p1 = tri.p[i + 3];
+    vec2 e = bc_lerp_t(p0[axis] - s * p0.z, p1[axis] - s * p1.z, t_box);
+    vec2 c = bc_lerp_t(tri.c[i][axis], tri.c[i + 3][axis], t_box);
+    real c_size = abs(tri.c[i][axis]) + abs(tri.c[i + 3][axis]);
+    error = bc_err(real(2) * (abs(p0[axis]) + abs(s * p0.z) + abs(p1[axis]) + abs(s * p1.z)) +
+                   real(2) * c_size * (abs(box.x) + box.y));
+    return vec4(e.x + box.x * c.x, box.y * c.x, e.y + box.x * c.y, box.y * c.y);
+}
+
+// Sum of |x| + |c| over both ends of vertex i, per axis: a bound on the
+// oracle's sheared vertex anywhere in the lens and shutter.
+BC_FN real bc_vertex_magnitude(BC_IN(MovingTriangle) tri, int i) {
+    vec3 p0 = abs(tri.p[i]);
+    vec3 p1 = abs(tri.p[i + 3]);
+    vec2 c = abs(tri.c[i]) + abs(tri.c[i + 3]);
+    return p0.x + p0.y + p0.z + p1.x + p1.y + p1.z + c.x + c.y;
+}
+
+// f + h |n| over the box (h >= 0): where n keeps one sign, exactly
+// f + (h sign n) n; elsewhere f with its error grown by h max |n|.
+BC_FN BcPoly bc_poly_add_abs(BC_IN(BcPoly) f, BC_IN(BcPoly) n, real h, bool follow_sign) {
+    real sign = follow_sign ? bc_poly_sign(n, real(0)) : real(0);
+    if (sign != real(0)) return bc_poly_add(f, bc_poly_scale(n, h * sign), real(1));
+    BcPoly result = f;
+    real term = h * (bc_poly_norm(n) + bc_err(n.m) + n.r);
+    result.r = result.r + term + bc_err(term);
+    return result;
+}
+
+// Edge k's plane in (u, v, t) from its polynomial over the box (xi =
+// (u - centre) / half-width per axis), into slot k of e, its radius grown by
+// `extra`. False if not finite.
+BC_FN bool bc_edge_plane(BC_IN(BcPoly) f, real extra, vec2 u_box, vec2 v_box, vec2 t_box, int k,
+                         BC_INOUT(BcEdgePlanes) e) {
+    real radius = real(0);
+    vec4 a = bc_poly_plane(f, radius);
+    real cu = a.y / u_box.y;
+    real cv = a.z / v_box.y;
+    real ct = a.w / t_box.y;
+    real constant = a.x - cu * u_box.x - cv * v_box.x - ct * t_box.x;
+    // Rounding of the conversion and of the caller's evaluation.
+    real slack = bc_err(abs(a.x) + real(2) * (abs(cu) * (abs(u_box.x) + u_box.y) + abs(cv) * (abs(v_box.x) + v_box.y) +
+                                             abs(ct) * (abs(t_box.x) + t_box.y)) + radius + extra);
+    real r = radius + extra + slack;
+    e.du[k] = cu;
+    e.dv[k] = cv;
+    e.dt[k] = ct;
+    e.hi[k] = constant + r;
+    e.lo[k] = constant - r;
+    return bc_finite(cu) && bc_finite(cv) && bc_finite(ct) && bc_finite(e.hi[k]) && bc_finite(e.lo[k]);
+}
+
+// The three edges' functions over the footprint [s_lo, s_hi] (padded for
+// the caller's rounding already) and the box u in u_range, v in v_range,
+// t in t_range, as polynomials in the box's coordinates; see bc_edge_functions.
+struct BcEdgeFunctions {
+    BcPoly f[3];    // per edge: the function to keep >= 0 (one-sided) or its centre (two-sided)
+    vec3 extra;     // per edge: the oracle's rounding, added to the radius
+    int mode;       // BC_EDGE_ONE_SIDED or BC_EDGE_TWO_SIDED
+    vec2 u_box;     // the box: centre and half-width per axis
+    vec2 v_box;
+    vec2 t_box;
+};
+
+// Edge k joins vertices i = k+1 and j = k+2; with d the vertices' offsets
+// from the ray through the footprint centre s_c, its function at the ray
+// (s_c + delta, 1) is
+//   E_k = d_i x d_j + delta_x n_x + delta_y n_y,
+//   n_x = d_iy W_j - d_jy W_i,  n_y = d_jx W_i - d_ix W_j,
+// and the determinant is W_0 E_0 + W_1 E_1 + W_2 E_2 (E at the centre).
+// With the determinant's sign known on the box, each edge function times it
+// must reach >= 0 somewhere on the footprint: its largest value there,
+// sign E_c + h_x |n_x| + h_y |n_y|, is kept exactly where n_x and n_y keep
+// their signs. Otherwise (two-sided) the footprint only widens the radius.
+BC_FN BcEdgeFunctions bc_edge_functions(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi, vec2 u_range,
+                                        vec2 v_range, vec2 t_range) {
+    BcEdgeFunctions result;
+    result.u_box = bc_box_axis(u_range.x, u_range.y);
+    result.v_box = bc_box_axis(v_range.x, v_range.y);
+    result.t_box = bc_box_axis(t_range.x, t_range.y);
+    vec2 sx = bc_box_axis(s_lo.x, s_hi.x);
+    vec2 sy = bc_box_axis(s_lo.y, s_hi.y);
+    vec4 dx[3];
+    vec4 dy[3];
+    vec2 w[3];
+    vec3 dx_error = vec3(real(0));
+    vec3 dy_error = vec3(real(0));
+    vec3 w_error = vec3(real(0));
+    real m[3];
+    for (int i = 0; i < 3; ++i) {
+        real ex = real(0);
+        real ey = real(0);
+        dx[i] = bc_edge_offset(tri, i, 0, sx.x, result.u_box, result.t_box, ex);
+        dy[i] = bc_edge_offset(tri, i, 1, sy.x, result.v_box, result.t_box, ey);
+        dx_error[i] = ex;
+        dy_error[i] = ey;
+        w[i] = bc_lerp_t(tri.p[i].z, tri.p[i + 3].z, result.t_box);
+        w_error[i] = bc_err(abs(tri.p[i].z) + abs(tri.p[i + 3].z));
+        m[i] = bc_vertex_magnitude(tri, i);
+    }
+    real ray = real(1) + max(abs(s_lo.x), abs(s_hi.x)) + max(abs(s_lo.y), abs(s_hi.y));
+    real oracle = real(BC_MARGIN) * real(BC_ORACLE_EPSILON);
+    BcPoly det = bc_poly_zero();
+    for (int k = 0; k < 3; ++k) {
+        int i = (k + 1) % 3;
+        int j = (k + 2) % 3;
+        result.f[k] = bc_poly_add(bc_poly_times_uv(dx[i], dx_error[i], dy[j], dy_error[j]),
+                               bc_poly_times_uv(dx[j], dx_error[j], dy[i], dy_error[i]), real(-1));
+        det = bc_poly_add(det, bc_poly_times_t(result.f[k], w[k], w_error[k]), real(1));
+        result.extra[k] = oracle * ray * m[i] * m[j];
+    }
+    real sign = bc_poly_sign(det, oracle * m[0] * m[1] * m[2]);
+    bool one_sided = sign != real(0);
+    result.mode = one_sided ? BC_EDGE_ONE_SIDED : BC_EDGE_TWO_SIDED;
+    for (int k = 0; k < 3; ++k) {
+        int i = (k + 1) % 3;
+        int j = (k + 2) % 3;
+        BcPoly nx = bc_poly_cross_w(dy[i], dy_error[i], w[i], w_error[i], dy[j], dy_error[j], w[j], w_error[j], 2);
+        BcPoly ny = bc_poly_cross_w(dx[j], dx_error[j], w[j], w_error[j], dx[i], dx_error[i], w[i], w_error[i], 1);
+        if (one_sided) result.f[k] = bc_poly_scale(result.f[k], sign);
+        result.f[k] = bc_poly_add_abs(result.f[k], nx, sx.y, one_sided);
+        result.f[k] = bc_poly_add_abs(result.f[k], ny, sy.y, one_sided);
+    }
+    return result;
+}
+
+// p on the part xi_t = centre + half_width xi' of the box, as a polynomial in xi'
+// (|centre| + half_width <= 1 + a rounding pad): (centre + half_width xi')^c expanded.
+BC_FN BcPoly bc_poly_recentre_t(BC_IN(BcPoly) p, real centre, real half_width) {
+    BcPoly result;
+    for (int g = 0; g < 4; ++g) {
+        real k0 = p.k[g];
+        real k1 = p.k[g + 4];
+        real k2 = p.k[g + 8];
+        real k3 = p.k[g + 12];
+        result.k[g] = k0 + centre * (k1 + centre * (k2 + centre * k3));
+        result.k[g + 4] = half_width * (k1 + centre * (real(2) * k2 + real(3) * centre * k3));
+        result.k[g + 8] = half_width * half_width * (k2 + real(3) * centre * k3);
+        result.k[g + 12] = half_width * half_width * half_width * k3;
+    }
+    real reach = max(real(1), abs(centre) + half_width);  // bounds |centre + half_width xi'|^c, c <= 3
+    result.m = p.m * reach * reach * reach;
+    result.r = p.r + bc_err(real(8) * result.m);
+    return result;
+}
+
+// The shutter range of the two-stage bounds cut into BC_EDGE_PIECES equal
+// pieces, each with planes of its own, from the edge functions over the
+// whole range re-centred on the piece: the terms in t^2 that a plane cannot
+// follow shrink with the square of a piece's length. Neighbouring pieces
+// share their end exactly, so every time in the range has a piece.
+// A triangle that does not move gets one piece: its functions are constant in t.
+struct BcEdgeBounds {
+    int pieces;  // pieces in use, 1 or BC_EDGE_PIECES
+    BcEdgePlanes piece[BC_EDGE_PIECES];
+};
+
+BC_FN BcEdgeBounds bc_no_edge_bounds() {
+    BcEdgeBounds b;
+    b.pieces = 1;
+    for (int k = 0; k < BC_EDGE_PIECES; ++k) b.piece[k] = bc_no_edge_planes();
+    return b;
+}
+
+BC_FN BcEdgeBounds bc_edge_bounds(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi, vec2 u_range, vec2 v_range,
+                                  vec2 t_range) {
+    BcEdgeBounds b = bc_no_edge_bounds();
+    bool moves = false;
+    for (int j = 0; j < 3; ++j) {
+        if (tri.p[j] != tri.p[j + 3] || tri.c[j] != tri.c[j + 3]) moves = true;
+    }
+    b.pieces = moves ? BC_EDGE_PIECES : 1;
+    BcEdgeFunctions fn = bc_edge_functions(tri, s_lo, s_hi, u_range, v_range, t_range);
+    vec2 t_box = fn.t_box;
+    // A piece's ends are rounded: in box coordinates they can move by this much.
+    real pad = bc_err(abs(t_box.x) + t_box.y) / t_box.y;
+    real half_width = real(1) / real(b.pieces);
+    real start = t_range.x;
+    for (int q = 0; q < b.pieces; ++q) {
+        real centre = real(-1) + half_width * real(2 * q + 1);
+        real end = q + 1 == b.pieces ? t_range.y : t_box.x + t_box.y * (centre + half_width);
+        end = max(start, min(end, t_range.y));
+        BcEdgePlanes e = bc_no_edge_planes();
+        vec2 piece_box = vec2(t_box.x + t_box.y * centre, t_box.y * (half_width + pad));
+        for (int k = 0; k < 3; ++k) {
+            BcPoly f = bc_poly_recentre_t(fn.f[k], centre, half_width + pad);
+            if (!bc_edge_plane(f, fn.extra[k], fn.u_box, fn.v_box, piece_box, k, e)) return bc_no_edge_bounds();
+        }
+        e.mode = fn.mode;
+        e.time = vec2(start, end);
+        b.piece[q] = e;
+        start = end;
+    }
+    return b;
+}
+
+// Whether a sample at lens uv and time t can be covered by the edges' account:
+// the planes of the piece whose shutter range holds t.
+BC_FN bool bc_edge_bounds_pass(BC_IN(BcEdgeBounds) b, vec2 uv, real t) {
+    if (b.piece[0].mode == BC_EDGE_NONE) return true;
+    if (t < b.piece[0].time.x) return false;
+    int k = 0;
+    while (k + 1 < b.pieces) {
+        if (t <= b.piece[k].time.y) break;
+        k = k + 1;
+    }
+    BcEdgePlanes e = b.piece[k];
+    if (t > e.time.y) return false;
+    vec3 value = e.du * uv.x + e.dv * uv.y + e.dt * t;
+    vec3 hi = value + e.hi;
+    if (min(hi.x, min(hi.y, hi.z)) >= real(0)) return true;
+    if (e.mode == BC_EDGE_ONE_SIDED) return false;
+    vec3 lo = value + e.lo;
+    return !(max(lo.x, max(lo.y, lo.z)) > real(0));
+}
