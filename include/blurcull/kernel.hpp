@@ -147,6 +147,47 @@
 //   sample_passes lets through, for a renderer whose samples are sorted by
 //   time. (1, 0) (lo > hi) for an empty b.
 //
+// ---- The raster glue both backends share (detail/raster_body.inl) ---------------------
+// Raster coordinates are pixels, x right and y DOWN from the image's top-left
+// corner; image_size is (width, height) in pixels (or cells of a lattice).
+//
+// vec2 raster_to_ndc(vec2 raster, vec2 image_size), vec2 ndc_to_raster(vec2 ndc, vec2 image_size)
+//   Raster position <-> NDC (y up), each the inverse of the other up to rounding.
+//
+// vec2 pixel_sample_ndc(ivec2 pixel, vec2 offset, vec2 image_size)
+//   The NDC of a sample at offset in [0, 1)^2 from pixel's top-left corner.
+//
+// vec4 pixel_rect_ndc(ivec4 rect, vec2 image_size)
+//   The NDC box (lo.xy, hi.xy) of the inclusive pixel rectangle (x0, y0, x1, y1).
+//
+// ivec4 box_cell_rect(vec2 lo, vec2 hi, vec2 cells)
+//   The inclusive cells (x0, y0, x1, y1), clamped to the lattice, that hold
+//   every sample whose NDC lies in [lo, hi], widened by one margin rule
+//   (docs/kernel.md, "The raster glue"); x0 > x1 when the box misses the image.
+//
+// ivec2 interleaved_cell(ivec2 tile, int slot, int tile_width)
+// vec2 interleaved_sample_ndc(ivec2 cell, int scale, vec2 jitter, vec2 image_size)
+//   Interleaved sampling: the lattice cell of a tile's slot, and the NDC of the
+//   sample in a cell of a lattice scale times finer than the pixels.
+//
+// bool sample_culled(ScreenBound screen, bool check_screen, SampleBounds bounds, vec2 ndc, vec2 lens, real time)
+// int sample_test(MovingTriangle tri, ScreenBound screen, bool check_screen, SampleBounds bounds,
+//                 vec2 ndc, vec2 lens, real time, real near, out real depth)
+//   The per-sample chain every backend runs: the lens/time bounds, the screen
+//   bound (when check_screen), then covers. sample_culled is its first half;
+//   sample_test returns BC_SAMPLE_CULLED 0 (not tested), BC_SAMPLE_MISSED 1 or
+//   BC_SAMPLE_COVERED 2 (depth = the hit's view depth; else 0).
+//
+// bool depth_nearer(real depth, real nearest)
+// real depth_key(real near, real depth), bool depth_key_wins(real key, uint index, real held_key, uint held_index)
+//   The depth rules: the CPU z-buffer's (strictly nearer wins, so the lowest
+//   index among equal depths), and the GPU's key near / depth in [0, 1] with
+//   its tie rule (larger key, then lower index).
+//
+// vec2 camera_coc(real projection_scale, real lens_radius, real focus_depth)
+//   (a, b) of c(w) = a + b w from camera parameters: thin_lens_coc, with
+//   (0, 0) for a pinhole (lens_radius 0) whatever the focus.
+//
 // ---- The default sample pattern (detail/sampling_body.inl) -----------------------------
 //
 // PixelSample pixel_sample(uint px, uint py, uint index, uint spp, uint seed)

@@ -91,7 +91,8 @@ void main() {
     ivec2 cell = bc_interleaved_cell(ivec2(px, py), int(values[47]), 6);
     vec2 interleaved = bc_interleaved_sample_ndc(cell, 2, jitter, image_size);
     float hit_depth;
-    int test = bc_sample_test(tri, screen, on_screen, bounds, s, uv, t, near, hit_depth);
+    int test = bc_sample_test(tri, screen, on_screen, bounds, s, uv, t, near, hit_depth) +
+               (bc_sample_culled(screen, on_screen, bounds, s, uv, t) ? 1 : 0);
     float key = bc_depth_key(near, hit_depth);
     bool wins = bc_depth_nearer(hit_depth, depth) || bc_depth_key_wins(key, px, depth, py);
     vec2 camera_ab = bc_camera_coc(values[37], values[38], values[39]);

@@ -52,6 +52,7 @@
 #define box_cell_rect bc_box_cell_rect
 #define interleaved_cell bc_interleaved_cell
 #define interleaved_sample_ndc bc_interleaved_sample_ndc
+#define sample_culled bc_sample_culled
 #define sample_test bc_sample_test
 #define depth_nearer bc_depth_nearer
 #define depth_key bc_depth_key

@@ -411,8 +411,7 @@ private:
         // kernel::sample_test's chain up to the exact test (the lens/time
         // bounds first: cheaper than a hull and they cull more); the fast
         // test and covers follow in test_pixel and test_exactly.
-        return !K::sample_passes(sb, s.lens, s.time) ||
-               (current.check_screen && !K::screen_contains(current.bound, s.ndc));
+        return K::sample_culled(current.bound, current.check_screen, sb, s.ndc, s.lens, s.time);
     }
 
     // The exact test of a sample the fast test kept (sample_test's last

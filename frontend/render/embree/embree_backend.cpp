@@ -153,6 +153,127 @@ unsigned resolve_thread_count(int requested) {
     return std::max(1u, std::thread::hardware_concurrency());
 }
 
+// Fills the BVH of `rtc_scene` with the scene's moving triangles, with the
+// options' scene flags and build quality.
+void build_scene(Device& device, const SceneHandle& rtc_scene, const Scene& scene, const CameraModel& model,
+                 const EmbreeOptions& options) {
+    rtcSetSceneFlags(rtc_scene.get(), options.robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
+    rtcSetSceneBuildQuality(rtc_scene.get(), rtc_build_quality(options.build_quality));
+    add_moving_mesh(device, rtc_scene.get(), scene, model);
+    rtcCommitScene(rtc_scene.get());
+    device.check("building the BVH");
+}
+
+// The primary rays of the image, a row at a time: rows are handed out
+// dynamically, each pixel's samples are summed in a fixed order by one
+// thread, so the image does not depend on the schedule.
+class RowTracer {
+public:
+    RowTracer(RTCScene rtc_scene, const Scene& scene, const CameraModel& model, const std::vector<glm::vec3>& colours,
+              const RenderSettings& settings, const EmbreeOptions& options, Image& image,
+              RenderClock::time_point start)
+        : rtc_scene_(rtc_scene), scene_(scene), model_(model), colours_(colours), settings_(settings),
+          options_(options), image_(image), start_(start) {}
+
+    // Traces rows until none is left; one caller reports progress.
+    void run(bool reports_progress) {
+        const int width = settings_.width;
+        const auto spp = static_cast<std::uint32_t>(settings_.spp);
+        PrimaryRayTracer tracer(rtc_scene_, options_.tracing);
+        std::vector<PrimaryRay> rays(static_cast<std::size_t>(width) * spp);
+        std::vector<std::uint32_t> prim_ids(rays.size());
+        std::uint64_t hits = 0;
+        int last_percent = -1;
+        for (int py = next_row_.fetch_add(1); py < settings_.height; py = next_row_.fetch_add(1)) {
+            make_row_rays(py, rays);
+            tracer.trace(rays.data(), rays.size(), prim_ids.data());
+            hits += sum_row(py, prim_ids);
+            const int done = rows_done_.fetch_add(1) + 1;
+            if (reports_progress && ms_since(start_) > 1000.0) {
+                const int percent = static_cast<int>(100LL * done / settings_.height);
+                if (percent != last_percent) {
+                    std::fprintf(stderr, "\rembree: %3d%%", percent);
+                    std::fflush(stderr);
+                    last_percent = percent;
+                    progress_shown_ = true;
+                }
+            }
+        }
+        hits_.fetch_add(hits);
+    }
+
+    // After a failed thread start: the started helpers stop early.
+    void stop() { next_row_.store(settings_.height); }
+    bool progress_shown() const { return progress_shown_; }
+    std::uint64_t hits() const { return hits_.load(); }
+
+private:
+    // Row py's rays, pixel by pixel in sample order.
+    void make_row_rays(int py, std::vector<PrimaryRay>& rays) const {
+        const auto spp = static_cast<std::uint32_t>(settings_.spp);
+        for (int px = 0; px < settings_.width; ++px) {
+            for (std::uint32_t j = 0; j < spp; ++j) {
+                const kernelf::PixelSample sample = kernelf::pixel_sample(
+                    static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py), j, spp, settings_.seed);
+                const Ray ray = model_.lens_ray(model_.sample_ndc(px, py, sample.offset), sample.lens);
+                rays[static_cast<std::size_t>(px) * spp + j] =
+                    PrimaryRay{ray.origin.x,    ray.origin.y,    ray.origin.z,    ray.t_near,
+                               ray.direction.x, ray.direction.y, ray.direction.z, sample.time};
+            }
+        }
+    }
+
+    // Row py's pixels: the sum of their samples' colours; returns the hits.
+    std::uint64_t sum_row(int py, const std::vector<std::uint32_t>& prim_ids) {
+        const auto spp = static_cast<std::uint32_t>(settings_.spp);
+        std::uint64_t hits = 0;
+        for (int px = 0; px < settings_.width; ++px) {
+            glm::vec3 sum(0.0f);
+            for (std::uint32_t j = 0; j < spp; ++j) {
+                const std::uint32_t id = prim_ids[static_cast<std::size_t>(px) * spp + j];
+                if (id != no_primitive) {
+                    sum += colours_[id];
+                    ++hits;
+                } else {
+                    sum += scene_.background;
+                }
+            }
+            image_.at(px, py) = sum;
+        }
+        return hits;
+    }
+
+    RTCScene rtc_scene_;
+    const Scene& scene_;
+    const CameraModel& model_;
+    const std::vector<glm::vec3>& colours_;
+    const RenderSettings& settings_;
+    const EmbreeOptions& options_;
+    Image& image_;
+    RenderClock::time_point start_;
+    std::atomic<int> next_row_{0};
+    std::atomic<int> rows_done_{0};
+    std::atomic<std::uint64_t> hits_{0};
+    bool progress_shown_ = false;
+};
+
+// Runs `tracer` on thread_count threads (the caller's among them).
+void trace_on_threads(RowTracer& tracer, unsigned thread_count, int height, bool progress) {
+    std::vector<std::thread> helpers;
+    try {
+        for (unsigned i = 1; i < std::min<unsigned>(thread_count, static_cast<unsigned>(height)); ++i) {
+            helpers.emplace_back([&tracer] { tracer.run(false); });
+        }
+    } catch (...) {
+        tracer.stop();
+        for (std::thread& helper : helpers) helper.join();
+        throw;
+    }
+    tracer.run(progress);
+    for (std::thread& helper : helpers) helper.join();
+    if (tracer.progress_shown()) std::fprintf(stderr, "\rembree: 100%%\n");
+}
+
 }  // namespace
 
 RenderResult render_embree(const Scene& scene, const RenderSettings& settings, const EmbreeOptions& options) {
@@ -179,94 +300,23 @@ RenderResult render_embree(const Scene& scene, const RenderSettings& settings, c
     Device device(thread_count);
     SceneHandle rtc_scene(rtcNewScene(device.get()));
     device.check("creating the scene");
-    rtcSetSceneFlags(rtc_scene.get(), options.robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
-    rtcSetSceneBuildQuality(rtc_scene.get(), rtc_build_quality(options.build_quality));
-    add_moving_mesh(device, rtc_scene.get(), scene, model);
-    rtcCommitScene(rtc_scene.get());
-    device.check("building the BVH");
+    build_scene(device, rtc_scene, scene, model, options);
     stats.ms_per_phase.emplace_back("build BVH", ms_since(phase_start));
 
     phase_start = Clock::now();
-    const int width = settings.width;
-    const int height = settings.height;
-    const auto spp = static_cast<std::uint32_t>(settings.spp);
-    result.image = Image(width, height);
-    Image& image = result.image;
-    std::atomic<int> next_row{0};
-    std::atomic<int> rows_done{0};
-    std::atomic<std::uint64_t> total_hits{0};
-    bool progress_shown = false;
-
-    // Rows are handed out dynamically; each pixel's samples are summed in a
-    // fixed order by one thread, so the image does not depend on the schedule.
-    const auto trace_rows = [&](bool reports_progress) {
-        PrimaryRayTracer tracer(rtc_scene.get(), options.tracing);
-        std::vector<PrimaryRay> rays(static_cast<std::size_t>(width) * spp);
-        std::vector<std::uint32_t> prim_ids(rays.size());
-        std::uint64_t hits = 0;
-        int last_percent = -1;
-        for (int py = next_row.fetch_add(1); py < height; py = next_row.fetch_add(1)) {
-            // A row's rays, pixel by pixel in sample order, traced together.
-            for (int px = 0; px < width; ++px) {
-                for (std::uint32_t j = 0; j < spp; ++j) {
-                    const kernelf::PixelSample sample = kernelf::pixel_sample(
-                        static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py), j, spp, settings.seed);
-                    const Ray ray = model.lens_ray(model.sample_ndc(px, py, sample.offset), sample.lens);
-                    rays[static_cast<std::size_t>(px) * spp + j] =
-                        PrimaryRay{ray.origin.x,    ray.origin.y,    ray.origin.z,    ray.t_near,
-                                   ray.direction.x, ray.direction.y, ray.direction.z, sample.time};
-                }
-            }
-            tracer.trace(rays.data(), rays.size(), prim_ids.data());
-            for (int px = 0; px < width; ++px) {
-                glm::vec3 sum(0.0f);
-                for (std::uint32_t j = 0; j < spp; ++j) {
-                    const std::uint32_t id = prim_ids[static_cast<std::size_t>(px) * spp + j];
-                    if (id != no_primitive) {
-                        sum += colours[id];
-                        ++hits;
-                    } else {
-                        sum += scene.background;
-                    }
-                }
-                image.at(px, py) = sum;
-            }
-            const int done = rows_done.fetch_add(1) + 1;
-            if (reports_progress && ms_since(start) > 1000.0) {
-                const int percent = static_cast<int>(100LL * done / height);
-                if (percent != last_percent) {
-                    std::fprintf(stderr, "\rembree: %3d%%", percent);
-                    std::fflush(stderr);
-                    last_percent = percent;
-                    progress_shown = true;
-                }
-            }
-        }
-        total_hits.fetch_add(hits);
-    };
-
-    std::vector<std::thread> helpers;
-    try {
-        for (unsigned i = 1; i < std::min<unsigned>(thread_count, static_cast<unsigned>(height)); ++i) {
-            helpers.emplace_back(trace_rows, false);
-        }
-    } catch (...) {
-        next_row.store(height);  // let the started helpers stop early
-        for (std::thread& helper : helpers) helper.join();
-        throw;
-    }
-    trace_rows(settings.progress);
-    for (std::thread& helper : helpers) helper.join();
-    if (progress_shown) std::fprintf(stderr, "\rembree: 100%%\n");
+    result.image = Image(settings.width, settings.height);
+    RowTracer tracer(rtc_scene.get(), scene, model, colours, settings, options, result.image, start);
+    trace_on_threads(tracer, thread_count, settings.height, settings.progress);
     device.check("tracing");
     stats.ms_per_phase.emplace_back("trace", ms_since(phase_start));
 
     phase_start = Clock::now();
-    for (glm::vec3& pixel : image.pixels) pixel = resolve_box(pixel, settings.spp);
+    for (glm::vec3& pixel : result.image.pixels) pixel = resolve_box(pixel, settings.spp);
     stats.ms_per_phase.emplace_back("resolve", ms_since(phase_start));
 
-    stats.samples_tested = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) * spp;
-    stats.samples_hit = total_hits.load();
+    stats.samples_tested = static_cast<std::uint64_t>(settings.width) * static_cast<std::uint64_t>(settings.height) *
+                           static_cast<std::uint64_t>(settings.spp);
+    stats.samples_hit = tracer.hits();
     stats.ms_total = ms_since(start);
     return result;
 }

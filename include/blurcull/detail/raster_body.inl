@@ -119,6 +119,17 @@ BC_FN vec2 interleaved_sample_ndc(ivec2 cell, int scale, vec2 jitter, vec2 image
 #define BC_SAMPLE_MISSED 1   // tested (a renderer's samples_tested), not covered
 #define BC_SAMPLE_COVERED 2  // tested and covered (samples_hit); depth is its view depth
 
+// The culling half of sample_test: whether the sample is rejected without an
+// exact test, by the lens/time bounds (sample_passes) or, when check_screen,
+// the screen bound (screen_contains). A renderer that puts a cheaper test of
+// its own between the culls and covers (the CPU backend's fast coverage test)
+// calls this, then covers.
+BC_FN bool sample_culled(BC_IN(ScreenBound) screen, bool check_screen, BC_IN(SampleBounds) bounds, vec2 ndc,
+                         vec2 lens, real time) {
+    if (!sample_passes(bounds, lens, time)) return true;
+    return check_screen && !screen_contains(screen, ndc);
+}
+
 // One sample (screen position ndc, lens position lens, shutter time time)
 // against one triangle, as every backend tests it: the lens/time bounds
 // (sample_passes; no_sample_bounds() passes every sample with lens in
@@ -130,8 +141,7 @@ BC_FN vec2 interleaved_sample_ndc(ivec2 cell, int scale, vec2 jitter, vec2 image
 BC_FN int sample_test(BC_IN(MovingTriangle) tri, BC_IN(ScreenBound) screen, bool check_screen,
                       BC_IN(SampleBounds) bounds, vec2 ndc, vec2 lens, real time, real near, BC_OUT(real) depth) {
     depth = real(0);
-    if (!sample_passes(bounds, lens, time)) return BC_SAMPLE_CULLED;
-    if (check_screen && !screen_contains(screen, ndc)) return BC_SAMPLE_CULLED;
+    if (sample_culled(screen, check_screen, bounds, ndc, lens, time)) return BC_SAMPLE_CULLED;
     if (!covers(tri, ndc, lens, time, near, depth)) return BC_SAMPLE_MISSED;
     return BC_SAMPLE_COVERED;
 }
