@@ -17,9 +17,18 @@
 
 namespace blurcull::frontend {
 
+// How light leaves a surface. Diffuse is the flat shading of shading.hpp; a
+// mirror reflects perfectly, a dielectric reflects and refracts with Fresnel
+// weights (render/common/optics_shared.h). Backends without secondary rays
+// shade a mirror or dielectric with the environment seen along the bounced
+// direction (docs/reference-renderer.md, "Materials and environment").
+enum class MaterialKind : std::uint8_t { diffuse, mirror, dielectric };
+
 struct Material {
     glm::vec3 base_color{0.8f, 0.8f, 0.8f};
     std::string name;
+    MaterialKind kind = MaterialKind::diffuse;
+    float ior = 1.5f;  // index of refraction of a dielectric (> 0); air is 1
 };
 
 // Right-handed view space, camera at the origin looking down -z (OpenGL).
@@ -47,6 +56,9 @@ struct Scene {
     Camera camera;
     glm::vec3 light_direction{0.3f, 0.8f, 0.5f};  // towards the light, world space
     glm::vec3 background{0.02f, 0.02f, 0.03f};
+    // What a ray that leaves the scene sees: BC_ENVIRONMENT_NONE (the
+    // background colour) or BC_ENVIRONMENT_SKY (render/common/optics_shared.h).
+    int environment = 0;
 
     // True when the maker that returned this scene validated it, so the
     // backends need not check it again. Code that edits such a scene in a

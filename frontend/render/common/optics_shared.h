@@ -1,0 +1,106 @@
+// Mirror and glass optics and the environment, written once for C++ and GLSL
+// (like gpu_layout_shared.h): every backend that bounces a ray (the Embree
+// reference, the CPU and GL dof-secondary renderers) and every backend that
+// shades a miss calls these, so their images can be compared sample by sample.
+// docs/reference-renderer.md, "Materials and environment".
+//
+// Conventions: directions are world space; `incident` points TOWARDS the
+// surface (the ray's direction), `normal` is the unit geometric normal on
+// either side (the functions orient it against `incident` themselves).
+#ifndef BLURCULL_OPTICS_SHARED_H
+#define BLURCULL_OPTICS_SHARED_H
+
+#ifdef __cplusplus
+#include <glm/glm.hpp>
+
+namespace blurcull::frontend::optics {
+using glm::vec3;
+using glm::dot;
+using glm::max;
+using glm::min;
+using glm::mix;
+using glm::clamp;
+using glm::abs;
+using glm::normalize;
+using glm::sqrt;
+#define BC_OPTICS_FN inline
+#else
+#define BC_OPTICS_FN
+#endif
+
+// The normal facing the incident ray (dot(result, incident) <= 0).
+BC_OPTICS_FN vec3 bc_facing_normal(vec3 normal, vec3 incident) {
+    return dot(normal, incident) > 0.0f ? -normal : normal;
+}
+
+// Perfect mirror: incident - 2 (n . incident) n, for a unit normal on either side.
+BC_OPTICS_FN vec3 bc_mirror_direction(vec3 incident, vec3 normal) {
+    return incident - 2.0f * dot(normal, incident) * normal;
+}
+
+// Unpolarised Fresnel reflectance of a smooth dielectric boundary (the mean of
+// the s and p terms, exact, not Schlick's approximation). cos_i = |n . i| of the
+// unit incident direction, eta = n_incident / n_transmitted. Returns 1 under
+// total internal reflection.
+BC_OPTICS_FN float bc_fresnel_dielectric(float cos_i, float eta) {
+    float sin_t2 = eta * eta * max(0.0f, 1.0f - cos_i * cos_i);
+    if (sin_t2 >= 1.0f) return 1.0f;
+    float cos_t = sqrt(1.0f - sin_t2);
+    float r_s = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+    float r_p = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+    return clamp(0.5f * (r_s * r_s + r_p * r_p), 0.0f, 1.0f);
+}
+
+// Refraction through a boundary between air (index 1) and a medium of index
+// `ior`: the side is told by the geometric normal (entering when the ray meets
+// the side `normal` points to). Unit incident and normal. Returns the zero
+// vector under total internal reflection.
+BC_OPTICS_FN vec3 bc_refract_direction(vec3 incident, vec3 normal, float ior) {
+    bool entering = dot(normal, incident) < 0.0f;
+    vec3 n = entering ? normal : -normal;
+    float eta = entering ? 1.0f / ior : ior;
+    float cos_i = -dot(n, incident);
+    float sin_t2 = eta * eta * max(0.0f, 1.0f - cos_i * cos_i);
+    if (sin_t2 >= 1.0f) return vec3(0.0f);
+    return eta * incident + (eta * cos_i - sqrt(1.0f - sin_t2)) * n;
+}
+
+// Fresnel reflectance of the same boundary for a unit incident direction.
+BC_OPTICS_FN float bc_dielectric_reflectance(vec3 incident, vec3 normal, float ior) {
+    bool entering = dot(normal, incident) < 0.0f;
+    float eta = entering ? 1.0f / ior : ior;
+    return bc_fresnel_dielectric(min(1.0f, abs(dot(normal, incident))), eta);
+}
+
+// Environment kinds (Scene::environment).
+#define BC_ENVIRONMENT_NONE 0  // rays that leave the scene get the background colour
+#define BC_ENVIRONMENT_SKY 1   // the procedural sky below
+
+// The procedural sky: radiance seen along a unit direction (y up). A smooth
+// gradient from the horizon to the zenith above, a darker ground below, and
+// soft bands in azimuth so a blurred reflection of the sky shows its blur.
+// Smooth everywhere, so sampling noise stays low and backends agree within
+// rounding.
+BC_OPTICS_FN vec3 bc_sky_radiance(vec3 direction) {
+    float y = clamp(direction.y, -1.0f, 1.0f);
+    vec3 horizon = vec3(0.85f, 0.88f, 0.92f);
+    vec3 zenith = vec3(0.25f, 0.45f, 0.85f);
+    vec3 ground = vec3(0.30f, 0.26f, 0.22f);
+    float across = direction.x * direction.x + direction.z * direction.z;
+    float bands = 0.0f;
+    if (across > 0.0f) {
+        // cos(8 phi) from (x, z) without trigonometry: Chebyshev T8 of cos(phi).
+        float c = direction.x / sqrt(across);
+        float c2 = c * c;
+        float t8 = 1.0f + c2 * (-32.0f + c2 * (160.0f + c2 * (-256.0f + c2 * 128.0f)));
+        bands = 0.08f * t8;
+    }
+    vec3 sky = y >= 0.0f ? mix(horizon, zenith, sqrt(y)) : mix(horizon, ground, min(1.0f, -8.0f * y));
+    return sky * (1.0f + bands);
+}
+
+#ifdef __cplusplus
+}  // namespace blurcull::frontend::optics
+#endif
+#undef BC_OPTICS_FN
+#endif  // BLURCULL_OPTICS_SHARED_H
