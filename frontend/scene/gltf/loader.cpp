@@ -4,6 +4,7 @@
 #include "scene/gltf/camera.hpp"
 #include "scene/gltf/diagnostics.hpp"
 #include "scene/gltf/meshes.hpp"
+#include "scene/gltf/morph.hpp"
 #include "scene/gltf/nodes.hpp"
 #include "scene/gltf/parse.hpp"
 #include "scene/gltf/validate.hpp"
@@ -55,6 +56,8 @@ Scene build_scene(const std::string& path, const GltfOptions& options, const War
     NodePoses poses;
     poses.open = pose_at(model, tree, samplers, options, t_open, diagnostics);
     poses.close = pose_at(model, tree, samplers, options, t_close, diagnostics);
+    poses.weights_open = morph_weights(model, samplers, options.animation_index, t_open, diagnostics);
+    poses.weights_close = morph_weights(model, samplers, options.animation_index, t_close, diagnostics);
 
     Scene scene;
     scene.name = stem(path);
