@@ -6,6 +6,7 @@
 // extensions, KHR_mesh_quantization, missing images) and morph targets as
 // motion, on files of its own and on ../shared/scenes/khronos/SparseMorphCube
 // when present (docs/scenes.md, "glTF support").
+#include "render/cpu/cpu_backend.hpp"
 #include "scene/gltf/gltf_loader.hpp"
 
 #include <doctest/doctest.h>
@@ -405,6 +406,20 @@ TEST_CASE("glTF morph targets: Khronos SparseMorphCube (a sparse target), as the
     check_positions(moving.position_close, 0, at_close);
     std::size_t moved = 0;
     for (std::size_t v = 0; v < at_open.size(); ++v) moved += moving.position_open[v] != moving.position_close[v];
+    // It renders with that blur: the moving cube's image is neither the
+    // cube held at shutter open nor at close (same camera, same samples).
+    RenderSettings settings;
+    settings.width = 64;
+    settings.height = 48;
+    settings.spp = 16;
+    settings.progress = false;
+    Scene held_open = moving, held_close = moving;
+    held_open.position_close = held_open.position_open;
+    held_close.position_open = held_close.position_close;
+    held_open.validated = held_close.validated = false;
+    const Image blurred = render_cpu(moving, settings).image;
+    CHECK(blurred.pixels != render_cpu(held_open, settings).image.pixels);
+    CHECK(blurred.pixels != render_cpu(held_close, settings).image.pixels);
     const std::size_t target = glb.json["meshes"][0]["primitives"][0]["targets"][0]["POSITION"];
     CHECK(moved == glb.json["accessors"][target]["sparse"]["count"].get<std::size_t>());
 }

@@ -1,8 +1,9 @@
-// glTF 2.0 (.gltf / .glb) scenes for blurcull: node animation and skinning
-// are sampled at shutter open and close, giving every vertex its two world
-// positions; an animated camera node gives view_open / view_close.
-// The loader's steps live beside this header: parse, validate, accessors,
-// nodes, animation, skin, meshes, camera (docs/scenes.md).
+// glTF 2.0 (.gltf / .glb) scenes for blurcull: node animation, morph target
+// weights and skinning are sampled at shutter open and close, giving every
+// vertex its two world positions; an animated camera node gives view_open /
+// view_close. The loader's steps live beside this header: parse,
+// conformance, validate, accessors, nodes, animation, morph, skin, meshes,
+// camera (docs/scenes.md).
 #pragma once
 
 #include "scene/scene.hpp"
@@ -34,7 +35,7 @@ struct GltfOptions {
 
 // Loads and validates (validate_scene) the file. Throws SceneError
 // ("<path>: <problem>") for anything it cannot load. Non-fatal oddities
-// (points/lines primitives, non-finite positions, morph targets, ...) go to
+// (points/lines primitives, non-finite positions, unread extensions, ...) go to
 // `warn`, one "<path>: warning: ..." line per kind; an empty sink drops them.
 Scene load_gltf_scene(const std::string& path, const GltfOptions& options, const WarningSink& warn = {});
 
