@@ -162,16 +162,15 @@ private:
                          const std::string& name, std::vector<glm::vec3>& open, std::vector<glm::vec3>& close) {
         const auto node_slot = static_cast<std::size_t>(node_index);
         const tg::Node& node = model_.nodes[node_slot];
-        const std::vector<double> raw_open =
-            morphed_positions(model_, primitive, raw, poses_.weights_open[node_slot], name, diagnostics_);
-        const std::vector<double> raw_close =
-            morphed_positions(model_, primitive, raw, poses_.weights_close[node_slot], name, diagnostics_);
+        const MorphedPositions morphed = morphed_positions(
+            model_, primitive, raw, poses_.weights_open[node_slot], poses_.weights_close[node_slot], name, diagnostics_);
         if (node.skin >= 0 && primitive.attributes.count("JOINTS_0") && primitive.attributes.count("WEIGHTS_0") &&
-            skin_vertices(model_, poses_, raw_open, raw_close, node, primitive, name, open, close, diagnostics_)) {
+            skin_vertices(model_, poses_, morphed.open, morphed.close, node, primitive, name, open, close,
+                          diagnostics_)) {
             return;
         }
-        transform_positions(poses_.open[node_slot], raw_open, open);
-        transform_positions(poses_.close[node_slot], raw_close, close);
+        transform_positions(poses_.open[node_slot], morphed.open, open);
+        transform_positions(poses_.close[node_slot], morphed.close, close);
     }
 
     // The scene material of a glTF material index (-1: the grey "default"),

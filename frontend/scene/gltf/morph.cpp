@@ -2,7 +2,7 @@
 
 #include "scene/gltf/accessors.hpp"
 
-#include <cmath>
+#include <algorithm>
 
 namespace blurcull::frontend::gltf {
 
@@ -91,12 +91,14 @@ NodeWeights morph_weights(const tg::Model& model, const AnimationSamplers& sampl
     return weights;
 }
 
-std::vector<double> morphed_positions(const tg::Model& model, const tg::Primitive& primitive,
-                                      const std::vector<double>& base, const std::vector<float>& weights,
-                                      const std::string& name, Diagnostics& diagnostics) {
-    std::vector<double> positions = base;
+MorphedPositions morphed_positions(const tg::Model& model, const tg::Primitive& primitive,
+                                   const std::vector<double>& base, const std::vector<float>& weights_open,
+                                   const std::vector<float>& weights_close, const std::string& name,
+                                   Diagnostics& diagnostics) {
+    MorphedPositions positions{base, base};
     const std::size_t vertex_count = base.size() / 3;
-    for (std::size_t k = 0; k < primitive.targets.size() && k < weights.size(); ++k) {
+    const std::size_t targets = std::min(primitive.targets.size(), std::min(weights_open.size(), weights_close.size()));
+    for (std::size_t k = 0; k < targets; ++k) {
         const auto& target = primitive.targets[k];
         if (target.size() > target.count("POSITION")) {
             diagnostics.warn_once("morph attributes", "morph target attributes other than POSITION are ignored");
@@ -110,10 +112,13 @@ std::vector<double> morphed_positions(const tg::Model& model, const tg::Primitiv
             diagnostics.fail(target_name + " has " + std::to_string(accessor.count) + " elements for " +
                              std::to_string(vertex_count) + " vertices");
         }
-        if (weights[k] == 0.0f) continue;
+        const double w_open = weights_open[k], w_close = weights_close[k];
+        if (w_open == 0.0 && w_close == 0.0) continue;
         const std::vector<double> offsets = read_values(model, position->second, diagnostics);
-        const double weight = weights[k];
-        for (std::size_t i = 0; i < positions.size(); ++i) positions[i] += weight * offsets[i];
+        for (std::size_t i = 0; i < base.size(); ++i) {
+            positions.open[i] += w_open * offsets[i];
+            positions.close[i] += w_close * offsets[i];
+        }
     }
     return positions;
 }

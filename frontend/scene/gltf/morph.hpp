@@ -28,13 +28,20 @@ using NodeWeights = std::vector<std::vector<float>>;
 NodeWeights morph_weights(const tinygltf::Model& model, const AnimationSamplers& samplers, int animation_index,
                           float t, Diagnostics& diagnostics);
 
-// `base` (x y z per vertex, as read_values gives POSITION) plus the sum of
-// weight * target POSITION over the primitive's targets (sparse accessors
-// included); targets with weight 0 are not read. Fails for a target
-// POSITION that is not VEC3 or has another vertex count, naming the
-// primitive as `name`. Other target attributes warn once and are ignored.
-std::vector<double> morphed_positions(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
-                                      const std::vector<double>& base, const std::vector<float>& weights,
-                                      const std::string& name, Diagnostics& diagnostics);
+// The primitive's positions at the two shutter ends: `base` (x y z per
+// vertex, as read_values gives POSITION) plus the sum of weight * target
+// POSITION over its targets (sparse accessors included), with the node's
+// weights at open and at close. A target is read once, and not at all when
+// both its weights are 0. Fails for a target POSITION that is not VEC3 or
+// has another vertex count, naming the primitive as `name`. Other target
+// attributes warn once and are ignored.
+struct MorphedPositions {
+    std::vector<double> open;
+    std::vector<double> close;
+};
+MorphedPositions morphed_positions(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
+                                   const std::vector<double>& base, const std::vector<float>& weights_open,
+                                   const std::vector<float>& weights_close, const std::string& name,
+                                   Diagnostics& diagnostics);
 
 }  // namespace blurcull::frontend::gltf
