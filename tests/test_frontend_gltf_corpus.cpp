@@ -188,6 +188,11 @@ TEST_CASE("glTF conformance: glTF 2.1 loads; unread extensions, missing images w
     CHECK(missing.triangles == 1);
     CHECK(missing.warnings == textured + ": warning: image 0 ('missing_texture.png') cannot be read; its textures "
                                          "fall back to their factors\n");
+    const std::string empty = kDataDir + "empty_texture.gltf";
+    const Outcome truncated = load(empty);
+    CHECK(truncated.triangles == 1);
+    CHECK(truncated.warnings == empty + ": warning: image 0 ('empty_texture.png') cannot be read; its textures fall "
+                                        "back to their factors\n");
     const Scene scene = load_scene_file(textured);
     REQUIRE(scene.materials.size() == 1);
     CHECK(scene.materials[0].base_color == glm::vec3(0.2f, 0.4f, 0.8f));

@@ -58,11 +58,13 @@ bool keep_encoded_image(tg::Image* image, const int, std::string*, std::string*,
     return true;
 }
 
-// tinygltf's own line for an image file it could not read; image_warnings
-// says it better, once per image.
+// tinygltf's own line for an image file it could not read (a warning only
+// for images: buffers are required, so their failures are errors);
+// image_warnings says it better, once per image.
 bool is_image_file_warning(const std::string& line) {
     return line.rfind("Failed to load external 'uri' for image[", 0) == 0 ||
-           line.rfind("File not found : ", 0) == 0;
+           line.rfind("File not found : ", 0) == 0 || line.rfind("File read error : ", 0) == 0 ||
+           line.rfind("File is empty : ", 0) == 0;
 }
 
 std::string without_image_file_warnings(const std::string& text) {

@@ -266,6 +266,11 @@ def conformance_files():
     model["textures"] = [{"source": 0}]
     model["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = {"index": 0}
     write("missing_texture.gltf", model)
+    # An image file of 0 bytes (a truncated download): the same fallback.
+    with open("empty_texture.png", "wb"):
+        pass
+    model["images"] = [{"uri": "empty_texture.png"}]
+    write("empty_texture.gltf", model)
 
 
 def morph_files():
