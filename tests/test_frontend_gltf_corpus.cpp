@@ -266,6 +266,15 @@ TEST_CASE("glTF morph targets: a shutter across keyframes, defaults, and no anim
 }
 
 TEST_CASE("glTF morph targets: morph, then skin, then node animation, in glTF's order") {
+    // Without a skin: morph, then the node's animated TRS (scale 2, then +5 x per second).
+    const Scene node = load_scene_file(kDataDir + "morph_node_animated.gltf", shutter(0.25f, 0.75f));
+    for (const float t : {0.25f, 0.75f}) {
+        const glm::vec2 w = animated_weights(t);
+        std::vector<glm::vec3> expected = morphed_triangle(w.x, w.y);
+        for (glm::vec3& p : expected) p = 2.0f * p + glm::vec3(5.0f * t, 0, 0);
+        check_positions(t < 0.5f ? node.position_open : node.position_close, 0, expected, 1e-5f);
+    }
+
     // The target moves every vertex +1 x (weight 1); the only joint turns 90
     // degrees about z and moves +1 y over the shutter [0, 1]. Morph first:
     // the offset turns with the joint; the skinned node's own +50 x is ignored.

@@ -284,6 +284,16 @@ def morph_files():
     model["scenes"][0]["nodes"] = [0, 1]
     write("morph_defaults.gltf", model)
     write("morph_skinned.gltf", morph_skinned_model())
+    # The same weights with the node scaled 2x and translated 0 -> 10 x over
+    # 2 s by a second channel of the same animation: morph, then the node.
+    model = add_weights_animation(morph_model(), 0, [0.0, 1.0, 2.0], [[0.0, 0.0], [1.0, 0.5], [1.0, 1.0]])
+    model["nodes"][0]["scale"] = [2.0, 2.0, 2.0]
+    times = add_accessor(model, floats([0.0, 2.0]), 5126, 2, "SCALAR")
+    moves = add_accessor(model, floats([0.0, 0.0, 0.0, 10.0, 0.0, 0.0]), 5126, 2, "VEC3")
+    animation = model["animations"][0]
+    animation["samplers"].append({"input": times, "output": moves})
+    animation["channels"].append({"sampler": 1, "target": {"node": 0, "path": "translation"}})
+    write("morph_node_animated.gltf", model)
 
     model = morph_model()
     model["nodes"][0]["weights"] = [1.0, 0.0, 0.0]
