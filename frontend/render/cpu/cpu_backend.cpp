@@ -238,6 +238,7 @@ public:
         const int tx = tile % frame_.setup.tiles_x, ty = tile / frame_.setup.tiles_x;
         window_segment_ = 0;
         window_segments_ = 1;
+        window_ = glm::vec2(0.0f, 1.0f);
         x0_ = tx * tile_size;
         y0_ = ty * tile_size;
         x1_ = std::min(x0_ + tile_size, frame_.settings.width) - 1;
@@ -288,20 +289,18 @@ private:
     // Motion segments: the tile's samples as seen by the pieces of one window,
     // each at its local time (kernel::segment_local_time, in float like the
     // samples, so the fast test sees the time covers() sees), and marked when
-    // the window does not hold it. Local time is monotone in shutter time:
-    // the footprints' time order stays valid.
+    // the window does not hold it. The footprints' time order (by_time_t_)
+    // stays in shutter time: test_samples maps a piece's bounds back to it.
     void enter_window(const SegmentPiece& piece) {
         window_segment_ = piece.segment;
         window_segments_ = piece.segments;
-        const glm::vec2 window = kernelf::segment_window(piece.segment, piece.segments);
+        window_ = kernelf::segment_window(piece.segment, piece.segments);
         for (std::size_t k = 0; k < samples_.size(); ++k) {
-            const float local = kernelf::segment_local_time(window, shutter_time_[k]);
-            in_window_[k] = kernelf::segment_holds(window, shutter_time_[k]) ? 1 : 0;
+            const float local = kernelf::segment_local_time(window_, shutter_time_[k]);
+            in_window_[k] = kernelf::segment_holds(window_, shutter_time_[k]) ? 1 : 0;
             samples_[k].time = static_cast<Real>(local);
             lanes_.set_time(k, local);
         }
-        if (!frame_.time_sorted) return;
-        for (std::size_t q = 0; q < footprint_start_.back(); ++q) by_time_t_[q] = samples_[by_time_[q]].time;
     }
 
     // Per footprint of the tile's grid, its sample slots sorted by time, so
@@ -398,8 +397,12 @@ private:
             K::screen_footprint(current.bound, typename K::vec2(box.x, box.y), typename K::vec2(box.z, box.w));
         if (state == BC_FOOTPRINT_OUTSIDE) return;
         current.check_screen = state != BC_FOOTPRINT_INSIDE;
-        const typename K::vec2 range = frame_.time_sorted && current.needs_bounds ? K::sample_time_range(sb)
-                                                                                  : typename K::vec2(Real(0), Real(1));
+        typename K::vec2 range = frame_.time_sorted && current.needs_bounds ? K::sample_time_range(sb)
+                                                                            : typename K::vec2(Real(0), Real(1));
+        // A motion segment's bounds are in its local time: back to shutter
+        // time, inside its window (in float, the samples' precision).
+        if (frame_.time_sorted && window_segments_ > 1)
+            range = typename K::vec2(kernelf::segment_shutter_range(window_, glm::vec2(range)));
         // Only the footprint's samples inside the bounds' shutter interval, when
         // that skips enough of them to pay for visiting them out of memory order.
         if (range.y - range.x < Real(0.5)) {
@@ -491,6 +494,7 @@ private:
     std::vector<float> shutter_time_;  // each sample's own time (samples_ hold the window's local time)
     std::vector<char> in_window_;      // whether the current motion-segment window holds the sample
     int window_segment_ = 0, window_segments_ = 1;  // the window samples_ are loaded for
+    glm::vec2 window_{0.0f, 1.0f};
     int x0_ = 0, y0_ = 0, x1_ = -1, y1_ = -1, tw_ = 0, footprints_x_ = 0;
 };
 
