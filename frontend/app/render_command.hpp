@@ -25,6 +25,7 @@ struct RenderCommand : SceneFlags {
     std::string precision = to_string(CpuOptions{}.precision);
     int gl_cell = GlOptions{}.cell_pixels;
     bool quiet = false;
+    std::string motion_segments = "1";  // K, or "auto" (parse_motion_segments)
 
     // The backend-specific options, to tell whether they were given
     // (count() > 0) when the backend in use cannot honour them.
