@@ -31,6 +31,11 @@ struct GltfOptions {
     // distance means "the view depth of the scene's bounding-box centre".
     float lens_radius = 0.0f;
     float focus_distance = -1.0f;
+    // A frame of a sequence: the automatic camera (and a file camera's
+    // automatic focus) frames the scene over its whole animation, sampled at
+    // fixed times, instead of over this shutter, so that every frame has the
+    // same camera whatever frame range is rendered.
+    bool frame_whole_animation = false;
 };
 
 // Loads and validates (validate_scene) the file. Throws SceneError
