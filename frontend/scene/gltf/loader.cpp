@@ -49,10 +49,12 @@ SceneStats animation_framing(const tg::Model& model, const NodeTree& tree, const
     const float end = animation_end_time(samplers, options.animation_index);
     SceneStats framing;
     for (int k = 0; k <= framing_samples; ++k) {
+        const float t = end * static_cast<float>(k) / static_cast<float>(framing_samples);
         NodePoses poses;
-        poses.open = pose_at(model, tree, samplers, options, end * static_cast<float>(k) / static_cast<float>(framing_samples),
-                              diagnostics);
+        poses.open = pose_at(model, tree, samplers, options, t, diagnostics);
         poses.close = poses.open;
+        poses.weights_open = morph_weights(model, samplers, options.animation_index, t, diagnostics);
+        poses.weights_close = poses.weights_open;
         Scene probe;
         add_mesh_instances(model, rendered, poses, probe, diagnostics);
         const SceneStats stats = describe(probe);
