@@ -437,6 +437,8 @@ TEST_CASE("--frames: numbered files on the glTF clock, each frame independent of
         CHECK(frames[i]["output"] == name);
         CHECK(std::filesystem::exists(cli_folder + "/" + name));
     }
+    // One camera for the whole animation (framed over all of it), not one per frame.
+    CHECK(frames[0]["focus_distance"] == frames[2]["focus_distance"]);
     // Progress over the whole sequence, one line a frame.
     CHECK(run.err.find("frame 14: 3 of 3 (100%)") != std::string::npos);
     // The box moves: the frames differ.
