@@ -230,12 +230,6 @@ void main() {
 }
 )glsl";
 
-std::uint32_t bits_of(float v) {
-    std::uint32_t u = 0;
-    std::memcpy(&u, &v, sizeof u);
-    return u;
-}
-
 }  // namespace
 
 TEST_CASE("covers_hit in GLSL gives kernel<float>'s verdict, depth and barycentrics, bit for bit") {
@@ -282,7 +276,7 @@ TEST_CASE("covers_hit in GLSL gives kernel<float>'s verdict, depth and barycentr
         float depth = 0.0f;
         Kf::vec3 b{};
         const bool hit = Kf::covers_hit(tri, Kf::vec2(in[30], in[31]), Kf::vec2(in[32], in[33]), in[34], in[35], depth, b);
-        const std::uint32_t host[5] = {hit ? 1u : 0u, bits_of(depth), bits_of(b.x), bits_of(b.y), bits_of(b.z)};
+        const std::uint32_t host[5] = {hit ? 1u : 0u, test::bits_of(depth), test::bits_of(b.x), test::bits_of(b.y), test::bits_of(b.z)};
         covered += hit;
         for (int k = 0; k < 5; ++k) differing += host[k] != gpu[static_cast<std::size_t>(n) * 5 + static_cast<std::size_t>(k)];
     }

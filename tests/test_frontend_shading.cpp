@@ -184,7 +184,11 @@ TEST_CASE("gltf: COLOR_0, NORMAL, MASK, a texture with a transform and a directi
     CHECK(scene.textures[0].width == 4);
     CHECK(scene.textures[0].wrap_s == TextureWrap::mirror);
     CHECK(scene.materials[1].base_color_texture.texture == 0);
-    CHECK(scene.materials[1].base_color_texture.transform[0][0] == doctest::Approx(3.0f));
+    // T R S of offset (0.25, 0), rotation 90 degrees, scale 3: u maps to 3 v' (the spec's rotation sense).
+    const glm::mat3& m = scene.materials[1].base_color_texture.transform;
+    CHECK(m[0][0] == doctest::Approx(0.0f).epsilon(1e-6));
+    CHECK(m[0][1] == doctest::Approx(3.0f));
+    CHECK(m[1][0] == doctest::Approx(-3.0f));
     CHECK(scene.materials[1].base_color_texture.transform[2][0] == doctest::Approx(0.25f));
     CHECK(scene.materials[1].emissive.x == doctest::Approx(0.05f));
     CHECK(scene.texcoord.size() == scene.position_open.size());

@@ -132,7 +132,7 @@ glm::mat3 texture_transform(const tg::ExtensionMap& extensions, Diagnostics& dia
     const double rotation = ext.Has("rotation") ? number(ext.Get("rotation"), 0.0) : 0.0;
     const float c = static_cast<float>(std::cos(rotation)), s = static_cast<float>(std::sin(rotation));
     const glm::mat3 translate(1, 0, 0, 0, 1, 0, static_cast<float>(pair("offset", 0.0, 0)), static_cast<float>(pair("offset", 0.0, 1)), 1);
-    const glm::mat3 rotate(c, -s, 0, s, c, 0, 0, 0, 1);  // columns: the spec's [c s 0; -s c 0; 0 0 1]
+    const glm::mat3 rotate(c, s, 0, -s, c, 0, 0, 0, 1);  // column-major, as the spec's GLSL mat3(c, s, 0, -s, c, 0, 0, 0, 1)
     const glm::mat3 scale(static_cast<float>(pair("scale", 1.0, 0)), 0, 0, 0, static_cast<float>(pair("scale", 1.0, 1)), 0, 0, 0, 1);
     return translate * rotate * scale;
 }

@@ -3,7 +3,7 @@
 
 attributes.gltf: a front quad with COLOR_0 (alpha 1 on its left edge, 0 on its
 right), NORMAL (tilted per vertex) and alphaMode MASK (cutoff 0.5), in front of
-a textured back quad (a 4x4 PNG, MIRRORED_REPEAT, KHR_texture_transform scale 3,
+a textured back quad (a 4x4 PNG, MIRRORED_REPEAT, KHR_texture_transform scale 3, rotation 90 degrees,
 emissive factor), a directional KHR_lights_punctual light and a camera.
 bad_*.gltf: one textured quad each, with a broken texture or texture coordinates.
 """
@@ -84,7 +84,7 @@ def attributes_file():
              'pbrMetallicRoughness': {'baseColorFactor': [0.9, 0.9, 0.9, 1]}},
             {'name': 'textured', 'emissiveFactor': [0.05, 0.02, 0.0],
              'pbrMetallicRoughness': {'baseColorTexture': {'index': 0, 'extensions': {
-                 'KHR_texture_transform': {'scale': [3, 3], 'offset': [0.25, 0]}}}}}],
+                 'KHR_texture_transform': {'scale': [3, 3], 'offset': [0.25, 0], 'rotation': 1.5707963267948966}}}}}],
         'textures': [{'source': 0, 'sampler': 0}],
         'samplers': [{'wrapS': 33648, 'wrapT': 33648}],
         'images': [{'uri': data_uri('image/png', checker())}],
