@@ -219,6 +219,15 @@ TEST_CASE("alpha mask: masked-out samples lose the depth test, and CPU = Embree"
     CHECK(cpu.stats.samples_hit < without_mask.stats.samples_hit);  // masked-out samples are not hits
     check_cpu_equals_embree(scene, width, height);
     check_cpu_equals_embree(opaque, width, height);
+    // Every tracing shape runs the mask filter with the right sample (ray id).
+    const RenderResult packets = render_embree(scene, settings);
+    for (EmbreeTracing tracing : {EmbreeTracing::single, EmbreeTracing::packet4, EmbreeTracing::packet8,
+                                  EmbreeTracing::stream}) {
+        EmbreeOptions options;
+        options.tracing = tracing;
+        INFO(tracing_name(tracing));
+        CHECK(same_pixels(render_embree(scene, settings, options).image, packets.image));
+    }
 }
 
 TEST_CASE("a textured Khronos model (Cube) renders its texture, CPU = Embree") {

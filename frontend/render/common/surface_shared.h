@@ -1,8 +1,8 @@
 // The per-hit surface formulas of the shading contract (docs/reference-renderer.md,
-// "Shading"), written once for C++ and GLSL like optics_shared.h: texture
-// wrap and bilinear weights, the sRGB decode, and the lit colour. The texel
-// fetch itself is each language's (a std::vector on the host, a buffer on the
-// GPU); everything around it is here, in float, in one operation order.
+// "Shading"): texture wrap and bilinear weights, the sRGB decode, and the lit
+// colour, in float, in one operation order. Written in the C++/GLSL subset of
+// optics_shared.h so a GPU resolve can include it; today every backend,
+// the GL one included, runs it on the host (the texel fetch is the caller's).
 #ifndef BLURCULL_SURFACE_SHARED_H
 #define BLURCULL_SURFACE_SHARED_H
 
