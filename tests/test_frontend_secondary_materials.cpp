@@ -7,6 +7,7 @@
 #include "render/cpu/cpu_backend.hpp"
 #include "render/embree/embree_backend.hpp"
 #include "render/embree/secondary_rays.hpp"
+#include "render/gl/gl_backend.hpp"
 #include "scene/builtin_scenes.hpp"
 #include "scene/gltf/gltf_loader.hpp"
 #include "scene/scene_checks.hpp"
@@ -28,6 +29,7 @@ using namespace blurcull::frontend;
 using blurcull::frontend::test::add_quad;
 using blurcull::frontend::test::fraction_close;
 using blurcull::frontend::test::quiet_settings;
+using blurcull::frontend::test::renderer_or_skip;
 using blurcull::frontend::test::same_pixels;
 
 namespace {
@@ -343,6 +345,23 @@ TEST_CASE("primary-only image: the cpu backend equals embree --secondary none on
         const RenderResult ray = render_embree(scene, settings, none);
         // The metric of the thesis scenes' cpu/embree test (test_frontend_cpu.cpp).
         CHECK(fraction_close(cpu.image, ray.image) >= 0.995);
+    }
+}
+
+TEST_CASE("primary-only image: the gl backend equals the cpu backend in float on the secondary-ray scenes") {
+    GlRenderer* gl = renderer_or_skip();
+    if (gl == nullptr) return;
+    CpuOptions float_options;
+    float_options.precision = KernelPrecision::float32;
+    for (const std::string& name : secondary_scene_names()) {
+        CAPTURE(name);
+        SceneOptions options;
+        options.aspect = 64.0f / 48.0f;
+        const Scene scene = make_builtin_scene(name, options);
+        const RenderSettings settings = quiet_settings(64, 48, 4);
+        const RenderResult cpu = render_cpu(scene, settings, float_options);
+        const RenderResult image = gl->render(scene, settings);
+        CHECK(fraction_close(cpu.image, image.image) >= 0.995);
     }
 }
 
