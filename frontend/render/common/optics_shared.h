@@ -56,11 +56,13 @@ BC_OPTICS_FN float bc_fresnel_dielectric(float cos_i, float eta) {
 // Refraction through a boundary between air (index 1) and a medium of index
 // `ior`: the side is told by the geometric normal (entering when the ray meets
 // the side `normal` points to). Unit incident and normal. Returns the zero
-// vector under total internal reflection.
+// vector under total internal reflection; the incident direction itself for
+// index 1.
 BC_OPTICS_FN vec3 bc_refract_direction(vec3 incident, vec3 normal, float ior) {
     bool entering = dot(normal, incident) < 0.0f;
     vec3 n = entering ? normal : -normal;
     float eta = entering ? 1.0f / ior : ior;
+    if (eta == 1.0f) return incident;  // index-matched: straight on, even at grazing angles where 1 - cos^2 rounds to 1
     float cos_i = -dot(n, incident);
     float sin_t2 = eta * eta * max(0.0f, 1.0f - cos_i * cos_i);
     if (sin_t2 >= 1.0f) return vec3(0.0f);
