@@ -40,7 +40,10 @@ std::string implemented_list() {
 const std::vector<std::string>& implemented_extensions() {
     // KHR_mesh_quantization: integer positions and morph targets, decoded
     // by accessors.cpp; the node transform dequantises them.
-    static const std::vector<std::string> names = {"KHR_mesh_quantization"};
+    // KHR_materials_transmission and KHR_materials_ior: glass
+    // (specular_material.cpp; what is read and what is not: its header).
+    static const std::vector<std::string> names = {"KHR_mesh_quantization", "KHR_materials_transmission",
+                                                   "KHR_materials_ior"};
     return names;
 }
 
