@@ -2,6 +2,7 @@
 
 #include "render/embree/embree_options.hpp"
 
+#include "render/common/motion_segments.hpp"
 #include "render/common/optics_shared.h"
 #include "render/common/specular_shading.hpp"
 
@@ -52,8 +53,16 @@ SecondaryTracer::SecondaryTracer(RTCScene rtc_scene, const Scene& scene, const C
     rtcInitIntersectContext(&context_);
 }
 
+// The vertex where Embree has it at `time`: linear between the two ends, or
+// with K motion segments between the time steps k and k + 1 around it (the
+// K + 1 steps of add_moving_mesh, interpolated as Embree does).
 glm::vec3 SecondaryTracer::view_vertex(std::uint32_t vertex, float time) const {
-    return model_.view_position_at(scene_, vertex, time);
+    const int segments = scene_motion_segments(scene_);
+    if (segments == 1) return model_.view_position_at(scene_, vertex, time);
+    const float scaled = time * static_cast<float>(segments);
+    const int step = std::clamp(static_cast<int>(std::floor(scaled)), 0, segments - 1);
+    return glm::mix(step_view_position<float>(scene_, model_, vertex, step),
+                    step_view_position<float>(scene_, model_, vertex, step + 1), scaled - static_cast<float>(step));
 }
 
 // Directions are turned back to world space for the environment with the

@@ -1,8 +1,8 @@
 // One exact bounce of reflection or refraction for the Embree reference
 // (docs/secondary-rays.md, "The Embree reference"). A primary sample whose
 // winning triangle is a mirror or a dielectric is resolved at its own ray and
-// shutter time (the hit point on the triangle moved to that time, its
-// geometric normal), then:
+// shutter time (the hit point on the triangle moved to that time, with K
+// motion segments within its segment, its geometric normal), then:
 //  * mirror: one reflected ray, weight 1;
 //  * dielectric: the reflected ray with weight R and the refracted ray with
 //    weight 1 - R, R the exact unpolarised Fresnel reflectance
