@@ -292,7 +292,7 @@ TEST_CASE("built-in scenes: the camera frames the subject for the aspect") {
 
 TEST_CASE("built-in scenes: bad names and options are one-line SceneErrors") {
     CHECK(error_of([] { make_builtin_scene("x", SceneOptions{}); }) ==
-          "unknown scene 'x' (known: hand, car, dragonfly, forest)");
+          "unknown scene 'x' (known: hand, car, dragonfly, forest, mirror-sphere, water, curved-mirror)");
     CHECK(error_of([] { make_builtin_scene("hand", SceneOptions{-1.0f, 1.0f}); }).find("blur scale") !=
           std::string::npos);
     CHECK(error_of([] { make_builtin_scene("hand", SceneOptions{1.0f, 0.0f}); }).find("aspect") !=
@@ -589,7 +589,8 @@ TEST_CASE("load_scene: upper-case extensions load the file; other extensions are
     std::filesystem::remove_all(scratch);
     CHECK(error_of([] { load_scene("scenes/car.OBJ"); }) ==
           "scenes/car.OBJ: unsupported scene file type (expected .gltf or .glb)");
-    CHECK(error_of([] { load_scene("nowhere"); }) == "unknown scene 'nowhere' (known: hand, car, dragonfly, forest)");
+    CHECK(error_of([] { load_scene("nowhere"); }) ==
+          "unknown scene 'nowhere' (known: hand, car, dragonfly, forest, mirror-sphere, water, curved-mirror)");
 }
 
 TEST_CASE("load_scene: settings over the scene's own, validated once at the end") {

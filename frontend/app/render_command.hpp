@@ -29,6 +29,7 @@ struct RenderCommand : SceneFlags {
     int footprint = CpuOptions{}.footprint;
     std::string precision = to_string(CpuOptions{}.precision);
     int gl_cell = GlOptions{}.cell_pixels;
+    std::string secondary = "bounce";  // embree: bounce or none (EmbreeSecondary)
     bool quiet = false;
     std::string motion_segments = "1";  // K, or "auto" (parse_motion_segments)
 
@@ -38,6 +39,7 @@ struct RenderCommand : SceneFlags {
     CLI::Option* footprint_option = nullptr;
     CLI::Option* precision_option = nullptr;
     CLI::Option* gl_cell_option = nullptr;
+    CLI::Option* secondary_option = nullptr;
     // The sequence's and the EXR's options, refused without --frames or an .exr output.
     CLI::Option* frames_option = nullptr;
     CLI::Option* fps_option = nullptr;

@@ -6,6 +6,7 @@
 #include "render/common/shading.hpp"
 #include "render/common/surface_shading.hpp"
 #include "render/embree/primary_rays.hpp"
+#include "render/embree/secondary_rays.hpp"
 #include "scene/scene_checks.hpp"
 
 #include <blurcull/kernel.hpp>
@@ -27,6 +28,13 @@ namespace blurcull::frontend {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+bool has_specular_material(const Scene& scene) {
+    for (const Material& material : scene.materials) {
+        if (material.kind != MaterialKind::diffuse) return true;
+    }
+    return false;
+}
 
 
 const char* error_name(RTCError code) {
@@ -105,10 +113,12 @@ struct RowSample {
 // wins: a candidate hit on a MASK triangle is refused unless
 // SurfaceShader::sample_kept keeps it (the CPU backend's same call). The
 // geometry's user data is the shader; the context's, the traced row's samples
-// (ray id = index in the row).
+// (ray id = index in the row). A bounced ray (secondary_rays.cpp) carries no
+// samples: every hit of it is kept (masks are opaque to secondary rays).
 void alpha_mask_filter(const RTCFilterFunctionNArguments* args) {
     const auto* shader = static_cast<const SurfaceShader*>(args->geometryUserPtr);
     const auto* samples = static_cast<const RowSample*>(reinterpret_cast<const TraceContext*>(args->context)->user);
+    if (samples == nullptr) return;
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] != -1) continue;
         const unsigned triangle = RTCHitN_primID(args->hit, args->N, i);
@@ -202,17 +212,19 @@ void build_scene(Device& device, const SceneHandle& rtc_scene, const Scene& scen
 // thread, so the image does not depend on the schedule.
 class RowTracer {
 public:
-    RowTracer(RTCScene rtc_scene, const CameraModel& model, const SurfaceShader& shader,
+    RowTracer(RTCScene rtc_scene, const Scene& scene, const CameraModel& model, const SurfaceShader& shader,
               const RenderSettings& settings, const EmbreeOptions& options, Image& image,
               RenderClock::time_point start)
-        : rtc_scene_(rtc_scene), model_(model), shader_(shader), settings_(settings),
-          options_(options), image_(image), start_(start) {}
+        : rtc_scene_(rtc_scene), scene_(scene), model_(model), shader_(shader), settings_(settings),
+          options_(options), image_(image), start_(start),
+          bounces_(options.secondary == EmbreeSecondary::bounce && has_specular_material(scene)) {}
 
     // Traces rows until none is left; one caller reports progress.
     void run(bool reports_progress) {
         const int width = settings_.width;
         const auto spp = static_cast<std::uint32_t>(settings_.spp);
         PrimaryRayTracer tracer(rtc_scene_, options_.tracing);
+        SecondaryTracer secondary(rtc_scene_, scene_, model_, shader_.flat_colours());
         std::vector<PrimaryRay> rays(static_cast<std::size_t>(width) * spp);
         std::vector<RowSample> samples(rays.size());
         std::vector<std::uint32_t> prim_ids(rays.size());
@@ -222,7 +234,7 @@ public:
         for (int py = next_row_.fetch_add(1); py < settings_.height; py = next_row_.fetch_add(1)) {
             make_row_rays(py, rays, samples);
             tracer.trace(rays.data(), rays.size(), prim_ids.data());
-            hits += sum_row(py, prim_ids, samples);
+            hits += sum_row(py, rays, prim_ids, samples, secondary);
             const int done = rows_done_.fetch_add(1) + 1;
             if (reports_progress && ms_since(start_) > 1000.0) {
                 const int percent = static_cast<int>(100LL * done / settings_.height);
@@ -235,12 +247,14 @@ public:
             }
         }
         hits_.fetch_add(hits);
+        secondary_rays_.fetch_add(secondary.rays_traced());
     }
 
     // After a failed thread start: the started helpers stop early.
     void stop() { next_row_.store(settings_.height); }
     bool progress_shown() const { return progress_shown_; }
     std::uint64_t hits() const { return hits_.load(); }
+    std::uint64_t secondary_rays() const { return secondary_rays_.load(); }
 
 private:
     // Row py's rays and their samples, pixel by pixel in sample order.
@@ -261,7 +275,10 @@ private:
     }
 
     // Row py's pixels: the sum of their samples' colours; returns the hits.
-    std::uint64_t sum_row(int py, const std::vector<std::uint32_t>& prim_ids, const std::vector<RowSample>& samples) {
+    // With bouncing on, a sample whose triangle is a mirror or dielectric
+    // gets the colour of its bounce instead of its surface's colour.
+    std::uint64_t sum_row(int py, const std::vector<PrimaryRay>& rays, const std::vector<std::uint32_t>& prim_ids,
+                          const std::vector<RowSample>& samples, SecondaryTracer& secondary) {
         const auto spp = static_cast<std::uint32_t>(settings_.spp);
         std::uint64_t hits = 0;
         for (int px = 0; px < settings_.width; ++px) {
@@ -271,7 +288,13 @@ private:
                 const std::size_t k = static_cast<std::size_t>(px) * spp + j;
                 const std::uint32_t id = prim_ids[k];
                 static_assert(no_primitive == SurfaceShader::no_hit, "one id for no hit");
-                sum += shader_.sample_colour(id, samples[k].ndc, samples[k].lens, samples[k].time);
+                if (id != no_primitive && bounces_ && is_specular(id)) {
+                    const PrimaryRay& ray = rays[k];
+                    sum += secondary.bounce({ray.org_x, ray.org_y, ray.org_z}, {ray.dir_x, ray.dir_y, ray.dir_z},
+                                            ray.time, id);
+                } else {
+                    sum += shader_.sample_colour(id, samples[k].ndc, samples[k].lens, samples[k].time);
+                }
                 if (id != no_primitive) ++hits;
             }
             image_.at(px, py) = sum;
@@ -281,7 +304,12 @@ private:
         return hits;
     }
 
+    bool is_specular(std::uint32_t triangle) const {
+        return scene_.materials[scene_.triangle_material[triangle]].kind != MaterialKind::diffuse;
+    }
+
     RTCScene rtc_scene_;
+    const Scene& scene_;
     const CameraModel& model_;
     const SurfaceShader& shader_;
     const RenderSettings& settings_;
@@ -291,7 +319,9 @@ private:
     std::atomic<int> next_row_{0};
     std::atomic<int> rows_done_{0};
     std::atomic<std::uint64_t> hits_{0};
+    std::atomic<std::uint64_t> secondary_rays_{0};
     bool progress_shown_ = false;
+    bool bounces_;
 };
 
 // Runs `tracer` on thread_count threads (the caller's among them).
@@ -343,7 +373,7 @@ RenderResult render_embree(const Scene& scene, const RenderSettings& settings, c
     phase_start = Clock::now();
     result.image = Image(settings.width, settings.height);
     result.image.coverage.resize(result.image.pixels.size());
-    RowTracer tracer(rtc_scene.get(), model, shader, settings, options, result.image, start);
+    RowTracer tracer(rtc_scene.get(), scene, model, shader, settings, options, result.image, start);
     trace_on_threads(tracer, thread_count, settings.height, settings.progress);
     device.check("tracing");
     stats.ms_per_phase.emplace_back("trace", ms_since(phase_start));
@@ -355,6 +385,12 @@ RenderResult render_embree(const Scene& scene, const RenderSettings& settings, c
     stats.samples_tested = static_cast<std::uint64_t>(settings.width) * static_cast<std::uint64_t>(settings.height) *
                            static_cast<std::uint64_t>(settings.spp);
     stats.samples_hit = tracer.hits();
+    stats.secondary_rays = tracer.secondary_rays();
+    if (has_specular_material(scene) && scene.environment == BC_ENVIRONMENT_NONE) {
+        result.warnings.push_back("embree: scene '" + scene.name +
+                                  "' has mirrors or dielectrics but no environment: rays that leave the scene "
+                                  "get the background colour");
+    }
     stats.ms_total = ms_since(start);
     return result;
 }

@@ -42,8 +42,11 @@ const std::vector<std::string>& implemented_extensions() {
     // by accessors.cpp; the node transform dequantises them.
     // KHR_lights_punctual: the first directional light (lights.cpp);
     // KHR_texture_transform: offset, rotation, scale (surface.cpp).
+    // KHR_materials_transmission and KHR_materials_ior: glass
+    // (specular_material.cpp; what is read and what is not: its header).
     static const std::vector<std::string> names = {"KHR_mesh_quantization", "KHR_lights_punctual",
-                                                   "KHR_texture_transform"};
+                                                   "KHR_texture_transform", "KHR_materials_transmission",
+                                                   "KHR_materials_ior"};
     return names;
 }
 

@@ -5,6 +5,7 @@
 #include "scene/gltf/skin.hpp"
 #include "scene/gltf/surface.hpp"
 #include "scene/gltf/textures.hpp"
+#include "scene/gltf/specular_material.hpp"
 #include "scene/scene_builder.hpp"
 
 #include <glm/glm.hpp>
@@ -197,6 +198,7 @@ private:
                                                  0.0f, 1.0f);
             }
             read_surface_material(source, textures_, material, diagnostics_);
+            read_specular_kind(source, "material " + std::to_string(gltf_material), material, diagnostics_);
         } else {
             material.name = "default";
         }
