@@ -89,14 +89,12 @@ Sampler read_sampler(const tg::Model& model, std::size_t animation_index, std::s
     return sampler;
 }
 
-// True for a translation, rotation or scale channel on a TRS node; false,
-// with a warning once per kind, for the channels blurcull ignores.
+// True for a translation, rotation or scale channel on a TRS node; false
+// for weights (morph.hpp reads those) and, with a warning once per kind,
+// for the channels blurcull ignores.
 bool channel_applies(const tg::AnimationChannel& channel, const NodeTransform& transform, Diagnostics& diagnostics) {
     const std::string& path = channel.target_path;
-    if (path == "weights") {
-        diagnostics.warn_once("weights", "morph target weight animation is ignored");
-        return false;
-    }
+    if (path == "weights") return false;  // morph weights: morph.hpp
     if (path != "translation" && path != "rotation" && path != "scale") {
         diagnostics.warn_once("path " + path, "animation path '" + path + "' is ignored");
         return false;
@@ -146,6 +144,15 @@ std::vector<float> evaluate(const Sampler& sampler, float t, bool rotation) {
     }
     for (std::size_t i = 0; i < c; ++i) a[i] += (b[i] - a[i]) * f;
     return a;
+}
+
+float animation_end_time(const AnimationSamplers& samplers, int animation_index) {
+    if (animation_index < 0 || static_cast<std::size_t>(animation_index) >= samplers.size()) return 0.0f;
+    float end = 0.0f;
+    for (const Sampler& sampler : samplers[static_cast<std::size_t>(animation_index)]) {
+        if (!sampler.times.empty()) end = std::max(end, sampler.times.back());
+    }
+    return end;
 }
 
 void apply_animation(const tg::Model& model, const AnimationSamplers& samplers, int animation_index, float t,
