@@ -56,9 +56,12 @@ def plot(kind, csv_path, png_path):
         x_label, time_label = "blur (pixels)", "ns per pixel (1 thread)"
     else:
         ste = series(rows, "scene", "blur", "ste")
-        time = series(rows, "scene", "blur", "time_ratio_to_bbox")
+        # CPU time where the CSV has it (bench_scenes since issue 12), else wall time.
+        cpu = "cpu_ratio_to_bbox" in rows[0]
+        time = series(rows, "scene", "blur", "cpu_ratio_to_bbox" if cpu else "time_ratio_to_bbox")
         groups = list(ste.keys())
-        x_label, time_label = "blur scale (x the scene's own)", "render time / bbox's"
+        x_label = "blur scale (x the scene's own)"
+        time_label = "CPU time / bbox's" if cpu else "render time / bbox's"
     fig, axes = plt.subplots(2, len(groups), figsize=(4.2 * len(groups), 7), squeeze=False)
     for col, group in enumerate(groups):
         for row, (data, label) in enumerate(((ste, "STE"), (time, time_label))):
