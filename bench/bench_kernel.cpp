@@ -5,7 +5,7 @@
 // per operation:
 //   screen_bound/<precision>/<method>/<workload>   per-triangle setup
 //   sample_bounds/<precision>/<method>/<workload>  per-footprint setup (one pixel)
-//   sample_test/<precision>/<method>/<workload>    screen_contains + sample_passes, one sample
+//   sample_test/<precision>/<method>/<workload>    screen_contains + sample_passes_at, one sample
 //   covers/<precision>/<workload>                  the exact test, one sample
 //   pixel/<precision>/<method>/<workload>          one pixel of 16 samples: the per-footprint
 //                                                  setup, the sample test, the exact test on
@@ -189,7 +189,7 @@ struct Ops {
     static int sample_test(const Prepared<Real>& p, std::size_t j) {
         std::size_t i = j / kSamplesPerPixel;
         bool pass = K::screen_contains(p.screens[i], p.batch.s[j]) &&
-                    K::sample_passes(p.bounds[i], p.batch.uv[j], p.batch.t[j]);
+                    K::sample_passes_at(p.bounds[i], p.batch.s[j], p.batch.uv[j], p.batch.t[j]);
         benchmark::DoNotOptimize(pass);
         return pass ? 1 : 0;
     }
@@ -224,7 +224,7 @@ struct Ops {
         const typename K::ScreenBound& screen = screens ? screens[i] : own_screen;
         typename K::SampleBounds bounds = K::sample_bounds(b.tris[i], b.lo[i], b.hi[i], method);
         for (std::size_t j = first; j < first + kSamplesPerPixel; ++j) {
-            if (!K::screen_contains(screen, b.s[j]) || !K::sample_passes(bounds, b.uv[j], b.t[j])) continue;
+            if (!K::screen_contains(screen, b.s[j]) || !K::sample_passes_at(bounds, b.s[j], b.uv[j], b.t[j])) continue;
             Real depth = Real(0);
             ++count.tested;
             if (K::covers(b.tris[i], b.s[j], b.uv[j], b.t[j], b.nears[i], depth)) ++count.covered;

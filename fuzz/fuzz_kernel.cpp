@@ -148,17 +148,22 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         if (!assert_oracle) {
             (void)Kd::covers(tri_d, Kd::vec2(s), Kd::vec2(uv), double(t), double(near), depth);
             for (int method : kMethods) {
-                (void)(Kf::screen_contains(screen_f[method], s) && Kf::sample_passes(bounds_f[method], uv, t));
+                (void)(Kf::screen_contains(screen_f[method], s) && Kf::sample_passes_at(bounds_f[method], s, uv, t) &&
+                       Kf::sample_passes(bounds_f[method], uv, t));
                 (void)(Kd::screen_contains(screen_d[method], Kd::vec2(s)) &&
+                       Kd::sample_passes_at(bounds_d[method], Kd::vec2(s), Kd::vec2(uv), double(t)) &&
                        Kd::sample_passes(bounds_d[method], Kd::vec2(uv), double(t)));
             }
             continue;
         }
         if (!Kd::covers(tri_d, Kd::vec2(s), Kd::vec2(uv), double(t), double(near), depth)) continue;
         for (int method : kMethods) {
-            if (!(Kf::screen_contains(screen_f[method], s) && Kf::sample_passes(bounds_f[method], uv, t)))
+            // Neither per-sample test may cull it: at its position or over the footprint.
+            if (!(Kf::screen_contains(screen_f[method], s) && Kf::sample_passes_at(bounds_f[method], s, uv, t) &&
+                  Kf::sample_passes(bounds_f[method], uv, t)))
                 beaten("float", method, tri, near, s, uv, t);
             if (!(Kd::screen_contains(screen_d[method], Kd::vec2(s)) &&
+                  Kd::sample_passes_at(bounds_d[method], Kd::vec2(s), Kd::vec2(uv), double(t)) &&
                   Kd::sample_passes(bounds_d[method], Kd::vec2(uv), double(t))))
                 beaten("double", method, tri, near, s, uv, t);
         }

@@ -1,6 +1,6 @@
 // GPU/host parity of the shared kernel: a GLSL 4.50 compute shader built from
 // the emitted blurcull_kernel.glsl runs screen_bound + screen_contains,
-// sample_bounds + sample_passes (all five methods), covers, classify and
+// sample_bounds + sample_passes (all five methods) + sample_passes_at (edges), covers, classify and
 // pixel_sample on host-generated inputs in a headless Mesa context; the host
 // runs kernel<float> on the same float inputs. Every decision must agree, every
 // bound value within kMaxBoundUlps (docs/glsl.md states the tolerance and the
@@ -102,6 +102,7 @@ void main() {
         SampleBounds b = bc_sample_bounds(tri, s_lo, s_hi, method);
         if (bc_screen_contains(sb, s)) decisions |= 1u << (1 + method);
         if (bc_sample_passes(b, uv, t)) decisions |= 1u << (1 + METHODS + method);
+        if (method == BC_CULL_EDGES && bc_sample_passes_at(b, s, uv, t)) decisions |= 1u << (1 + 2 * METHODS);
         if (!first) continue;
         int o = config * CONFIG_UINTS + method * (SCREEN_UINTS + SAMPLE_UINTS);
         config_out[o] = sb.empty ? 1u : 0u;
@@ -146,8 +147,8 @@ const char* const kDecisionNames[] = {
     "screen_contains bbox", "screen_contains hull", "screen_contains dualspace", "screen_contains clip2",
     "screen_contains edges",
     "sample_passes bbox", "sample_passes hull", "sample_passes dualspace", "sample_passes clip2",
-    "sample_passes edges"};
-constexpr int kDecisionBits = 1 + 2 * kMethods;
+    "sample_passes edges", "sample_passes_at edges"};
+constexpr int kDecisionBits = 2 + 2 * kMethods;
 
 // The sample-bound values in output order, two uints per name.
 const char* const kSampleFieldNames[] = {"u_range",  "v_range",  "u_time_a", "u_time_a", "u_time_b",
@@ -296,6 +297,7 @@ HostResults run_host(const Inputs& in) {
                 if (Kf::sample_passes(bounds[static_cast<std::size_t>(method)], uv, t))
                     decisions |= 1u << (1 + kMethods + method);
             }
+            if (Kf::sample_passes_at(bounds[BC_CULL_EDGES], pos, uv, t)) decisions |= 1u << (1 + 2 * kMethods);
             float depth = 0.0f;
             if (Kf::covers(tri, pos, uv, t, near, depth)) decisions |= 1u;
             const std::uint32_t* key = &in.keys[id * kInputKeys];

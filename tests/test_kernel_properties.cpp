@@ -23,7 +23,10 @@ struct Tally {
     std::uint64_t configs = 0;
     std::uint64_t samples = 0;
     std::uint64_t covered = 0;
-    MethodTally methods[method_count];  // indexed by BC_CULL_*
+    MethodTally methods[method_count];  // indexed by BC_CULL_*; each at the sample's position (sample_passes_at)
+    MethodTally edges_anywhere;         // BC_CULL_EDGES by sample_passes: the planes over the whole footprint
+    MethodTally edges_in_tile;          // BC_CULL_EDGES on the sample's quarter of the footprint, the footprint
+                                        // taken as its tile (sample_bounds_in_tile)
 };
 
 template <class Real>
@@ -54,14 +57,33 @@ struct Judge {
             ++tally.samples;
             if (covered) ++tally.covered;
             for (int method : all_methods) {
-                bool pass = K::screen_contains(screen[method], s) && K::sample_passes(bounds[method], uv, t);
-                MethodTally& m = tally.methods[method];
-                if (pass) ++m.passed;
-                if (covered && !pass) {
-                    if (m.false_culls < 3) report(family, method, tri, near, lo, hi, s, uv, t, screen[method], bounds[method]);
-                    ++m.false_culls;
-                }
+                bool pass = K::screen_contains(screen[method], s) && K::sample_passes_at(bounds[method], s, uv, t);
+                judge(tally.methods[method], pass, covered, family, method, tri, near, lo, hi, s, uv, t,
+                      screen[method], bounds[method]);
             }
+            const int edges = BC_CULL_EDGES;
+            bool anywhere = K::screen_contains(screen[edges], s) && K::sample_passes(bounds[edges], uv, t);
+            judge(tally.edges_anywhere, anywhere, covered, family, edges, tri, near, lo, hi, s, uv, t, screen[edges],
+                  bounds[edges]);
+            // The quarter of the footprint that holds s, bounded inside the footprint as its tile.
+            const typename K::vec2 mid = lo + (hi - lo) * Real(0.5);
+            const typename K::vec2 q_lo(s.x <= mid.x ? lo.x : mid.x, s.y <= mid.y ? lo.y : mid.y);
+            const typename K::vec2 q_hi(s.x <= mid.x ? mid.x : hi.x, s.y <= mid.y ? mid.y : hi.y);
+            const typename K::SampleBounds quarter = K::sample_bounds_in_tile(tri, q_lo, q_hi, edges, bounds[edges]);
+            bool in_tile = K::screen_contains(screen[edges], s) && K::sample_passes_at(quarter, s, uv, t);
+            judge(tally.edges_in_tile, in_tile, covered, family, edges, tri, near, q_lo, q_hi, s, uv, t, screen[edges],
+                  quarter);
+        }
+    }
+
+    static void judge(MethodTally& m, bool pass, bool covered, Family family, int method,
+                      const typename K::MovingTriangle& tri, Real near, typename K::vec2 lo, typename K::vec2 hi,
+                      typename K::vec2 s, typename K::vec2 uv, Real t, const typename K::ScreenBound& sb,
+                      const typename K::SampleBounds& b) {
+        if (pass) ++m.passed;
+        if (covered && !pass) {
+            if (m.false_culls < 3) report(family, method, tri, near, lo, hi, s, uv, t, sb, b);
+            ++m.false_culls;
         }
     }
 
@@ -106,7 +128,12 @@ void print_row(const char* precision, const char* family, const Tally& t) {
         double ste = m.passed ? double(t.covered) / double(m.passed) : 0.0;
         std::printf(" | %s %" PRIu64 " fc, STE %5.1f%%", method_name(method), m.false_culls, 100.0 * ste);
     }
-    std::printf("\n");
+    const MethodTally& m = t.edges_anywhere;
+    std::printf(" | edges over the footprint %" PRIu64 " fc, STE %5.1f%%", m.false_culls,
+                m.passed ? 100.0 * double(t.covered) / double(m.passed) : 0.0);
+    const MethodTally& q = t.edges_in_tile;
+    std::printf(" | edges on a quarter in its tile %" PRIu64 " fc, STE %5.1f%%\n", q.false_culls,
+                q.passed ? 100.0 * double(t.covered) / double(q.passed) : 0.0);
 }
 
 template <class Real>
@@ -134,6 +161,10 @@ void check_conservative(const char* precision) {
             total.methods[method].passed += t.methods[method].passed;
             total.methods[method].false_culls += t.methods[method].false_culls;
         }
+        total.edges_anywhere.passed += t.edges_anywhere.passed;
+        total.edges_anywhere.false_culls += t.edges_anywhere.false_culls;
+        total.edges_in_tile.passed += t.edges_in_tile.passed;
+        total.edges_in_tile.false_culls += t.edges_in_tile.false_culls;
     }
     print_row(precision, "ALL", total);
     std::printf("%s: %" PRIu64 " configurations, %" PRIu64 " samples, %" PRIu64 " covered samples checked per method\n",
@@ -144,6 +175,8 @@ void check_conservative(const char* precision) {
         INFO("method ", method_name(method));
         CHECK(total.methods[method].false_culls == 0);
     }
+    CHECK(total.edges_anywhere.false_culls == 0);
+    CHECK(total.edges_in_tile.false_culls == 0);
 }
 
 }  // namespace
@@ -174,6 +207,8 @@ void check_every_family_long(const char* precision) {
             INFO("method ", method_name(method));
             CHECK(t.methods[method].false_culls == 0);
         }
+        CHECK(t.edges_anywhere.false_culls == 0);
+        CHECK(t.edges_in_tile.false_culls == 0);
     }
 }
 
@@ -187,12 +222,12 @@ TEST_CASE("long: 10 million covered samples per family, double" * doctest::skip(
 
 TEST_CASE_TEMPLATE("tightness: STE per method on fixed seeded sets", Real, float, double) {
     // Fixed sets, smaller than the conservativeness runs, for a stable table.
-    double ste[3][4] = {};
+    double ste[3][method_count] = {};
     const Family families[] = {Family::motion, Family::defocus, Family::both};
     for (int f = 0; f < 3; ++f) {
         Tally t = run_family<Real>(families[f], 300000, 0x7157 + std::uint64_t(f));
         print_row(sizeof(Real) == 4 ? "float" : "double", family_name(families[f]), t);
-        for (int m = 0; m < 4; ++m) {
+        for (int m = 0; m < method_count; ++m) {
             ste[f][m] = double(t.covered) / double(std::max<std::uint64_t>(1, t.methods[all_methods[m]].passed));
         }
     }
@@ -203,5 +238,7 @@ TEST_CASE_TEMPLATE("tightness: STE per method on fixed seeded sets", Real, float
         CHECK(ste[f][BC_CULL_TWO_STAGE] >= ste[f][BC_CULL_BBOX]);
         CHECK(ste[f][BC_CULL_DUALSPACE] >= ste[f][BC_CULL_BBOX]);
         CHECK(ste[f][BC_CULL_HULL] >= ste[f][BC_CULL_BBOX]);
+        // The edge bound is the two-stage bounds with planes on top.
+        CHECK(ste[f][BC_CULL_EDGES] >= ste[f][BC_CULL_TWO_STAGE]);
     }
 }

@@ -291,6 +291,12 @@ void run_config(const Config& cfg, Rng& rng, Stress stress, int sample_count, Co
         }
     }
 
+    // The footprint's lower-left quarter bounded inside it as its tile
+    // (sample_bounds_in_tile): judged on the samples that fall in it.
+    const typename K::vec2 mid = lo + (hi - lo) * Real(0.5);
+    const typename K::SampleBounds quarter =
+        K::sample_bounds_in_tile(tri, lo, mid, BC_CULL_EDGES, bounds[BC_CULL_EDGES]);
+
     // Samples: a point of the triangle (likely covered), the footprint's
     // corners, and range ends; most of them exactly on a range end.
     auto pick = [&](double a, double b) {
@@ -321,7 +327,12 @@ void run_config(const Config& cfg, Rng& rng, Stress stress, int sample_count, Co
         if (covered) ++counts.covered;
         if (covered && !invalid && !swamped) ++counts.covered_bounded;
         for (int method : all_methods) {
-            const bool pass = K::screen_contains(screen[method], sr) && K::sample_passes(bounds[method], uvr, tr);
+            // Both per-sample tests must keep it: at its own position and over the footprint.
+            const bool pass = K::screen_contains(screen[method], sr) &&
+                              K::sample_passes_at(bounds[method], sr, uvr, tr) &&
+                              K::sample_passes(bounds[method], uvr, tr) &&
+                              (method != BC_CULL_EDGES || sr.x > mid.x || sr.y > mid.y ||
+                               K::sample_passes_at(quarter, sr, uvr, tr));
             if (covered && !pass) {
                 if (counts.false_culls[method] < 3) {
                     std::printf("FALSE CULL [%s, %s, %s] s (%a, %a) uv (%a, %a) t %a near %a\n",

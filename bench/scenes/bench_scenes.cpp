@@ -3,8 +3,12 @@
 // time, in the layout of the thesis's Table 4.1, next to its published numbers.
 //
 //   bench_scenes [--size 1024x768] [--spp 16] [--repeat 3] [--footprint 4]
-//                [--scenes hand,car,dragonfly,forest] [--csv out.csv]
+//                [--scenes hand,car,dragonfly,forest] [--blurs 1,2] [--csv out.csv]
 //                [--markdown docs/benchmarks.md]
+//
+// --blurs takes any blur scales (the sweep of docs/benchmarks.md uses
+// 0.25,0.5,1,2,4: a scene's blur scale must be > 0); the thesis's columns
+// exist for 1 and 2 only.
 //
 // Times are medians over --repeat runs, given as ratios to bbox measured in
 // the same run (same scene, same samples): on a noisy machine only ratios
@@ -16,6 +20,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -51,11 +56,24 @@ constexpr int kMethods = static_cast<int>(std::size(methods));
 
 struct Row {
     std::string scene;
-    int blur = 1;
+    double blur = 1;
     std::size_t triangles = 0;
     double ste[kMethods] = {};
-    double ms[kMethods] = {};  // median
+    double ms[kMethods] = {};      // median wall time
+    double cpu_ms[kMethods] = {};  // median CPU time of the process over the render (all threads)
+    // Per pixel: (sample, triangle) pairs looked at to decide (visited) and
+    // pairs that reached the exact test (tested).
+    double visited[kMethods] = {};
+    double tested[kMethods] = {};
 };
+
+// CPU time of the process (every thread), in ms: unlike wall time it does
+// not count the time other work on a loaded machine takes the cores away.
+double process_cpu_ms() {
+    timespec now{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
+    return double(now.tv_sec) * 1e3 + double(now.tv_nsec) * 1e-6;
+}
 
 using blurcull::bench::median;
 using blurcull::bench::split;
@@ -81,18 +99,42 @@ std::string markdown(const std::vector<Row>& rows, int width, int height, int sp
         for (const Published& q : published)
             if (r.scene == q.scene) p = &q;
         std::string thesis = "n/a";
-        if (p) {
-            std::snprintf(line, sizeof line, "%g%% / %g%% / %g%%", p->bbox[r.blur - 1], p->dualspace[r.blur - 1],
-                          p->thesis[r.blur - 1]);
+        if (p && (r.blur == 1 || r.blur == 2)) {
+            const int b = int(r.blur) - 1;
+            std::snprintf(line, sizeof line, "%g%% / %g%% / %g%%", p->bbox[b], p->dualspace[b], p->thesis[b]);
             thesis = line;
         }
         std::snprintf(line, sizeof line,
-                      "| %s (%zu) | x%d | %.1f%% | %.1f%% | %.1f%% | %.1f%% | %.1f%% | %.0f ms | %.2f | %.2f | %.2f | "
+                      "| %s (%zu) | x%g | %.1f%% | %.1f%% | %.1f%% | %.1f%% | %.1f%% | %.0f ms | %.2f | %.2f | %.2f | "
                       "%.2f | %s |\n",
                       r.scene.c_str(), r.triangles, r.blur, 100 * r.ste[0], 100 * r.ste[1], 100 * r.ste[2],
                       100 * r.ste[3], 100 * r.ste[4], r.ms[0], r.ms[1] / r.ms[0], r.ms[2] / r.ms[0], r.ms[3] / r.ms[0],
                       r.ms[4] / r.ms[0], thesis.c_str());
         md << line;
+    }
+    md << "\nCPU time of the process (all threads) over each render, median, as a ratio to bbox's (less "
+          "sensitive to other load than wall time):\n\n| scene | blur | bbox | hull | dualspace | clip2 | edges |\n"
+          "|---|---|---|---|---|---|---|\n";
+    for (const Row& r : rows) {
+        std::snprintf(line, sizeof line, "| %s | x%g | %.0f ms | %.2f | %.2f | %.2f | %.2f |\n", r.scene.c_str(),
+                      r.blur, r.cpu_ms[0], r.cpu_ms[1] / r.cpu_ms[0], r.cpu_ms[2] / r.cpu_ms[0],
+                      r.cpu_ms[3] / r.cpu_ms[0], r.cpu_ms[4] / r.cpu_ms[0]);
+        md << line;
+    }
+    md << "\nSamples visited per pixel (looked at by the per-sample cull; only a footprint's shutter interval when\n"
+          "its samples are visited in time order) / samples tested per pixel (reached the exact test):\n\n";
+    md << "| scene | blur |";
+    for (CullMethod m : methods) md << " " << to_string(m) << " |";
+    md << "\n|---|---|";
+    for (int m = 0; m < kMethods; ++m) md << "---|";
+    md << "\n";
+    for (const Row& r : rows) {
+        md << "| " << r.scene << " | x" << r.blur << " |";
+        for (int m = 0; m < kMethods; ++m) {
+            std::snprintf(line, sizeof line, " %.1f / %.1f |", r.visited[m], r.tested[m]);
+            md << line;
+        }
+        md << "\n";
     }
     return md.str();
 }
@@ -103,6 +145,7 @@ int main(int argc, char** argv) {
     int width = 1024, height = 768, spp = 16, repeat = 3, footprint = 4;
     std::vector<std::string> scenes = builtin_scene_names();
     std::string csv_path, md_path;
+    std::vector<double> blurs = {1, 2};
     try {
         for (int i = 1; i < argc; ++i) {
             std::string arg = argv[i];
@@ -120,6 +163,15 @@ int main(int argc, char** argv) {
                 repeat = std::max(1, std::atoi(value().c_str()));
             } else if (arg == "--footprint") {
                 footprint = std::max(1, std::atoi(value().c_str()));
+            } else if (arg == "--blurs") {
+                blurs.clear();
+                for (const std::string& b : split(value())) {
+                    const double scale = std::atof(b.c_str());
+                    if (!(scale > 0.0) || scale > 64.0)
+                        throw std::invalid_argument("--blurs: expected scales in (0, 64], got '" + b + "'");
+                    blurs.push_back(scale);
+                }
+                if (blurs.empty()) throw std::invalid_argument("--blurs: no scale given");
             } else if (arg == "--scenes") {
                 scenes = split(value());
             } else if (arg == "--csv") {
@@ -132,7 +184,7 @@ int main(int argc, char** argv) {
         }
         std::vector<Row> rows;
         for (const std::string& name : scenes) {
-            for (int blur : {1, 2}) {
+            for (double blur : blurs) {
                 SceneOptions options;
                 options.blur_scale = float(blur);
                 options.aspect = float(width) / float(height);
@@ -148,21 +200,35 @@ int main(int argc, char** argv) {
                 row.scene = name;
                 row.blur = blur;
                 row.triangles = scene.triangles.size();
-                std::vector<double> times[kMethods];
+                std::vector<double> times[kMethods], cpu_times[kMethods];
                 // Interleave the methods across repeats so drifting load hits all alike.
                 for (int r = 0; r < repeat; ++r) {
                     for (int m = 0; m < kMethods; ++m) {
                         settings.cull = methods[m];
+                        const double cpu_start = process_cpu_ms();
                         RenderResult result = render_cpu(scene, settings, cpu);
+                        cpu_times[m].push_back(process_cpu_ms() - cpu_start);
                         row.ste[m] = result.stats.ste();
+                        const double pixels = double(width) * double(height);
+                        row.visited[m] = double(result.stats.samples_visited) / pixels;
+                        row.tested[m] = double(result.stats.samples_tested) / pixels;
                         times[m].push_back(result.stats.ms_total);
                     }
                 }
-                for (int m = 0; m < kMethods; ++m) row.ms[m] = median(times[m]);
-                std::fprintf(stderr, "%s x%d: STE %.1f/%.1f/%.1f/%.1f/%.1f%%, time %.0f ms, ratios %.2f/%.2f/%.2f/%.2f\n",
+                for (int m = 0; m < kMethods; ++m) {
+                    row.ms[m] = median(times[m]);
+                    row.cpu_ms[m] = median(cpu_times[m]);
+                }
+                std::fprintf(stderr, "%s x%g: STE %.1f/%.1f/%.1f/%.1f/%.1f%%, time %.0f ms, ratios %.2f/%.2f/%.2f/%.2f\n",
                              name.c_str(), blur, 100 * row.ste[0], 100 * row.ste[1], 100 * row.ste[2],
                              100 * row.ste[3], 100 * row.ste[4], row.ms[0], row.ms[1] / row.ms[0],
                              row.ms[2] / row.ms[0], row.ms[3] / row.ms[0], row.ms[4] / row.ms[0]);
+                std::fprintf(stderr, "  cpu time %.0f ms, ratios %.2f/%.2f/%.2f/%.2f\n", row.cpu_ms[0],
+                             row.cpu_ms[1] / row.cpu_ms[0], row.cpu_ms[2] / row.cpu_ms[0],
+                             row.cpu_ms[3] / row.cpu_ms[0], row.cpu_ms[4] / row.cpu_ms[0]);
+                std::fprintf(stderr, "  visited/tested per pixel %.1f/%.1f %.1f/%.1f %.1f/%.1f %.1f/%.1f %.1f/%.1f\n",
+                             row.visited[0], row.tested[0], row.visited[1], row.tested[1], row.visited[2],
+                             row.tested[2], row.visited[3], row.tested[3], row.visited[4], row.tested[4]);
                 rows.push_back(row);
             }
         }
@@ -172,12 +238,14 @@ int main(int argc, char** argv) {
         if (!csv_path.empty()) {
             std::ofstream csv(csv_path);
             if (!csv) throw std::runtime_error("cannot write '" + csv_path + "'");
-            csv << "scene,blur,triangles,method,ste,ms_median,time_ratio_to_bbox,width,height,spp,footprint\n";
+            csv << "scene,blur,triangles,method,ste,ms_median,time_ratio_to_bbox,width,height,spp,footprint,"
+                   "visited_per_pixel,tested_per_pixel,cpu_ms_median,cpu_ratio_to_bbox\n";
             for (const Row& r : rows)
                 for (int m = 0; m < kMethods; ++m)
                     csv << r.scene << "," << r.blur << "," << r.triangles << "," << to_string(methods[m]) << ","
                         << r.ste[m] << "," << r.ms[m] << "," << r.ms[m] / r.ms[0] << "," << width << "," << height
-                        << "," << spp << "," << footprint << "\n";
+                        << "," << spp << "," << footprint << "," << r.visited[m] << "," << r.tested[m] << "," << r.cpu_ms[m] << ","
+                        << r.cpu_ms[m] / r.cpu_ms[0] << "\n";
         }
     } catch (const std::exception& error) {
         std::fprintf(stderr, "bench_scenes: error: %s\n", error.what());

@@ -49,7 +49,7 @@
 //   if (classify(tri) == BC_INVALID) skip the triangle;
 //   ScreenBound sb = screen_bound(tri, near, cull);                 // once per triangle
 //   SampleBounds b = sample_bounds(tri, footprint_lo, footprint_hi, cull);  // per pixel or tile
-//   for each sample: screen_contains(sb, s) && sample_passes(b, uv, t) && covers(...)
+//   for each sample: screen_contains(sb, s) && sample_passes_at(b, s, uv, t) && covers(...)
 //
 // ---- Circle of confusion and motion (detail/coc_motion_body.inl) -------------------
 //
@@ -143,13 +143,26 @@
 //   computed (a vertex behind the eye for dual-space's lens bound, an
 //   overflow) keeps the whole lens or shutter on that axis.
 //
+// SampleBounds sample_bounds_in_tile(MovingTriangle tri, vec2 s_lo, vec2 s_hi, int cull, SampleBounds tile)
+//   The bounds of footprint [s_lo, s_hi] inside a tile whose bounds `tile`
+//   sample_bounds gave with the same cull (tile then footprint): for
+//   BC_CULL_EDGES the footprint's two-stage bounds with the tile's edge planes
+//   (their setup paid once per tile); otherwise sample_bounds of the
+//   footprint. Empty when tile is.
+//
 // SampleBounds no_sample_bounds()
 //   Bounds that keep every sample: lens [-1, 1]^2, time [0, 1], empty = false.
 //
 // bool sample_passes(SampleBounds b, vec2 uv, real t)
 //   Whether (uv, t) lies inside the bounds. False: the triangle covers no
 //   sample of the footprint with that lens position and time. Always false
-//   for an empty b.
+//   for an empty b. BC_CULL_EDGES' planes are taken over the whole footprint.
+//
+// bool sample_passes_at(SampleBounds b, vec2 s, vec2 uv, real t)
+//   sample_passes for a sample at screen position s (NDC, inside the
+//   footprint b was made for): BC_CULL_EDGES' planes at s itself, which culls
+//   more (docs/kernel.md, "Edge bounds": the sample's position). The same as
+//   sample_passes for the other modes. sample_culled calls it.
 //
 // vec2 sample_time_range(SampleBounds b)
 //   The shutter interval [lo, hi] within [0, 1] that holds every (uv, t) that

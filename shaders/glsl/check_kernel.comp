@@ -69,7 +69,9 @@ void main() {
     SampleBounds none = bc_no_sample_bounds();
     SampleBounds bounds = bc_sample_bounds(tri, s - vec2(0.01), s + vec2(0.01), cull);
     SampleBounds edge_bounds = bc_sample_bounds(tri, s - vec2(0.01), s + vec2(0.01), BC_CULL_EDGES);
-    bool passes = bc_sample_passes(bounds, uv, t) || bc_sample_passes(none, uv, t) || bc_sample_passes(edge_bounds, uv, t);
+    SampleBounds in_tile = bc_sample_bounds_in_tile(tri, s - vec2(0.005), s + vec2(0.005), cull, edge_bounds);
+    bool passes = bc_sample_passes(bounds, uv, t) || bc_sample_passes(none, uv, t) || bc_sample_passes(edge_bounds, uv, t) ||
+                  bc_sample_passes_at(edge_bounds, s, uv, t) || bc_sample_passes_at(in_tile, s, uv, t);
     vec2 time_range = bc_sample_time_range(bounds);
     uint px = uint(values[43]);
     uint py = uint(values[44]);

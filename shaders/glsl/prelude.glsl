@@ -45,6 +45,8 @@
 #define sample_bounds bc_sample_bounds
 #define sample_time_range bc_sample_time_range
 #define sample_passes bc_sample_passes
+#define sample_passes_at bc_sample_passes_at
+#define sample_bounds_in_tile bc_sample_bounds_in_tile
 // the raster glue both backends share (raster_body.inl)
 #define raster_to_ndc bc_raster_to_ndc
 #define ndc_to_raster bc_ndc_to_raster

@@ -53,6 +53,10 @@ inline void validate_settings(const RenderSettings& settings) {
 struct RenderStats {
     std::uint64_t samples_tested = 0;  // (sample, triangle) tests, or rays for a ray tracer
     std::uint64_t samples_hit = 0;     // tests that found coverage
+    // (sample, triangle) pairs a method looked at to decide whether to test
+    // (cpu only; 0 elsewhere): every sample of a bounded footprint, or only
+    // those in its shutter interval when samples are visited in time order.
+    std::uint64_t samples_visited = 0;
     std::uint64_t bounds_computed = 0; // per-footprint sample bounds set up (cpu: blocks and footprints)
     std::uint64_t bounds_empty = 0;    // of those, how many proved the footprint empty
     std::uint64_t secondary_rays = 0;  // rays bounced off mirrors and dielectrics (embree --secondary bounce)

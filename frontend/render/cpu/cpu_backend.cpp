@@ -257,7 +257,7 @@ public:
     }
 
     // This worker's counts: exact tests, hits, sample bounds set up, and empty ones.
-    std::uint64_t tested = 0, hits = 0, bounded = 0, bounded_empty = 0;
+    std::uint64_t tested = 0, hits = 0, bounded = 0, bounded_empty = 0, visited = 0;
 
 private:
     static constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
@@ -344,11 +344,14 @@ private:
         return typename K::vec4(kernelf::pixel_rect_ndc(glm::ivec4(px0, py0, px1, py1), frame_.model.image_size()));
     }
 
-    // The sample bounds of a block or footprint, counted.
-    typename K::SampleBounds bounds_of(const Current& current, int px0, int py0, int px1, int py1) {
+    // The sample bounds of a block or footprint, counted; a footprint's from
+    // its block's bounds `tile` when given (kernel::sample_bounds_in_tile).
+    typename K::SampleBounds bounds_of(const Current& current, int px0, int py0, int px1, int py1,
+                                       const typename K::SampleBounds* tile = nullptr) {
         const typename K::vec4 box = footprint(px0, py0, px1, py1);
-        typename K::SampleBounds sb = K::sample_bounds(*current.tri, typename K::vec2(box.x, box.y),
-                                                       typename K::vec2(box.z, box.w), frame_.method);
+        const typename K::vec2 lo(box.x, box.y), hi(box.z, box.w);
+        typename K::SampleBounds sb = tile ? K::sample_bounds_in_tile(*current.tri, lo, hi, frame_.method, *tile)
+                                           : K::sample_bounds(*current.tri, lo, hi, frame_.method);
         ++bounded;
         if (sb.empty) ++bounded_empty;
         return sb;
@@ -357,7 +360,8 @@ private:
     // Blocks of the image grid clipped to the triangle's rectangle; the
     // bounds hold for any footprint. A block whose bounds hold nothing is
     // skipped whole; the others are bounded again per footprint when
-    // footprints are smaller than blocks.
+    // footprints are smaller than blocks (for edges: the footprint's
+    // two-stage bounds with the block's edge planes, set up once per block).
     void rasterize_triangle(std::uint32_t index) {
         const PixelRect& r = frame_.setup.rects[index];
         Current current{index, &frame_.setup.triangles[index], &frame_.setup.fast_tests[index],
@@ -374,14 +378,17 @@ private:
                     test_samples(current, bx0, by0, bx1, by1, K::no_sample_bounds());
                     continue;
                 }
+                typename K::SampleBounds block_bounds = K::no_sample_bounds();
                 if (block > footprint) {
-                    if (bounds_of(current, bx0, by0, bx1, by1).empty) continue;
+                    block_bounds = bounds_of(current, bx0, by0, bx1, by1);
+                    if (block_bounds.empty) continue;
                 }
                 for (int fy = by0 - (by0 % footprint); fy <= by1; fy += footprint) {
                     for (int fx = bx0 - (bx0 % footprint); fx <= bx1; fx += footprint) {
                         const int px0 = std::max(fx, bx0), px1 = std::min(fx + footprint - 1, bx1);
                         const int py0 = std::max(fy, by0), py1 = std::min(fy + footprint - 1, by1);
-                        const typename K::SampleBounds sb = bounds_of(current, px0, py0, px1, py1);
+                        const typename K::SampleBounds sb =
+                            bounds_of(current, px0, py0, px1, py1, block > footprint ? &block_bounds : nullptr);
                         if (!sb.empty) test_samples(current, px0, py0, px1, py1, sb);
                     }
                 }
@@ -416,6 +423,7 @@ private:
                 const int local = static_cast<int>(k / frame_.spp);
                 const int px = x0_ + local % tw_, py = y0_ + local / tw_;
                 if (px < px0 || px > px1 || py < py0 || py > py1) continue;
+                ++visited;
                 if (sample_culled(current, k, sb)) continue;
                 ++tested;
                 if (lanes_.may_cover(*current.fast, k)) test_exactly(current, k);
@@ -430,6 +438,7 @@ private:
     // then the fast test on those that passed, then covers on what it kept.
     void test_pixel(const Current& current, std::size_t first, const typename K::SampleBounds& sb) {
         const std::uint32_t spp = frame_.spp;
+        visited += spp;
         for (std::uint32_t j0 = 0; j0 < spp; j0 += 32) {
             std::uint32_t passed = 0;
             for (std::uint32_t j = j0; j < std::min(spp, j0 + 32); ++j) {
@@ -513,7 +522,7 @@ private:
 // does not depend on the schedule.
 template <class Real>
 void rasterize_tiles(const FrameContext<Real>& frame, int threads, Clock::time_point start, RenderResult& result) {
-    std::atomic<std::uint64_t> total_tested{0}, total_hit{0}, total_bounded{0}, total_bounded_empty{0};
+    std::atomic<std::uint64_t> total_tested{0}, total_hit{0}, total_bounded{0}, total_bounded_empty{0}, total_visited{0};
     const int tile_count = frame.setup.tiles_x * frame.setup.tiles_y;
     Progress progress(frame.settings.progress, start, tile_count);
     cpu_methods::run_parallel_items(
@@ -524,6 +533,7 @@ void rasterize_tiles(const FrameContext<Real>& frame, int threads, Clock::time_p
         },
         [&](const TileRasterizer<Real>& rasterizer) {
             total_tested.fetch_add(rasterizer.tested);
+            total_visited.fetch_add(rasterizer.visited);
             total_hit.fetch_add(rasterizer.hits);
             total_bounded.fetch_add(rasterizer.bounded);
             total_bounded_empty.fetch_add(rasterizer.bounded_empty);
@@ -531,6 +541,7 @@ void rasterize_tiles(const FrameContext<Real>& frame, int threads, Clock::time_p
     progress.finish();
     RenderStats& stats = result.stats;
     stats.samples_tested = total_tested.load();
+    stats.samples_visited = total_visited.load();
     stats.samples_hit = total_hit.load();
     stats.bounds_computed = total_bounded.load();
     stats.bounds_empty = total_bounded_empty.load();

@@ -4,10 +4,13 @@
 // footprint's rays as a function of the lens position and time jointly: a
 // polynomial in (u, v, t), computed exactly, whose linear part becomes a
 // plane and whose other terms (and the rounding) a radius, over a box of
-// (u, v, t) (docs/kernel.md, "Edge bounds"). A covered sample has every edge
-// function of the sign of the triangle's determinant, so a sample below a
-// plane by more than its radius is culled. The box is the two-stage bounds'
-// range; the per-sample test is three planes.
+// (u, v, t) (docs/kernel.md, "Edge bounds"). The edge function is linear in
+// the sample's screen position, so each plane also carries the position's
+// coefficients: every sample is tested at its own position, not over the
+// whole footprint. A covered sample has every edge function of the sign of
+// the triangle's determinant, so a sample below a plane by more than its
+// radius is culled. The box is the two-stage bounds' range; the per-sample
+// test is three planes of five terms.
 
 #define BC_EDGE_NONE 0       // no edge planes: the two-stage bounds alone
 #define BC_EDGE_ONE_SIDED 1  // the determinant keeps one sign on the box
@@ -38,14 +41,6 @@ BC_FN BcPoly bc_poly_zero() {
     p.r = real(0);
     p.m = real(0);
     return p;
-}
-
-// Sum of |coefficients| (<= m, which also counts what cancelled): a bound
-// on |p| over the box, rounding aside.
-BC_FN real bc_poly_norm(BC_IN(BcPoly) p) {
-    real sum = real(0);
-    for (int n = 0; n < 16; ++n) sum = sum + abs(p.k[n]);
-    return sum;
 }
 
 BC_FN BcPoly bc_poly_add(BC_IN(BcPoly) p, BC_IN(BcPoly) q, real sign) {
@@ -150,13 +145,17 @@ BC_FN real bc_poly_sign(BC_IN(BcPoly) p, real margin) {
 
 // The planes of the three edges over one piece of the box (bc_edge_bounds).
 struct BcEdgePlanes {
-    int mode;  // BC_EDGE_*
-    vec2 time; // the box's shutter range: the planes hold only inside it
-    vec3 du;   // per edge: coefficient of u
-    vec3 dv;   // of v
-    vec3 dt;   // of t
-    vec3 hi;   // constant + radius: a covered sample has du u + dv v + dt t + hi >= 0 for every edge ...
-    vec3 lo;   // constant - radius: ... or (two-sided only) <= 0 with lo for every edge
+    int mode;    // BC_EDGE_*
+    vec2 time;   // the box's shutter range: the planes hold only inside it
+    vec3 du;     // per edge: coefficient of u
+    vec3 dv;     // of v
+    vec3 dt;     // of t
+    vec3 dx;     // of the sample's screen x
+    vec3 dy;     // of its screen y
+    vec3 hi;     // constant + radius: a covered sample at s has du u + dv v + dt t + dx s.x + dy s.y + hi >= 0
+                 // for every edge ...
+    vec3 lo;     // constant - radius: ... or (two-sided only) <= 0 with lo for every edge
+    vec3 spread; // |dx| h_x + |dy| h_y (rounded up): the planes' reach over the footprint from its centre
 };
 
 BC_FN BcEdgePlanes bc_no_edge_planes() {
@@ -166,8 +165,11 @@ BC_FN BcEdgePlanes bc_no_edge_planes() {
     e.du = vec3(real(0));
     e.dv = vec3(real(0));
     e.dt = vec3(real(0));
+    e.dx = vec3(real(0));
+    e.dy = vec3(real(0));
     e.hi = vec3(real(0));
     e.lo = vec3(real(0));
+    e.spread = vec3(real(0));
     return e;
 }
 
@@ -207,50 +209,69 @@ BC_FN real bc_vertex_magnitude(BC_IN(MovingTriangle) tri, int i) {
     return p0.x + p0.y + p0.z + p1.x + p1.y + p1.z + c.x + c.y;
 }
 
-// f + h |n| over the box (h >= 0): where n keeps one sign, exactly
-// f + (h sign n) n; elsewhere f with its error grown by h max |n|.
-BC_FN BcPoly bc_poly_add_abs(BC_IN(BcPoly) f, BC_IN(BcPoly) n, real h, bool follow_sign) {
-    real sign = follow_sign ? bc_poly_sign(n, real(0)) : real(0);
-    if (sign != real(0)) return bc_poly_add(f, bc_poly_scale(n, h * sign), real(1));
-    BcPoly result = f;
-    real term = h * (bc_poly_norm(n) + bc_err(n.m) + n.r);
-    result.r = result.r + term + bc_err(term);
-    return result;
+// The coefficient of delta (one screen axis) in an edge function on one
+// piece of the shutter: n's plane over the box (a, its radius n_radius) at
+// the piece's centre xi_t = centre, and in .y a bound on how far n strays
+// from it over the piece (xi_t within half_width of the centre).
+BC_FN vec2 bc_screen_slope(vec4 a, real n_radius, real centre, real half_width) {
+    real slope = a.x + a.w * centre;
+    real stray = abs(a.y) + abs(a.z) + abs(a.w) * half_width + n_radius;
+    return vec2(slope, stray + bc_err(abs(a.x) + abs(a.w) + stray));
 }
 
-// Edge k's plane in (u, v, t) from its polynomial over the box (xi =
-// (u - centre) / half-width per axis), into slot k of e, its radius grown by
-// `extra`. False if not finite.
-BC_FN bool bc_edge_plane(BC_IN(BcPoly) f, real extra, vec2 u_box, vec2 v_box, vec2 t_box, int k,
-                         BC_INOUT(BcEdgePlanes) e) {
+// Edge k's plane in (u, v, t, s) from its polynomial over the box (xi =
+// (u - centre) / half-width per axis) and its screen slopes (bc_screen_slope,
+// over the footprint s = centre + delta, |delta| <= half-width per axis),
+// into slot k of e, its radius grown by `extra`. False if not finite.
+BC_FN bool bc_edge_plane(BC_IN(BcPoly) f, real extra, vec2 slope_x, vec2 slope_y, vec2 u_box, vec2 v_box,
+                         vec2 t_box, vec2 sx, vec2 sy, int k, BC_INOUT(BcEdgePlanes) e) {
     real radius = real(0);
     vec4 a = bc_poly_plane(f, radius);
     real cu = a.y / u_box.y;
     real cv = a.z / v_box.y;
     real ct = a.w / t_box.y;
-    real constant = a.x - cu * u_box.x - cv * v_box.x - ct * t_box.x;
-    // Rounding of the conversion and of the caller's evaluation.
+    real cx = slope_x.x;
+    real cy = slope_y.x;
+    // delta (n - slope): what the slopes leave of the screen terms.
+    radius = radius + sx.y * slope_x.y + sy.y * slope_y.y;
+    real constant = a.x - cu * u_box.x - cv * v_box.x - ct * t_box.x - cx * sx.x - cy * sy.x;
+    real reach_x = abs(cx) * (abs(sx.x) + sx.y);
+    real reach_y = abs(cy) * (abs(sy.x) + sy.y);
+    // Rounding of the conversion and of the caller's evaluation (at any s of
+    // the footprint, or at its centre with the spread added).
     real slack = bc_err(abs(a.x) + real(2) * (abs(cu) * (abs(u_box.x) + u_box.y) + abs(cv) * (abs(v_box.x) + v_box.y) +
-                                             abs(ct) * (abs(t_box.x) + t_box.y)) + radius + extra);
+                                             abs(ct) * (abs(t_box.x) + t_box.y) + reach_x + reach_y) +
+                        radius + extra);
     real r = radius + extra + slack;
+    real spread = abs(cx) * sx.y + abs(cy) * sy.y;
     e.du[k] = cu;
     e.dv[k] = cv;
     e.dt[k] = ct;
+    e.dx[k] = cx;
+    e.dy[k] = cy;
     e.hi[k] = constant + r;
     e.lo[k] = constant - r;
-    return bc_finite(cu) && bc_finite(cv) && bc_finite(ct) && bc_finite(e.hi[k]) && bc_finite(e.lo[k]);
+    e.spread[k] = spread + bc_err(spread);
+    return bc_finite(cu) && bc_finite(cv) && bc_finite(ct) && bc_finite(e.hi[k]) && bc_finite(e.lo[k]) &&
+           bc_finite(e.spread[k]);
 }
 
 // The three edges' functions over the footprint [s_lo, s_hi] (padded for
 // the caller's rounding already) and the box u in u_range, v in v_range,
 // t in t_range, as polynomials in the box's coordinates; see bc_edge_functions.
 struct BcEdgeFunctions {
-    BcPoly f[3];    // per edge: the function to keep >= 0 (one-sided) or its centre (two-sided)
+    BcPoly f[3];    // per edge: its function at the footprint centre's ray (times the determinant's sign if known)
+    vec4 nx[3];     // per edge: the plane of n_x over the box (bc_poly_plane; times the sign likewise) ...
+    vec4 ny[3];     // ... and of n_y
+    vec3 nx_radius; // their radii
+    vec3 ny_radius;
     vec3 extra;     // per edge: the oracle's rounding, added to the radius
     int mode;       // BC_EDGE_ONE_SIDED or BC_EDGE_TWO_SIDED
     vec2 u_box;     // the box: centre and half-width per axis
     vec2 v_box;
     vec2 t_box;
+    vec2 sx;        // the footprint: centre and half-width per screen axis
+    vec2 sy;
 };
 
 // Edge k joins vertices i = k+1 and j = k+2; with d the vertices' offsets
@@ -259,10 +280,10 @@ struct BcEdgeFunctions {
 //   E_k = d_i x d_j + delta_x n_x + delta_y n_y,
 //   n_x = d_iy W_j - d_jy W_i,  n_y = d_jx W_i - d_ix W_j,
 // and the determinant is W_0 E_0 + W_1 E_1 + W_2 E_2 (E at the centre).
-// With the determinant's sign known on the box, each edge function times it
-// must reach >= 0 somewhere on the footprint: its largest value there,
-// sign E_c + h_x |n_x| + h_y |n_y|, is kept exactly where n_x and n_y keep
-// their signs. Otherwise (two-sided) the footprint only widens the radius.
+// E_k is linear in delta: the per-sample test takes delta's coefficients
+// from the planes of n_x and n_y (bc_screen_slope). With the determinant's
+// sign known on the box, each edge function times it must be >= 0 at a
+// covered sample (one-sided); otherwise all >= 0 or all <= 0 (two-sided).
 BC_FN BcEdgeFunctions bc_edge_functions(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi, vec2 u_range,
                                         vec2 v_range, vec2 t_range) {
     BcEdgeFunctions result;
@@ -271,6 +292,8 @@ BC_FN BcEdgeFunctions bc_edge_functions(BC_IN(MovingTriangle) tri, vec2 s_lo, ve
     result.t_box = bc_box_axis(t_range.x, t_range.y);
     vec2 sx = bc_box_axis(s_lo.x, s_hi.x);
     vec2 sy = bc_box_axis(s_lo.y, s_hi.y);
+    result.sx = sx;
+    result.sy = sy;
     vec4 dx[3];
     vec4 dy[3];
     vec2 w[3];
@@ -303,14 +326,21 @@ BC_FN BcEdgeFunctions bc_edge_functions(BC_IN(MovingTriangle) tri, vec2 s_lo, ve
     real sign = bc_poly_sign(det, oracle * m[0] * m[1] * m[2]);
     bool one_sided = sign != real(0);
     result.mode = one_sided ? BC_EDGE_ONE_SIDED : BC_EDGE_TWO_SIDED;
+    // Two-sided: the functions themselves (either sign of all three will do).
+    if (!one_sided) sign = real(1);
     for (int k = 0; k < 3; ++k) {
         int i = (k + 1) % 3;
         int j = (k + 2) % 3;
         BcPoly nx = bc_poly_cross_w(dy[i], dy_error[i], w[i], w_error[i], dy[j], dy_error[j], w[j], w_error[j], 2);
         BcPoly ny = bc_poly_cross_w(dx[j], dx_error[j], w[j], w_error[j], dx[i], dx_error[i], w[i], w_error[i], 1);
+        // Scaling by +-1 is exact.
         if (one_sided) result.f[k] = bc_poly_scale(result.f[k], sign);
-        result.f[k] = bc_poly_add_abs(result.f[k], nx, sx.y, one_sided);
-        result.f[k] = bc_poly_add_abs(result.f[k], ny, sy.y, one_sided);
+        real rx = real(0);
+        real ry = real(0);
+        result.nx[k] = sign * bc_poly_plane(nx, rx);
+        result.ny[k] = sign * bc_poly_plane(ny, ry);
+        result.nx_radius[k] = rx;
+        result.ny_radius[k] = ry;
     }
     return result;
 }
@@ -375,7 +405,10 @@ BC_FN BcEdgeBounds bc_edge_bounds(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_h
         vec2 piece_box = vec2(t_box.x + t_box.y * centre, t_box.y * (half_width + pad));
         for (int k = 0; k < 3; ++k) {
             BcPoly f = bc_poly_recentre_t(fn.f[k], centre, half_width + pad);
-            if (!bc_edge_plane(f, fn.extra[k], fn.u_box, fn.v_box, piece_box, k, e)) return bc_no_edge_bounds();
+            vec2 slope_x = bc_screen_slope(fn.nx[k], fn.nx_radius[k], centre, half_width + pad);
+            vec2 slope_y = bc_screen_slope(fn.ny[k], fn.ny_radius[k], centre, half_width + pad);
+            if (!bc_edge_plane(f, fn.extra[k], slope_x, slope_y, fn.u_box, fn.v_box, piece_box, fn.sx, fn.sy, k, e))
+                return bc_no_edge_bounds();
         }
         e.mode = fn.mode;
         e.time = vec2(start, end);
@@ -385,22 +418,36 @@ BC_FN BcEdgeBounds bc_edge_bounds(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_h
     return b;
 }
 
-// Whether a sample at lens uv and time t can be covered by the edges' account:
-// the planes of the piece whose shutter range holds t.
-BC_FN bool bc_edge_bounds_pass(BC_IN(BcEdgeBounds) b, vec2 uv, real t) {
-    if (b.piece[0].mode == BC_EDGE_NONE) return true;
-    if (t < b.piece[0].time.x) return false;
+// The piece of b whose shutter range holds t, or -1 if none does (then no
+// sample at t can be covered: the range is the two-stage bounds').
+BC_FN int bc_edge_piece(BC_IN(BcEdgeBounds) b, real t) {
+    if (t < b.piece[0].time.x) return -1;
     int k = 0;
     while (k + 1 < b.pieces) {
         if (t <= b.piece[k].time.y) break;
         k = k + 1;
     }
-    BcEdgePlanes e = b.piece[k];
-    if (t > e.time.y) return false;
-    vec3 value = e.du * uv.x + e.dv * uv.y + e.dt * t;
-    vec3 hi = value + e.hi;
+    if (t > b.piece[k].time.y) return -1;
+    return k;
+}
+
+// Whether a sample at screen position s (in the footprint the bounds were
+// made for), lens uv and time t can be covered by the edges' account: the
+// planes of the piece whose shutter range holds t, at the sample's own
+// position. With widen = 1 and s the footprint's centre, for any sample of
+// the footprint (its position unknown).
+BC_FN bool bc_edge_bounds_pass_at(BC_IN(BcEdgeBounds) b, vec2 s, vec2 uv, real t, real widen) {
+    if (b.piece[0].mode == BC_EDGE_NONE) return true;
+    int k = bc_edge_piece(b, t);
+    if (k < 0) return false;
+    // The piece's fields read in place (a copy of the piece per sample costs
+    // as much as the test).
+    vec3 value = b.piece[k].du * uv.x + b.piece[k].dv * uv.y + b.piece[k].dt * t + b.piece[k].dx * s.x +
+                 b.piece[k].dy * s.y;
+    vec3 reach = widen * b.piece[k].spread;
+    vec3 hi = value + (b.piece[k].hi + reach);
     if (min(hi.x, min(hi.y, hi.z)) >= real(0)) return true;
-    if (e.mode == BC_EDGE_ONE_SIDED) return false;
-    vec3 lo = value + e.lo;
+    if (b.piece[k].mode == BC_EDGE_ONE_SIDED) return false;
+    vec3 lo = value + (b.piece[k].lo - reach);
     return !(max(lo.x, max(lo.y, lo.z)) > real(0));
 }

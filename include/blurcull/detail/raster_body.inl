@@ -120,13 +120,13 @@ BC_FN vec2 interleaved_sample_ndc(ivec2 cell, int scale, vec2 jitter, vec2 image
 #define BC_SAMPLE_COVERED 2  // tested and covered (samples_hit); depth is its view depth
 
 // The culling half of sample_test: whether the sample is rejected without an
-// exact test, by the lens/time bounds (sample_passes) or, when check_screen,
+// exact test, by the lens/time bounds (sample_passes_at) or, when check_screen,
 // the screen bound (screen_contains). A renderer that puts a cheaper test of
 // its own between the culls and covers (the CPU backend's fast coverage test)
 // calls this, then covers.
 BC_FN bool sample_culled(BC_IN(ScreenBound) screen, bool check_screen, BC_IN(SampleBounds) bounds, vec2 ndc,
                          vec2 lens, real time) {
-    if (!sample_passes(bounds, lens, time)) return true;
+    if (!sample_passes_at(bounds, ndc, lens, time)) return true;
     return check_screen && !screen_contains(screen, ndc);
 }
 

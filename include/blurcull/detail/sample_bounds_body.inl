@@ -17,7 +17,8 @@ struct SampleBounds {
     vec4 u_time_b;
     vec4 v_time_a;
     vec4 v_time_b;
-    BcEdgeBounds edges;  // BC_CULL_EDGES: the edges' planes in (u, v, t); none for the other modes
+    BcEdgeBounds edges;  // BC_CULL_EDGES: the edges' planes in (u, v, t, s); none for the other modes
+    vec2 centre;         // the footprint's centre (where sample_passes takes the planes)
 };
 
 // ---- per-footprint sample bounds ------------------------------------------------
@@ -33,6 +34,7 @@ BC_FN SampleBounds no_sample_bounds() {
     r.v_time_a = r.u_time_a;
     r.v_time_b = r.u_time_a;
     r.edges = bc_no_edge_bounds();
+    r.centre = vec2(real(0));
     return r;
 }
 
@@ -119,18 +121,53 @@ BC_FN SampleBounds sample_bounds(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi
             return r;
         }
         r.edges = bc_edge_bounds(tri, s_lo, s_hi, r.u_range, r.v_range, times);
+        r.centre = vec2(bc_box_axis(s_lo.x, s_hi.x).x, bc_box_axis(s_lo.y, s_hi.y).x);
     }
     return r;
 }
 
-// Whether sample (uv, t) lies inside the bounds: false means the triangle
-// cannot cover it (the caller skips the exact test).
-BC_FN bool sample_passes(BC_IN(SampleBounds) b, vec2 uv, real t) {
+// Bounds of a footprint [s_lo, s_hi] inside a tile whose bounds `tile` came
+// from sample_bounds with the same cull (tile then footprint): for
+// BC_CULL_EDGES the footprint's own two-stage bounds with the tile's edge
+// planes, which hold for every sample of the tile inside the tile's bounds
+// (and a sample outside those cannot be covered: docs/kernel.md, "Edge
+// bounds", tile then footprint), so the planes' setup is paid once per tile;
+// for every other cull the footprint's own bounds. An empty tile gives
+// empty bounds.
+BC_FN SampleBounds sample_bounds_in_tile(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi, int cull,
+                                         BC_IN(SampleBounds) tile) {
+    if (tile.empty) return tile;
+    if (cull != BC_CULL_EDGES) return sample_bounds(tri, s_lo, s_hi, cull);
+    SampleBounds r = sample_bounds(tri, s_lo, s_hi, BC_CULL_TWO_STAGE);
+    if (r.empty) return r;
+    r.edges = tile.edges;
+    r.centre = tile.centre;
+    return r;
+}
+
+// The lens and time bounds of sample_passes without the edge planes.
+BC_FN bool bc_lens_time_passes(BC_IN(SampleBounds) b, vec2 uv, real t) {
     if (b.empty) return false;
     if (uv.x < b.u_range.x || uv.x > b.u_range.y || uv.y < b.v_range.x || uv.y > b.v_range.y) return false;
     if (t < b.u_time_a.x + b.u_time_a.y * uv.x || t > b.u_time_a.z + b.u_time_a.w * uv.x) return false;
     if (t < b.v_time_a.x + b.v_time_a.y * uv.y || t > b.v_time_a.z + b.v_time_a.w * uv.y) return false;
     if (t < b.u_time_b.x + b.u_time_b.y * uv.x || t > b.u_time_b.z + b.u_time_b.w * uv.x) return false;
     if (t < b.v_time_b.x + b.v_time_b.y * uv.y || t > b.v_time_b.z + b.v_time_b.w * uv.y) return false;
-    return bc_edge_bounds_pass(b.edges, uv, t);
+    return true;
+}
+
+// Whether sample (uv, t), anywhere in the footprint, lies inside the bounds:
+// false means the triangle cannot cover it (the caller skips the exact test).
+// The edge planes are taken at the footprint's centre and widened over it;
+// sample_passes_at tests them at the sample's own position and culls more.
+BC_FN bool sample_passes(BC_IN(SampleBounds) b, vec2 uv, real t) {
+    if (!bc_lens_time_passes(b, uv, t)) return false;
+    return bc_edge_bounds_pass_at(b.edges, b.centre, uv, t, real(1));
+}
+
+// sample_passes for a sample at screen position s (NDC, inside the
+// footprint the bounds were made for): the edge planes at s itself.
+BC_FN bool sample_passes_at(BC_IN(SampleBounds) b, vec2 s, vec2 uv, real t) {
+    if (!bc_lens_time_passes(b, uv, t)) return false;
+    return bc_edge_bounds_pass_at(b.edges, s, uv, t, real(0));
 }

@@ -33,6 +33,7 @@ void main() {
     sb.v_time_a = g_time_lines_v_a;
     sb.v_time_b = g_time_lines_v_b;
     sb.edges = bc_no_edge_bounds();  // the per-cell bounds do not carry the edge planes
+    sb.centre = vec2(0.0);
     vec2 ndc = ndc_lens.xy;
     ScreenBound b;
     b.empty = false;
