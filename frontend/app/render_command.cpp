@@ -9,6 +9,7 @@
 #include "render/cpu/methods.hpp"
 #include "render/embree/embree_backend.hpp"
 #include "render/gl/gl_backend.hpp"
+#include "render/secondary/dof_secondary.hpp"
 #include "scene/builtin_scenes.hpp"
 
 #include <nlohmann/json.hpp>
@@ -63,6 +64,7 @@ struct RenderJob {
     Backend backend = Backend::cpu;
     CpuOptions cpu;
     GlOptions gl;
+    SecondaryOptions secondary;
     std::string out_path;
     Scene scene;
 };
@@ -76,6 +78,8 @@ struct SettingFlag {
 constexpr SettingFlag setting_flags[] = {
     {"image size", "--size"},           {"samples per pixel", "--spp"},    {"thread count", "--threads"},
     {"footprint", "--footprint"},       {"kernel precision", "--precision"}, {"cell_pixels", "--gl-cell"},
+    {"secondary layers", "--secondary-layers"}, {"clusters per facet", "--clusters-per-facet"},
+    {"secondary field of view", "--secondary-fov"}, {"layer size", "--layer-size"}, {"lens parts", "--lens-parts"},
 };
 
 // `error` with the flag of the setting it names in front ("--spp: interleave:
@@ -158,6 +162,14 @@ void refuse_unhonoured_options(const RenderCommand& command, Backend backend) {
         {"--precision", command.precision_option, backend_bit(Backend::cpu)},
         {"--gl-cell", command.gl_cell_option, backend_bit(Backend::gl)},
     };
+    if (method.method != RenderMethod::dof_secondary) {
+        for (const CLI::Option* option : command.secondary_options) {
+            if (option->count() > 0) {
+                throw std::invalid_argument(option->get_name() + ": only --method dof-secondary takes it (method " +
+                                            method.name + ")");
+            }
+        }
+    }
     for (const BackendOption& option : options) {
         if (option.option == nullptr || option.option->count() == 0) continue;
         if (!takes(option.backends, backend)) {
@@ -213,6 +225,15 @@ RenderJob set_up(const RenderCommand& command) {
     job.cpu.footprint = command.footprint;
     job.cpu.precision = parse_kernel_precision(command.precision);
     job.gl.cell_pixels = command.gl_cell;
+    job.secondary = command.secondary;
+    job.secondary.bounces = command.secondary_bounces == "exact"         ? SecondaryBounces::exact
+                            : command.secondary_bounces == "environment" ? SecondaryBounces::environment_only
+                                                                         : SecondaryBounces::image_space;
+    try {
+        validate_secondary_options(job.secondary);
+    } catch (const std::invalid_argument& error) {
+        throw naming_the_flag(error);
+    }
     job.scene = load_scene(request);
     return job;
 }
@@ -229,6 +250,9 @@ RenderResult dispatch(const RenderJob& job) {
             case Backend::gl: return render_gl(job.scene, job.settings, job.gl);
 #endif
             default: break;
+        }
+        if (job.settings.method == RenderMethod::dof_secondary) {
+            return render_dof_secondary(job.scene, job.settings, job.secondary);
         }
         if (job.settings.method != RenderMethod::stochastic) return render_with_method(job.scene, job.settings);
         return render_cpu(job.scene, job.settings, job.cpu);
@@ -322,6 +346,26 @@ void RenderCommand::add_options(CLI::App& app) {
                                     "computed for")
                          ->check(CLI::Range(1, 4096))
                          ->capture_default_str();
+    secondary_options = {
+        app.add_option("--secondary-layers", secondary.layers,
+                       "dof-secondary: depth-peeled layers per cluster view")
+            ->check(CLI::Range(1, 8))->capture_default_str(),
+        app.add_option("--clusters-per-facet", secondary.clusters_per_facet,
+                       "dof-secondary: k-means clusters per dodecahedron facet at most")
+            ->check(CLI::Range(1, 3))->capture_default_str(),
+        app.add_option("--secondary-fov", secondary.fov_degrees,
+                       "dof-secondary: field of view of a cluster's virtual view, degrees")
+            ->check(CLI::Range(1.0f, 179.0f))->capture_default_str(),
+        app.add_option("--layer-size", secondary.layer_size, "dof-secondary: texels per side of a cluster's layers")
+            ->check(CLI::Range(16, 4096))->capture_default_str(),
+        app.add_option("--lens-parts", secondary.lens_parts,
+                       "dof-secondary: lens parts with a depth interval each (1, 4 or 16)")
+            ->check(CLI::IsMember({1, 4, 16}))->capture_default_str(),
+        app.add_option("--secondary-bounces", secondary_bounces,
+                       "dof-secondary: image-space (the method), exact (every bounce against every triangle: the "
+                       "reference) or environment (the primary-only image)")
+            ->check(CLI::IsMember({"image-space", "exact", "environment"}))->capture_default_str(),
+    };
     app.add_flag("-q,--quiet", quiet, "no progress on stderr");
 }
 

@@ -5,11 +5,13 @@
 #include "render/common/render_types.hpp"
 #include "render/cpu/cpu_backend.hpp"
 #include "render/gl/gl_backend.hpp"
+#include "render/secondary/secondary_options.hpp"
 
 #include <CLI/CLI.hpp>
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace blurcull::frontend {
 
@@ -25,6 +27,9 @@ struct RenderCommand : SceneFlags {
     std::string precision = to_string(CpuOptions{}.precision);
     int gl_cell = GlOptions{}.cell_pixels;
     bool quiet = false;
+    // dof-secondary (render/secondary/secondary_options.hpp).
+    SecondaryOptions secondary;
+    std::string secondary_bounces = "image-space";
 
     // The backend-specific options, to tell whether they were given
     // (count() > 0) when the backend in use cannot honour them.
@@ -32,6 +37,7 @@ struct RenderCommand : SceneFlags {
     CLI::Option* footprint_option = nullptr;
     CLI::Option* precision_option = nullptr;
     CLI::Option* gl_cell_option = nullptr;
+    std::vector<CLI::Option*> secondary_options;  // only --method dof-secondary takes them
 
     // Declares the options on `app`, their checks and help read from the
     // registries of cull methods, render methods, precisions and backends.
