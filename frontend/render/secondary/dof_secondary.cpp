@@ -46,7 +46,7 @@ glm::vec3 exact_radiance(const BounceContext& c, const SecondaryRay& ray, Second
     const ExactHit hit = trace_exact(c.world, ray.origin, ray.direction, c.offset);
     if (!hit.hit) return environment_radiance(c.scene, ray.direction);
     ++stats.rays_hit;
-    return c.colours[hit.triangle];
+    return bounce_hit_radiance(c.scene, c.colours, hit.triangle, ray.direction, c.world.normals[hit.triangle]);
 }
 
 // The cluster's virtual view: along the mean direction, else along the facet
@@ -149,7 +149,8 @@ void trace_group(const BounceContext& c, const K::LayerView& view, const LayerIm
             continue;
         }
         ++stats.rays_hit;
-        radiance[group[i]] = c.colours[hit_triangle(images, hit)];
+        const std::uint32_t triangle = hit_triangle(images, hit);
+        radiance[group[i]] = bounce_hit_radiance(c.scene, c.colours, triangle, ray.direction, c.world.normals[triangle]);
     }
 }
 

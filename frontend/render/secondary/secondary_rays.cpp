@@ -68,18 +68,18 @@ void spawn_rays(const Material& material, const SurfaceHit& hit, std::uint32_t s
     using namespace optics;
     if (material.kind == MaterialKind::mirror) {
         const glm::vec3 r = glm::normalize(bc_mirror_direction(hit.incident, hit.normal));
-        rays.push_back({hit.point, r, material.base_color, sample, part, triangle});
+        rays.push_back({hit.point, r, glm::vec3(1.0f), sample, part, triangle});
         return;
     }
     const float reflectance = bc_dielectric_reflectance(hit.incident, hit.normal, material.ior);
     if (reflectance > 0.0f) {
         const glm::vec3 r = glm::normalize(bc_mirror_direction(hit.incident, hit.normal));
-        rays.push_back({hit.point, r, reflectance * material.base_color, sample, part, triangle});
+        rays.push_back({hit.point, r, glm::vec3(reflectance), sample, part, triangle});
     }
     const glm::vec3 t = bc_refract_direction(hit.incident, hit.normal, material.ior);
     if (reflectance < 1.0f && glm::dot(t, t) > 0.0f)
         rays.push_back(
-            {hit.point, glm::normalize(t), (1.0f - reflectance) * material.base_color, sample, part, triangle});
+            {hit.point, glm::normalize(t), glm::vec3(1.0f - reflectance), sample, part, triangle});
 }
 
 }  // namespace
@@ -127,9 +127,11 @@ PrimaryResolve resolve_primary(const Scene& scene, const CameraModel& model, con
     return out;
 }
 
-glm::vec3 environment_radiance(const Scene& scene, glm::vec3 direction) {
-    if (scene.environment == BC_ENVIRONMENT_SKY) return optics::bc_sky_radiance(direction);
-    return scene.background;
+glm::vec3 bounce_hit_radiance(const Scene& scene, const std::vector<glm::vec3>& colours, std::uint32_t triangle,
+                              glm::vec3 direction, glm::vec3 normal) {
+    const Material& material = scene.materials[scene.triangle_material[triangle]];
+    if (material.kind == MaterialKind::diffuse || glm::dot(normal, normal) == 0.0f) return colours[triangle];
+    return specular_environment_colour(scene, material, direction, normal);
 }
 
 Image resolve_samples(const std::vector<glm::vec3>& sample_colour, int width, int height, int spp) {

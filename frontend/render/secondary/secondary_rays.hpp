@@ -7,6 +7,7 @@
 
 #include "render/common/camera_model.hpp"
 #include "render/common/render_types.hpp"
+#include "render/common/specular_shading.hpp"
 #include "scene/scene.hpp"
 
 #include <glm/glm.hpp>
@@ -37,17 +38,21 @@ std::uint32_t lens_part_of(glm::vec2 lens, int parts);
 
 // Resolves every sample of `sample_ids` (render_cpu's layout, no_sample_hit
 // for none): a diffuse hit gets shade(), a miss the background; a mirror hit
-// one ray of weight base_color along bc_mirror_direction; a dielectric hit a
-// reflected ray of weight F base_color and a refracted one of weight
-// (1 - F) base_color (F = bc_dielectric_reflectance; none under total
-// internal reflection). The hit point is the sample's lens ray meeting the
+// one ray of weight 1 along bc_mirror_direction; a dielectric hit a
+// reflected ray of weight F and a refracted one of weight 1 - F
+// (F = bc_dielectric_reflectance; none under total internal reflection).
+// Perfect mirrors and clear glass: the base colour is not used (the rule of
+// specular_shading.hpp and of the Embree reference). The hit point is the sample's lens ray meeting the
 // triangle's plane at the sample's time.
 PrimaryResolve resolve_primary(const Scene& scene, const CameraModel& model, const RenderSettings& settings,
                                const std::vector<std::uint32_t>& sample_ids, int lens_parts);
 
-// What a secondary ray that leaves the scene sees: bc_sky_radiance with the
-// sky environment, the background colour otherwise.
-glm::vec3 environment_radiance(const Scene& scene, glm::vec3 direction);
+// What a bounced ray that hit `triangle` along unit world `direction` sees:
+// shade() of a diffuse triangle; of a mirror or dielectric, its environment
+// colour for this ray (specular_environment_colour with the triangle's unit
+// world normal `normal`), as the Embree reference does: one bounce only.
+glm::vec3 bounce_hit_radiance(const Scene& scene, const std::vector<glm::vec3>& colours, std::uint32_t triangle,
+                              glm::vec3 direction, glm::vec3 normal);
 
 // Sums each pixel's samples in sample order and divides by spp (resolve_box):
 // the image from per-sample colours.
