@@ -9,6 +9,10 @@
 #include "render/cpu/methods.hpp"
 #include "render/embree/embree_backend.hpp"
 #include "render/gl/gl_backend.hpp"
+#if BLURCULL_HAVE_GL
+#include "render/gl/gl_context.hpp"
+#include "render/gl/gl_layer_trace.hpp"
+#endif
 #include "render/secondary/dof_secondary.hpp"
 #include "scene/builtin_scenes.hpp"
 
@@ -238,9 +242,36 @@ RenderJob set_up(const RenderCommand& command) {
     return job;
 }
 
+// dof-secondary: on gl its image-space traces run in a compute pass of a
+// headless context (the rest of the method on the host, for now).
+RenderResult render_secondary(const RenderJob& job) {
+#if BLURCULL_HAVE_GL
+    if (job.backend == Backend::gl) {
+        // The GL rasterizer's per-sample winners (its own context), then the
+        // trace pass on a second context: each made current before its use.
+        GlRenderer rasterizer;
+        const PrimaryPass primary = [&](const RenderSettings& settings, std::vector<std::uint32_t>& ids) {
+            GlOptions options = job.gl;
+            options.keep_sample_ids = true;
+            return rasterizer.render(job.scene, settings, options, &ids);
+        };
+        const gl::HeadlessContext context = gl::HeadlessContext::create();
+        const GlLayerTracer gl_tracer(context);
+        const LayerTracer tracer = [&](const kernelf::LayerView& view, const std::vector<float>& depth, int layers,
+                                       float thickness, const std::vector<kernelf::LayerSegment>& segments) {
+            context.make_current();
+            return gl_tracer.trace(view, depth, layers, thickness, segments);
+        };
+        return render_dof_secondary(job.scene, job.settings, job.secondary, nullptr, &tracer, &primary);
+    }
+#endif
+    return render_dof_secondary(job.scene, job.settings, job.secondary);
+}
+
 // Renders on the job's backend with its method.
 RenderResult dispatch(const RenderJob& job) {
     try {
+        if (job.settings.method == RenderMethod::dof_secondary) return render_secondary(job);
         // choose_backend refused the backends this build does not have.
         switch (job.backend) {
 #if BLURCULL_HAVE_EMBREE
@@ -250,9 +281,6 @@ RenderResult dispatch(const RenderJob& job) {
             case Backend::gl: return render_gl(job.scene, job.settings, job.gl);
 #endif
             default: break;
-        }
-        if (job.settings.method == RenderMethod::dof_secondary) {
-            return render_dof_secondary(job.scene, job.settings, job.secondary);
         }
         if (job.settings.method != RenderMethod::stochastic) return render_with_method(job.scene, job.settings);
         return render_cpu(job.scene, job.settings, job.cpu);

@@ -20,7 +20,7 @@ const std::vector<RenderMethodInfo>& render_methods() {
         {RenderMethod::dof_secondary, "dof-secondary", {"secondary"},
          "stochastic rasterization plus one bounce on mirrors and glass traced in image space (clusters, virtual "
          "views, layered images)",
-         true, 16.0, backend_bit(Backend::cpu)},
+         true, 16.0, rasterizers},
     };
     return methods;
 }

@@ -16,6 +16,7 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
+#include <stdexcept>
 #include <string>
 
 namespace blurcull::frontend {
@@ -38,6 +39,7 @@ struct BounceContext {
     float thickness;
     float offset;  // rays start this far along their direction, off their own surface
     int spp;
+    const LayerTracer* tracer;  // null: the host loop
 };
 
 // What one ray sees when traced against every triangle.
@@ -110,13 +112,11 @@ std::uint32_t hit_triangle(const LayerImages& images, const K::LayerHit& hit) {
     return triangle;
 }
 
-// Traces one group of rays (one pixel's samples in one lens part) through
-// the cluster's layers: their segments clipped together, interval_rounds
-// times, by the pyramid's min/max depth over the union of their footprints.
-void trace_group(const BounceContext& c, const K::LayerView& view, const LayerImages& images,
-                 const DepthPyramid& pyramid, const std::uint32_t* group, std::size_t count,
-                 std::vector<glm::vec3>& radiance, SecondaryStats& stats) {
-    std::vector<K::LayerSegment> segments(count);
+// Clips one group of rays (one pixel's samples in one lens part) for the
+// cluster's layers: their segments clipped together, interval_rounds times,
+// by the pyramid's min/max depth over the union of their footprints.
+void clip_group(const BounceContext& c, const K::LayerView& view, const DepthPyramid& pyramid,
+                const std::uint32_t* group, std::size_t count, K::LayerSegment* segments) {
     std::vector<glm::vec3> origins(count);
     for (std::size_t i = 0; i < count; ++i) {
         const SecondaryRay& ray = c.rays[group[i]];
@@ -124,9 +124,9 @@ void trace_group(const BounceContext& c, const K::LayerView& view, const LayerIm
         segments[i] = K::layer_segment(view, origins[i], ray.direction, huge_depth, glm::vec2(0.0f, huge_depth));
     }
     for (int round = 0; round < interval_rounds; ++round) {
-        glm::vec4 box(float(images.size), float(images.size), -1.0f, -1.0f);
-        for (const K::LayerSegment& seg : segments) {
-            const glm::vec4 f = K::layer_footprint(view, seg);
+        glm::vec4 box(float(view.size), float(view.size), -1.0f, -1.0f);
+        for (std::size_t i = 0; i < count; ++i) {
+            const glm::vec4 f = K::layer_footprint(view, segments[i]);
             if (f.x > f.z) continue;
             box = glm::vec4(glm::min(glm::vec2(box), glm::vec2(f)), glm::max(glm::vec2(box.z, box.w), glm::vec2(f.z, f.w)));
         }
@@ -138,19 +138,24 @@ void trace_group(const BounceContext& c, const K::LayerView& view, const LayerIm
             segments[i] = K::layer_segment(view, origins[i], c.rays[group[i]].direction, huge_depth, clip);
         }
     }
-    for (std::size_t i = 0; i < count; ++i) {
-        const SecondaryRay& ray = c.rays[group[i]];
+}
+
+// The rays' radiance from their hits in the layers (the environment on a miss).
+void shade_hits(const BounceContext& c, const LayerImages& images, const std::vector<std::uint32_t>& members,
+                const std::vector<K::LayerHit>& hits, std::vector<glm::vec3>& radiance, SecondaryStats& stats) {
+    for (std::size_t i = 0; i < members.size(); ++i) {
+        const SecondaryRay& ray = c.rays[members[i]];
+        const K::LayerHit& hit = hits[i];
         ++stats.rays_image_space;
-        const K::LayerHit hit = trace_layers<float>(view, segments[i], images.layers, c.thickness,
-                                                    [&](int l, int x, int y) { return images.depth[images.index(l, x, y)]; });
         stats.trace_steps += static_cast<std::uint64_t>(std::max(hit.steps, 0));
         if (!hit.hit) {
-            radiance[group[i]] = environment_radiance(c.scene, ray.direction);
+            radiance[members[i]] = environment_radiance(c.scene, ray.direction);
             continue;
         }
         ++stats.rays_hit;
         const std::uint32_t triangle = hit_triangle(images, hit);
-        radiance[group[i]] = bounce_hit_radiance(c.scene, c.colours, triangle, ray.direction, c.world.normals[triangle]);
+        radiance[members[i]] =
+            bounce_hit_radiance(c.scene, c.colours, triangle, ray.direction, c.world.normals[triangle]);
     }
 }
 
@@ -195,12 +200,17 @@ void bounce_cluster(const BounceContext& c, const Cluster<float>& cluster, std::
     const auto spp = static_cast<std::uint32_t>(c.spp);
     auto key = [&](std::uint32_t r) { return std::make_pair(c.rays[r].sample / spp, c.rays[r].lens_part); };
     std::stable_sort(members.begin(), members.end(), [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
+    std::vector<K::LayerSegment> segments(members.size());
     for (std::size_t first = 0; first < members.size();) {
         std::size_t last = first + 1;
         while (last < members.size() && key(members[last]) == key(members[first])) ++last;
-        trace_group(c, view, images, pyramid, &members[first], last - first, radiance, stats);
+        clip_group(c, view, pyramid, &members[first], last - first, &segments[first]);
         first = last;
     }
+    const std::vector<K::LayerHit> hits =
+        c.tracer != nullptr ? (*c.tracer)(view, images.depth, images.layers, c.thickness, segments)
+                            : trace_layers_on_host(view, images.depth, images.layers, c.thickness, segments);
+    shade_hits(c, images, members, hits, radiance, stats);
 }
 
 void add_stats(SecondaryStats& into, const SecondaryStats& from) {
@@ -266,14 +276,30 @@ std::vector<glm::vec3> bounce_all(const BounceContext& c, int threads, Secondary
 
 }  // namespace
 
+std::vector<kernelf::LayerHit> trace_layers_on_host(const kernelf::LayerView& view, const std::vector<float>& depth,
+                                                    int layers, float thickness,
+                                                    const std::vector<kernelf::LayerSegment>& segments) {
+    const std::size_t plane = static_cast<std::size_t>(view.size) * static_cast<std::size_t>(view.size);
+    std::vector<kernelf::LayerHit> hits(segments.size());
+    for (std::size_t i = 0; i < segments.size(); ++i) {
+        hits[i] = trace_layers<float>(view, segments[i], layers, thickness, [&](int l, int x, int y) {
+            return depth[plane * static_cast<std::size_t>(l) + static_cast<std::size_t>(y) * view.size + x];
+        });
+    }
+    return hits;
+}
+
 RenderResult render_dof_secondary(const Scene& scene, const RenderSettings& settings, const SecondaryOptions& options,
-                                  SecondaryStats* stats_out) {
+                                  SecondaryStats* stats_out, const LayerTracer* tracer, const PrimaryPass* primary_pass) {
     validate_secondary_options(options);
     const Clock::time_point start = Clock::now();
     std::vector<std::uint32_t> ids;
     RenderSettings primary_settings = settings;
     primary_settings.method = RenderMethod::stochastic;
-    RenderResult result = render_cpu(scene, primary_settings, CpuOptions{}, &ids);
+    RenderResult result = primary_pass != nullptr ? (*primary_pass)(primary_settings, ids)
+                                                  : render_cpu(scene, primary_settings, CpuOptions{}, &ids);
+    if (ids.size() != static_cast<std::size_t>(settings.width) * settings.height * settings.spp)
+        throw std::invalid_argument("dof-secondary: the primary pass returned no sample ids");
     const CameraModel model(scene.camera, settings.width, settings.height);
 
     Clock::time_point phase = Clock::now();
@@ -287,11 +313,12 @@ RenderResult render_dof_secondary(const Scene& scene, const RenderSettings& sett
     const BounceContext context{scene, options, primary.rays, world, colours,
                                 std::tan(0.5f * options.fov_degrees * 3.14159265358979f / 180.0f),
                                 1e-3f * diagonal, options.thickness_fraction * diagonal, 1e-4f * diagonal,
-                                settings.spp};
+                                settings.spp, tracer};
     SecondaryStats stats;
     stats.reflector_samples = primary.reflector_samples;
     stats.rays = primary.rays.size();
-    const std::vector<glm::vec3> radiance = bounce_all(context, cpu_methods::render_threads(settings), stats);
+    const int threads = tracer != nullptr ? 1 : cpu_methods::render_threads(settings);
+    const std::vector<glm::vec3> radiance = bounce_all(context, threads, stats);
     for (std::size_t r = 0; r < primary.rays.size(); ++r)
         primary.sample_colour[primary.rays[r].sample] += primary.rays[r].weight * radiance[r];
     result.stats.ms_per_phase.emplace_back("bounce", ms_since(phase));

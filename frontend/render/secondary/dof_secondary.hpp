@@ -14,6 +14,8 @@
 #include "scene/scene.hpp"
 
 #include <cstdint>
+#include <functional>
+#include <vector>
 
 namespace blurcull::frontend {
 
@@ -32,14 +34,37 @@ struct SecondaryStats {
     LayerStats layers;                     // summed over the clusters
 };
 
+// Traces clipped segments through a cluster's layered depth images (depth
+// [layer][y][x], +infinity for none): the kernel's layer_trace_begin/step
+// loop, on the host (trace_layers_on_host) or in a GPU pass
+// (render/gl/gl_layer_trace.hpp) that runs the same emitted text.
+using LayerTracer = std::function<std::vector<kernelf::LayerHit>(
+    const kernelf::LayerView& view, const std::vector<float>& depth, int layers, float thickness,
+    const std::vector<kernelf::LayerSegment>& segments)>;
+
+// The primary visibility: renders settings' samples and fills the winning
+// triangle of each (render_cpu's layout, no_sample_hit for none); render_cpu
+// by default, the GL rasterizer's sample ids on the gl backend (the backends
+// agree sample for sample).
+using PrimaryPass = std::function<RenderResult(const RenderSettings& settings, std::vector<std::uint32_t>& ids)>;
+
+// The host loop: trace_layers per segment.
+std::vector<kernelf::LayerHit> trace_layers_on_host(const kernelf::LayerView& view, const std::vector<float>& depth,
+                                                    int layers, float thickness,
+                                                    const std::vector<kernelf::LayerSegment>& segments);
+
 // Renders `scene` with settings.spp samples per pixel (the stochastic
 // rasterizer's samples and culling) and one bounce on every mirror and
 // dielectric sample. The bounced rays see the scene at mid-shutter (t = 0.5).
 // A bounced ray that hits a surface gets its flat shade(); one that leaves
 // the scene (or hits nothing in its cluster's layers) the environment.
-// Deterministic for any thread count. Throws std::invalid_argument for bad
-// settings or options, SceneError for a bad scene.
+// Deterministic for any thread count. With `primary` the primary samples come
+// from there, else from render_cpu; with `tracer` the image-space traces
+// run there (one cluster at a time, on the calling thread: a GL context is
+// current on one thread), else on the host. Throws std::invalid_argument for
+// bad settings or options, SceneError for a bad scene.
 RenderResult render_dof_secondary(const Scene& scene, const RenderSettings& settings,
-                                  const SecondaryOptions& options = {}, SecondaryStats* stats = nullptr);
+                                  const SecondaryOptions& options = {}, SecondaryStats* stats = nullptr,
+                                  const LayerTracer* tracer = nullptr, const PrimaryPass* primary = nullptr);
 
 }  // namespace blurcull::frontend
