@@ -322,6 +322,11 @@ void print_json_summary(const RenderCommand& command, const RenderJob& job, cons
     nlohmann::ordered_json phases = nlohmann::ordered_json::object();
     for (const auto& [name, ms] : stats.ms_per_phase) phases[name] = ms;
     summary["ms_per_phase"] = phases;
+    if (!stats.counters.empty()) {
+        nlohmann::ordered_json counters = nlohmann::ordered_json::object();
+        for (const auto& [name, value] : stats.counters) counters[name] = value;
+        summary["counters"] = counters;
+    }
     summary["output"] = job.out_path;
     std::printf("%s\n", summary.dump().c_str());
 }
