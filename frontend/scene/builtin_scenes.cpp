@@ -1,6 +1,7 @@
 #include "scene/builtin_scenes.hpp"
 
 #include "scene/builtin/scenes.hpp"
+#include "scene/builtin/secondary_scenes.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/scene_checks.hpp"
 
@@ -15,14 +16,20 @@ Scene build_scene(const std::string& name, const SceneOptions& options) {
     if (name == "car") return make_car(options.blur_scale, options.aspect);
     if (name == "dragonfly") return make_dragonfly(options.blur_scale, options.aspect);
     if (name == "forest") return make_forest(options.blur_scale, options.aspect);
+    if (name == "mirror-sphere") return make_mirror_sphere(options.blur_scale, options.aspect);
+    if (name == "water") return make_water(options.blur_scale, options.aspect);
+    if (name == "curved-mirror") return make_curved_mirror(options.blur_scale, options.aspect);
     std::string known;
     for (const std::string& candidate : builtin_scene_names()) known += (known.empty() ? "" : ", ") + candidate;
+    for (const std::string& candidate : secondary_scene_names()) known += ", " + candidate;
     throw SceneError("unknown scene '" + name + "' (known: " + known + ")");
 }
 
 }  // namespace builtin
 
 std::vector<std::string> builtin_scene_names() { return {"hand", "car", "dragonfly", "forest"}; }
+
+std::vector<std::string> secondary_scene_names() { return {"mirror-sphere", "water", "curved-mirror"}; }
 
 Scene make_builtin_scene(const std::string& name, const SceneOptions& options) {
     Scene scene = builtin::build_scene(name, options);

@@ -20,14 +20,22 @@ struct SceneOptions {
     float aspect = 4.0f / 3.0f;
 };
 
-// "hand", "car", "dragonfly", "forest", validated. Throws SceneError for any
+// "hand", "car", "dragonfly", "forest", or one of secondary_scene_names(),
+// validated. Throws SceneError for any
 // other name, or for a blur_scale / aspect that is negative, zero (aspect) or
 // not finite. Each scene is built in scene/builtin/<name>.cpp from the shapes
 // of scene/builtin/mesh_builder.hpp.
 Scene make_builtin_scene(const std::string& name, const SceneOptions& options);
 
-// The built-in scene names, in the order `blurcull scenes` lists them.
+// The built-in scene names, in the order `blurcull scenes` lists them: the
+// four stand-ins for the thesis workloads (all diffuse).
 std::vector<std::string> builtin_scene_names();
+
+// The built-in secondary-ray scenes, made by make_builtin_scene like the
+// others: "mirror-sphere", "water", "curved-mirror" (scene/builtin/
+// secondary_scenes.hpp, docs/secondary-rays.md "Scenes"). They have mirror
+// or dielectric materials and the sky environment; static, defocus only.
+std::vector<std::string> secondary_scene_names();
 
 // `source` with the lens closed, the camera still, and every triangle given
 // its own vertices: triangle t with t % moving_every == 0 keeps the motion it

@@ -1,5 +1,7 @@
 #include "scene/scene_checks.hpp"
 
+#include "render/common/optics_shared.h"
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -27,6 +29,27 @@ bool is_finite(const glm::mat4& m) {
 
 glm::vec3 eye_position(const glm::mat4& view) {
     return glm::vec3(glm::inverse(view)[3]);
+}
+
+// Kinds, indices of refraction and the environment (the optics of
+// render/common/optics_shared.h need ior > 0 and finite).
+void check_materials(const Scene& scene) {
+    for (std::size_t m = 0; m < scene.materials.size(); ++m) {
+        const Material& material = scene.materials[m];
+        if (material.kind != MaterialKind::diffuse && material.kind != MaterialKind::mirror &&
+            material.kind != MaterialKind::dielectric) {
+            fail(scene, "material " + std::to_string(m) + " has unknown kind " +
+                            std::to_string(static_cast<int>(material.kind)));
+        }
+        if (!(material.ior > 0.0f) || !std::isfinite(material.ior)) {
+            fail(scene, "material " + std::to_string(m) + " has index of refraction " + std::to_string(material.ior) +
+                            " (must be positive and finite)");
+        }
+        if (!is_finite(material.base_color)) fail(scene, "material " + std::to_string(m) + " has a non-finite colour");
+    }
+    if (scene.environment != BC_ENVIRONMENT_NONE && scene.environment != BC_ENVIRONMENT_SKY) {
+        fail(scene, "environment " + std::to_string(scene.environment) + " is unknown (0 background, 1 sky)");
+    }
 }
 
 }  // namespace
@@ -61,6 +84,7 @@ void validate_scene(const Scene& scene) {
                             std::to_string(scene.materials.size()) + " materials");
         }
     }
+    check_materials(scene);
     const Camera& camera = scene.camera;
     if (!is_finite(camera.view_open) || !is_finite(camera.view_close)) {
         fail(scene, "camera view matrix is not finite");

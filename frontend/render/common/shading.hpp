@@ -10,6 +10,7 @@
 // by spp (resolve_box), so backends that agree on every sample agree bit for bit.
 #pragma once
 
+#include "render/common/specular_shading.hpp"
 #include "scene/scene.hpp"
 
 #include <glm/glm.hpp>
@@ -26,7 +27,11 @@ constexpr float shading_diffuse = 0.8f;
 // The caller guarantees the triangle's vertex and material indices are valid
 // (validate_scene in scene/scene_checks.hpp checks them). A degenerate triangle or
 // zero light direction (or one so large its length overflows) gets ambient light only.
+// A mirror or dielectric triangle gets primary_only_colour (specular_shading.hpp).
 inline glm::vec3 shade(const Scene& scene, std::size_t triangle) {
+    if (scene.materials[scene.triangle_material[triangle]].kind != MaterialKind::diffuse) {
+        return primary_only_colour(scene, triangle);
+    }
     const glm::uvec3& tri = scene.triangles[triangle];
     glm::vec3 p0 = scene.position_open[tri.x];
     glm::vec3 normal = glm::cross(scene.position_open[tri.y] - p0, scene.position_open[tri.z] - p0);

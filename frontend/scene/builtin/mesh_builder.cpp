@@ -174,6 +174,23 @@ void MeshBuilder::grid(const glm::vec3& corner, const glm::vec3& u, const glm::v
     parametric_grid(nu, nv, material_index, [&](float fu, float fv) { return corner + fu * u + fv * v; });
 }
 
+void MeshBuilder::chessboard(const glm::vec3& corner, const glm::vec3& u, const glm::vec3& v, int squares,
+                             int cells, std::uint32_t first, std::uint32_t second) {
+    const float step = 1.0f / static_cast<float>(squares);
+    for (int j = 0; j < squares; ++j) {
+        for (int i = 0; i < squares; ++i) {
+            const glm::vec3 square_corner =
+                corner + static_cast<float>(i) * step * u + static_cast<float>(j) * step * v;
+            grid(square_corner, step * u, step * v, cells, cells, (i + j) % 2 == 0 ? first : second);
+        }
+    }
+}
+
+void MeshBuilder::surface(int nu, int nv, const std::function<glm::vec3(float, float)>& point_at,
+                          std::uint32_t material_index) {
+    parametric_grid(nu, nv, material_index, point_at);
+}
+
 void MeshBuilder::heightfield(float x0, float x1, float z0, float z1, int nx, int nz,
                               const std::function<float(float, float)>& height, std::uint32_t material_index) {
     parametric_grid(nx, nz, material_index, [&](float fu, float fv) {

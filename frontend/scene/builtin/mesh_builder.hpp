@@ -86,6 +86,17 @@ public:
     void grid(const glm::vec3& corner, const glm::vec3& u, const glm::vec3& v, int nu, int nv,
               std::uint32_t material_index);
 
+    // squares x squares chessboard from corner along u and v (the whole
+    // board's edges), alternating materials `first` (at the corner) and
+    // `second`; each square is one grid of cells x cells quads.
+    void chessboard(const glm::vec3& corner, const glm::vec3& u, const glm::vec3& v, int squares, int cells,
+                    std::uint32_t first, std::uint32_t second);
+
+    // Any parametric surface: (nu + 1) x (nv + 1) points point_at(s, t),
+    // s, t in [0, 1], two triangles per cell (normal along dP/ds x dP/dt).
+    void surface(int nu, int nv, const std::function<glm::vec3(float, float)>& point_at,
+                 std::uint32_t material_index);
+
     // Terrain y = height(x, z) over [x0, x1] x [z0, z1], facing up.
     void heightfield(float x0, float x1, float z0, float z1, int nx, int nz,
                      const std::function<float(float, float)>& height, std::uint32_t material_index);
