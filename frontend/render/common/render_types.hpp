@@ -55,6 +55,7 @@ struct RenderStats {
     std::uint64_t samples_hit = 0;     // tests that found coverage
     std::uint64_t bounds_computed = 0; // per-footprint sample bounds set up (cpu: blocks and footprints)
     std::uint64_t bounds_empty = 0;    // of those, how many proved the footprint empty
+    std::uint64_t secondary_rays = 0;  // rays bounced off mirrors and dielectrics (embree --secondary bounce)
     double ms_total = 0;
     std::vector<std::pair<std::string, double>> ms_per_phase;  // in the order they ran
     std::size_t triangles = 0;

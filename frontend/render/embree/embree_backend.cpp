@@ -4,6 +4,7 @@
 #include "render/common/progress.hpp"
 #include "render/common/shading.hpp"
 #include "render/embree/primary_rays.hpp"
+#include "render/embree/secondary_rays.hpp"
 #include "scene/scene_checks.hpp"
 
 #include <blurcull/kernel.hpp>
@@ -25,6 +26,13 @@ namespace blurcull::frontend {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+bool has_specular_material(const Scene& scene) {
+    for (const Material& material : scene.materials) {
+        if (material.kind != MaterialKind::diffuse) return true;
+    }
+    return false;
+}
 
 
 const char* error_name(RTCError code) {
@@ -173,13 +181,15 @@ public:
               const RenderSettings& settings, const EmbreeOptions& options, Image& image,
               RenderClock::time_point start)
         : rtc_scene_(rtc_scene), scene_(scene), model_(model), colours_(colours), settings_(settings),
-          options_(options), image_(image), start_(start) {}
+          options_(options), image_(image), start_(start),
+          bounces_(options.secondary == EmbreeSecondary::bounce && has_specular_material(scene)) {}
 
     // Traces rows until none is left; one caller reports progress.
     void run(bool reports_progress) {
         const int width = settings_.width;
         const auto spp = static_cast<std::uint32_t>(settings_.spp);
         PrimaryRayTracer tracer(rtc_scene_, options_.tracing);
+        SecondaryTracer secondary(rtc_scene_, scene_, model_, colours_);
         std::vector<PrimaryRay> rays(static_cast<std::size_t>(width) * spp);
         std::vector<std::uint32_t> prim_ids(rays.size());
         std::uint64_t hits = 0;
@@ -187,7 +197,7 @@ public:
         for (int py = next_row_.fetch_add(1); py < settings_.height; py = next_row_.fetch_add(1)) {
             make_row_rays(py, rays);
             tracer.trace(rays.data(), rays.size(), prim_ids.data());
-            hits += sum_row(py, prim_ids);
+            hits += sum_row(py, rays, prim_ids, secondary);
             const int done = rows_done_.fetch_add(1) + 1;
             if (reports_progress && ms_since(start_) > 1000.0) {
                 const int percent = static_cast<int>(100LL * done / settings_.height);
@@ -200,12 +210,14 @@ public:
             }
         }
         hits_.fetch_add(hits);
+        secondary_rays_.fetch_add(secondary.rays_traced());
     }
 
     // After a failed thread start: the started helpers stop early.
     void stop() { next_row_.store(settings_.height); }
     bool progress_shown() const { return progress_shown_; }
     std::uint64_t hits() const { return hits_.load(); }
+    std::uint64_t secondary_rays() const { return secondary_rays_.load(); }
 
 private:
     // Row py's rays, pixel by pixel in sample order.
@@ -224,15 +236,25 @@ private:
     }
 
     // Row py's pixels: the sum of their samples' colours; returns the hits.
-    std::uint64_t sum_row(int py, const std::vector<std::uint32_t>& prim_ids) {
+    // With bouncing on, a sample whose triangle is a mirror or dielectric
+    // gets the colour of its bounce instead of the triangle's colour.
+    std::uint64_t sum_row(int py, const std::vector<PrimaryRay>& rays, const std::vector<std::uint32_t>& prim_ids,
+                          SecondaryTracer& secondary) {
         const auto spp = static_cast<std::uint32_t>(settings_.spp);
         std::uint64_t hits = 0;
         for (int px = 0; px < settings_.width; ++px) {
             glm::vec3 sum(0.0f);
             for (std::uint32_t j = 0; j < spp; ++j) {
-                const std::uint32_t id = prim_ids[static_cast<std::size_t>(px) * spp + j];
+                const std::size_t index = static_cast<std::size_t>(px) * spp + j;
+                const std::uint32_t id = prim_ids[index];
                 if (id != no_primitive) {
-                    sum += colours_[id];
+                    if (bounces_ && is_specular(id)) {
+                        const PrimaryRay& ray = rays[index];
+                        sum += secondary.bounce({ray.org_x, ray.org_y, ray.org_z}, {ray.dir_x, ray.dir_y, ray.dir_z},
+                                                ray.time, id);
+                    } else {
+                        sum += colours_[id];
+                    }
                     ++hits;
                 } else {
                     sum += scene_.background;
@@ -241,6 +263,10 @@ private:
             image_.at(px, py) = sum;
         }
         return hits;
+    }
+
+    bool is_specular(std::uint32_t triangle) const {
+        return scene_.materials[scene_.triangle_material[triangle]].kind != MaterialKind::diffuse;
     }
 
     RTCScene rtc_scene_;
@@ -254,7 +280,9 @@ private:
     std::atomic<int> next_row_{0};
     std::atomic<int> rows_done_{0};
     std::atomic<std::uint64_t> hits_{0};
+    std::atomic<std::uint64_t> secondary_rays_{0};
     bool progress_shown_ = false;
+    bool bounces_;
 };
 
 // Runs `tracer` on thread_count threads (the caller's among them).
@@ -317,6 +345,12 @@ RenderResult render_embree(const Scene& scene, const RenderSettings& settings, c
     stats.samples_tested = static_cast<std::uint64_t>(settings.width) * static_cast<std::uint64_t>(settings.height) *
                            static_cast<std::uint64_t>(settings.spp);
     stats.samples_hit = tracer.hits();
+    stats.secondary_rays = tracer.secondary_rays();
+    if (has_specular_material(scene) && scene.environment == BC_ENVIRONMENT_NONE) {
+        result.warnings.push_back("embree: scene '" + scene.name +
+                                  "' has mirrors or dielectrics but no environment: rays that leave the scene "
+                                  "get the background colour");
+    }
     stats.ms_total = ms_since(start);
     return result;
 }

@@ -19,10 +19,20 @@ enum class EmbreeTracing {
 // The BVH builder's quality (RTC_BUILD_QUALITY_*).
 enum class EmbreeBuildQuality { low, medium, high };
 
+// What a primary ray that hits a mirror or a dielectric sees
+// (docs/secondary-rays.md, "The Embree reference").
+enum class EmbreeSecondary {
+    bounce,  // one exact bounce of reflection / refraction (render/embree/secondary_rays.hpp)
+    none,    // the primary-only image: the environment along the bounced pinhole ray, as the cpu and gl backends
+};
+
 struct EmbreeOptions {
     EmbreeTracing tracing = EmbreeTracing::packet16;
     EmbreeBuildQuality build_quality = EmbreeBuildQuality::medium;
     bool robust = true;  // RTC_SCENE_FLAG_ROBUST: watertight triangle tests
+    // bounce by default; a scene without mirrors or dielectrics renders the
+    // same either way.
+    EmbreeSecondary secondary = EmbreeSecondary::bounce;
 };
 
 // "single", "packet4", "packet8", "packet16" or "stream".
@@ -30,6 +40,12 @@ const char* tracing_name(EmbreeTracing tracing);
 
 // "low", "medium" or "high".
 const char* build_quality_name(EmbreeBuildQuality quality);
+
+// "bounce" or "none".
+const char* secondary_name(EmbreeSecondary secondary);
+
+// The inverse of secondary_name; throws std::invalid_argument for other names.
+EmbreeSecondary parse_embree_secondary(const std::string& name);
 
 // The inverse of tracing_name; throws std::invalid_argument for other names.
 EmbreeTracing parse_embree_tracing(const std::string& name);

@@ -1,9 +1,10 @@
 // curved-mirror: the chessboard at a curved mirror of JCST 2013 Fig. 6, as
 // three upright mirrors side by side on the far edge of a chessboard: flat,
 // gently convex (radius 4 m) and strongly convex (radius 1.6 m), with
-// objects on the board and behind the camera. The camera focuses on the
-// mirrors; a flat mirror puts the reflected board as far behind its surface
-// as the board is in front (blurred), a convex one pulls the reflection
+// objects on the board, and an upright chessboard chart behind the camera
+// that only the mirrors show. The camera focuses on the mirrors; a flat
+// mirror puts the reflected chart as far behind its surface as the chart is
+// in front (blurred), a convex one pulls the reflection
 // towards its focal point just behind the surface (sharper the stronger the
 // curvature): the blur of the reflection depends on the curvature, not on
 // the mirror's own depth (docs/secondary-rays.md, "Scenes").
@@ -52,6 +53,8 @@ Scene make_curved_mirror(float blur, float aspect) {
     const std::uint32_t green = mesh.material({0.15f, 0.70f, 0.25f}, "green");
     const std::uint32_t blue = mesh.material({0.15f, 0.30f, 0.85f}, "blue");
     const std::uint32_t yellow = mesh.material({0.90f, 0.80f, 0.15f}, "yellow (behind the camera)");
+    const std::uint32_t chart_light = mesh.material({0.92f, 0.92f, 0.92f}, "chart light (behind the camera)");
+    const std::uint32_t chart_dark = mesh.material({0.70f, 0.10f, 0.12f}, "chart dark (behind the camera)");
 
     // 14 m x 14 m board of 1 m squares, from behind the camera to the mirrors.
     mesh.chessboard({-7.0f, 0.0f, 9.0f}, {14.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -14.0f}, 14, 2, light_square,
@@ -69,7 +72,9 @@ Scene make_curved_mirror(float blur, float aspect) {
     mesh.ellipsoid(upright({-2.2f, 0.5f, -0.5f}), glm::vec3(0.5f), 48, 24, red);
     mesh.frustum(upright({0.8f, 0.0f, -1.2f}), 1.4f, 0.45f, 0.0f, 48, 4, green);
     mesh.box({2.6f, 0.45f, 0.6f}, {0.45f, 0.45f, 0.45f}, 0.6f, 2, blue);
-    // Behind the camera (eye at z = 7): seen only in the mirrors.
+    // Behind the camera (eye at z = 7), seen only in the mirrors: an upright
+    // chessboard chart of 0.5 m squares facing them, and a ring before it.
+    mesh.chessboard({10.0f, -3.0f, 9.5f}, {-20.0f, 0.0f, 0.0f}, {0.0f, 20.0f, 0.0f}, 40, 1, chart_light, chart_dark);
     mesh.torus(frame_along({0.0f, 1.6f, 8.5f}, {0.0f, 0.0f, 1.0f}), 0.8f, 0.25f, 64, 24, yellow);
 
     const glm::vec3 eye(0.0f, 1.7f, 7.0f);
@@ -80,7 +85,7 @@ Scene make_curved_mirror(float blur, float aspect) {
     camera.yfov = secondary_scene_yfov(0.72f, aspect);
     camera.znear = 0.1f;
     camera.focus_distance = glm::length(target - eye);  // the mirrors' surface
-    camera.lens_radius = 0.15f * blur;
+    camera.lens_radius = 0.2f * blur;
     scene.light_direction = glm::normalize(glm::vec3(-0.3f, 0.9f, 0.6f));
     scene.background = kSecondarySceneBackground;
     scene.environment = BC_ENVIRONMENT_SKY;

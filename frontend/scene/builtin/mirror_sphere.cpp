@@ -37,17 +37,17 @@ Scene make_mirror_sphere(float blur, float aspect) {
     mesh.frustum(upright({-1.4f, 0.0f, -3.2f}), 2.2f, 0.6f, 0.0f, 48, 4, blue);
     mesh.capsule({1.5f, 0.3f, -2.6f}, {2.7f, 1.9f, -3.2f}, 0.3f, 32, 8, yellow);
 
-    // Behind the camera (eye at z = 6.5): seen only in the mirror.
-    mesh.ellipsoid(upright({-2.0f, 1.0f, 9.0f}), {0.8f, 0.8f, 1.0f}, 48, 24, magenta);
-    mesh.box({2.0f, 0.9f, 9.5f}, {0.9f, 0.9f, 0.9f}, 0.3f, 2, orange);
-    mesh.torus(frame_along({0.0f, 1.6f, 10.5f}, {0.0f, 0.0f, 1.0f}), 0.9f, 0.3f, 64, 24, cyan);
+    // Behind the camera (eye at z = 4.8): seen only in the mirror.
+    mesh.ellipsoid(upright({-2.2f, 1.1f, 6.2f}), {1.0f, 1.0f, 1.1f}, 48, 24, magenta);
+    mesh.box({2.3f, 1.0f, 6.4f}, {1.0f, 1.0f, 1.0f}, 0.3f, 2, orange);
+    mesh.torus(frame_along({0.0f, 1.9f, 7.2f}, {0.0f, 0.0f, 1.0f}), 1.1f, 0.35f, 64, 24, cyan);
 
-    const glm::vec3 eye(0.0f, 1.8f, 6.5f);
+    const glm::vec3 eye(0.0f, 1.7f, 4.8f);
     const glm::vec3 target(0.0f, 0.9f, 0.0f);
     Camera& camera = scene.camera;
     camera.view_open = glm::lookAt(eye, target, kUp);
     camera.view_close = camera.view_open;
-    camera.yfov = secondary_scene_yfov(0.75f, aspect);
+    camera.yfov = secondary_scene_yfov(0.9f, aspect);
     camera.znear = 0.1f;
     camera.focus_distance = glm::length(glm::vec3(0.0f, 1.1f, 1.1f) - eye);  // the sphere's front
     camera.lens_radius = 0.12f * blur;

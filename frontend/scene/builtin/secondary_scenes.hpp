@@ -30,7 +30,7 @@ Scene make_mirror_sphere(float blur, float aspect);
 // ~30k triangles, static, defocus: a gently waved water surface (index 1.33)
 // over a chessboard pool floor and objects under and above it.
 Scene make_water(float blur, float aspect);
-// ~10k triangles, static, defocus: a chessboard before three mirrors of
+// ~12k triangles, static, defocus: a chessboard before three mirrors of
 // different curvature (flat, gently and strongly convex), JCST 2013 Fig. 6.
 Scene make_curved_mirror(float blur, float aspect);
 
