@@ -63,6 +63,7 @@ struct RenderJob {
     Backend backend = Backend::cpu;
     CpuOptions cpu;
     GlOptions gl;
+    EmbreeOptions embree;
     std::string out_path;
     Scene scene;
 };
@@ -157,6 +158,7 @@ void refuse_unhonoured_options(const RenderCommand& command, Backend backend) {
         {"--footprint", command.footprint_option, backend_bit(Backend::cpu)},
         {"--precision", command.precision_option, backend_bit(Backend::cpu)},
         {"--gl-cell", command.gl_cell_option, backend_bit(Backend::gl)},
+        {"--secondary", command.secondary_option, backend_bit(Backend::embree)},
     };
     for (const BackendOption& option : options) {
         if (option.option == nullptr || option.option->count() == 0) continue;
@@ -213,6 +215,9 @@ RenderJob set_up(const RenderCommand& command) {
     job.cpu.footprint = command.footprint;
     job.cpu.precision = parse_kernel_precision(command.precision);
     job.gl.cell_pixels = command.gl_cell;
+#if BLURCULL_HAVE_EMBREE
+    job.embree.secondary = parse_embree_secondary(command.secondary);
+#endif
     job.scene = load_scene(request);
     return job;
 }
@@ -223,7 +228,7 @@ RenderResult dispatch(const RenderJob& job) {
         // choose_backend refused the backends this build does not have.
         switch (job.backend) {
 #if BLURCULL_HAVE_EMBREE
-            case Backend::embree: return render_embree(job.scene, job.settings);
+            case Backend::embree: return render_embree(job.scene, job.settings, job.embree);
 #endif
 #if BLURCULL_HAVE_GL
             case Backend::gl: return render_gl(job.scene, job.settings, job.gl);
@@ -263,6 +268,7 @@ void print_json_summary(const RenderCommand& command, const RenderJob& job, cons
     summary["triangles"] = stats.triangles;
     summary["samples_tested"] = stats.samples_tested;
     summary["samples_hit"] = stats.samples_hit;
+    if (stats.secondary_rays > 0) summary["secondary_rays"] = stats.secondary_rays;
     summary["ste"] = stats.ste();
     summary["bounds_computed"] = stats.bounds_computed;
     summary["bounds_empty"] = stats.bounds_empty;
@@ -322,6 +328,12 @@ void RenderCommand::add_options(CLI::App& app) {
                                     "computed for")
                          ->check(CLI::Range(1, 4096))
                          ->capture_default_str();
+    secondary_option = app.add_option("--secondary", secondary,
+                                      "embree: what a ray that hits a mirror or glass sees; bounce: one exact bounce "
+                                      "of reflection and refraction; none: the primary-only image (the environment "
+                                      "along the bounced pinhole ray, as the cpu and gl backends)")
+                           ->check(CLI::IsMember({"bounce", "none"}))
+                           ->capture_default_str();
     app.add_flag("-q,--quiet", quiet, "no progress on stderr");
 }
 

@@ -24,6 +24,7 @@ struct RenderCommand : SceneFlags {
     int footprint = CpuOptions{}.footprint;
     std::string precision = to_string(CpuOptions{}.precision);
     int gl_cell = GlOptions{}.cell_pixels;
+    std::string secondary = "bounce";  // embree: bounce or none (EmbreeSecondary)
     bool quiet = false;
 
     // The backend-specific options, to tell whether they were given
@@ -32,6 +33,7 @@ struct RenderCommand : SceneFlags {
     CLI::Option* footprint_option = nullptr;
     CLI::Option* precision_option = nullptr;
     CLI::Option* gl_cell_option = nullptr;
+    CLI::Option* secondary_option = nullptr;
 
     // Declares the options on `app`, their checks and help read from the
     // registries of cull methods, render methods, precisions and backends.
