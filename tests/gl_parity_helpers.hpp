@@ -1,5 +1,5 @@
 // What the GPU/host parity tests (test_frontend_gl_parity.cpp,
-// test_frontend_gl_raster_parity.cpp) share: host arithmetic without fma
+// test_frontend_gl_raster_parity.cpp, test_frontend_gl_secondary_parity.cpp) share: host arithmetic without fma
 // contraction, the includes for running an emitted-kernel compute shader, and
 // a headless context or a reasoned skip.
 //
@@ -22,6 +22,9 @@
 
 #include <doctest/doctest.h>
 
+#include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <optional>
 #include <string>
 
@@ -37,6 +40,32 @@ inline std::optional<gl::HeadlessContext> context_or_skip(std::optional<gl::Cont
         MESSAGE("SKIPPED: no headless OpenGL 4.5 context (" << std::string(e.what()) << "); CI=true makes this a failure");
         return std::nullopt;
     }
+}
+
+// A float's bits and back: the parity tests move floats through uint SSBOs
+// and compare them bit for bit.
+inline std::uint32_t bits_of(float x) {
+    std::uint32_t b;
+    std::memcpy(&b, &x, sizeof b);
+    return b;
+}
+
+inline float float_of(std::uint32_t b) {
+    float x;
+    std::memcpy(&x, &b, sizeof x);
+    return x;
+}
+
+// Distance in representable floats; NaN against anything else counts as
+// "infinitely" far, two NaNs as equal.
+inline std::int64_t ulp_distance(float a, float b) {
+    if (std::isnan(a) || std::isnan(b)) return std::isnan(a) && std::isnan(b) ? 0 : INT64_MAX;
+    auto ordered = [](float x) {
+        std::int64_t raw = static_cast<std::int64_t>(bits_of(x));
+        return raw & 0x80000000 ? -(raw & 0x7fffffff) : raw;
+    };
+    std::int64_t d = ordered(a) - ordered(b);
+    return d < 0 ? -d : d;
 }
 
 }  // namespace blurcull::frontend::test

@@ -25,7 +25,7 @@
 
 using namespace blurcull;
 using namespace blurcull::testing;
-using blurcull::frontend::test::context_or_skip;
+using namespace blurcull::frontend::test;
 using Kf = kernel<float>;
 
 namespace {
@@ -152,30 +152,6 @@ constexpr int kDecisionBits = 1 + 2 * kMethods;
 // The sample-bound values in output order, two uints per name.
 const char* const kSampleFieldNames[] = {"u_range",  "v_range",  "u_time_a", "u_time_a", "u_time_b",
                                          "u_time_b", "v_time_a", "v_time_a", "v_time_b", "v_time_b"};
-
-std::uint32_t bits_of(float x) {
-    std::uint32_t b;
-    std::memcpy(&b, &x, sizeof b);
-    return b;
-}
-
-float float_of(std::uint32_t b) {
-    float x;
-    std::memcpy(&x, &b, sizeof x);
-    return x;
-}
-
-// Distance in representable floats; NaN against anything else counts as
-// "infinitely" far, two NaNs as equal.
-std::int64_t ulp_distance(float a, float b) {
-    if (std::isnan(a) || std::isnan(b)) return std::isnan(a) && std::isnan(b) ? 0 : INT64_MAX;
-    auto ordered = [](float x) {
-        std::int64_t raw = static_cast<std::int64_t>(bits_of(x));
-        return raw & 0x80000000 ? -(raw & 0x7fffffff) : raw;
-    };
-    std::int64_t d = ordered(a) - ordered(b);
-    return d < 0 ? -d : d;
-}
 
 struct Inputs {
     std::vector<float> configs;

@@ -24,7 +24,7 @@
 
 using namespace blurcull;
 using namespace blurcull::testing;
-using blurcull::frontend::test::context_or_skip;
+using namespace blurcull::frontend::test;
 using Kf = kernel<float>;
 
 namespace {
@@ -112,12 +112,6 @@ void main() {
     result[o + 29] = floatBitsToUint(v.x); result[o + 30] = floatBitsToUint(v.y);
 }
 )glsl";
-
-std::uint32_t bits_of(float x) {
-    std::uint32_t b;
-    std::memcpy(&b, &x, sizeof b);
-    return b;
-}
 
 float edge_offset(Rng& rng) {
     int pick = rng.below(8);

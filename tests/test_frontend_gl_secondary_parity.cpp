@@ -11,12 +11,7 @@
 //
 // No GL context (no Mesa): fails when CI=true, else skips with a message.
 
-// Host code must not contract a*b+c into an fma: llvmpipe does not fuse.
-#if defined(__clang__)
-#pragma clang fp contract(off)
-#elif defined(__GNUC__)
-#pragma GCC optimize("fp-contract=off")
-#endif
+#include "gl_parity_helpers.hpp"  // first: no fma contraction on the host
 
 #include "frontend_test_helpers.hpp"
 #include "secondary_generators.hpp"
@@ -37,46 +32,13 @@
 
 using namespace blurcull;
 using namespace blurcull::testing;
-using blurcull::frontend::test::is_ci;
+using namespace blurcull::frontend::test;
 using Kf = kernel<float>;
 
 namespace {
 
 // Values are compared bit for bit (0 ULP).
 constexpr std::int64_t kMaxUlps = 0;
-
-std::uint32_t bits_of(float x) {
-    std::uint32_t b;
-    std::memcpy(&b, &x, sizeof b);
-    return b;
-}
-
-float float_of(std::uint32_t b) {
-    float x;
-    std::memcpy(&x, &b, sizeof x);
-    return x;
-}
-
-std::int64_t ulp_distance(std::uint32_t a_bits, std::uint32_t b_bits) {
-    float a = float_of(a_bits), b = float_of(b_bits);
-    if (std::isnan(a) || std::isnan(b)) return std::isnan(a) && std::isnan(b) ? 0 : INT64_MAX;
-    auto ordered = [](std::uint32_t raw) {
-        auto r = static_cast<std::int64_t>(raw);
-        return (r & 0x80000000) ? -(r & 0x7fffffff) : r;
-    };
-    std::int64_t d = ordered(a_bits) - ordered(b_bits);
-    return d < 0 ? -d : d;
-}
-
-std::optional<gl::HeadlessContext> context_or_skip() {
-    try {
-        return gl::HeadlessContext::create();
-    } catch (const gl::GlError& e) {
-        if (is_ci()) FAIL("no headless OpenGL 4.5 context in CI: " << std::string(e.what()));
-        MESSAGE("SKIPPED: no headless OpenGL 4.5 context (" << std::string(e.what()) << "); CI=true makes this a failure");
-        return std::nullopt;
-    }
-}
 
 // Runs `main` (after the kernel library) over `invocations` invocations with
 // inputs at SSBO bindings 0.. and the output at the next binding; uniform
@@ -118,7 +80,7 @@ void compare(Diff& d, const std::vector<std::uint32_t>& host, const std::vector<
         int slot = static_cast<int>(i % static_cast<std::size_t>(stride));
         ++d.compared;
         bool exact = std::find(exact_slots.begin(), exact_slots.end(), slot) != exact_slots.end();
-        std::int64_t ulps = exact ? (host[i] == gpu[i] ? 0 : INT64_MAX) : ulp_distance(host[i], gpu[i]);
+        std::int64_t ulps = exact ? (host[i] == gpu[i] ? 0 : INT64_MAX) : ulp_distance(float_of(host[i]), float_of(gpu[i]));
         if (exact && ulps != 0) ++d.exact_mismatches;
         if (!exact) d.max_ulps = std::max(d.max_ulps, ulps);
         if (ulps > kMaxUlps && d.first.empty())

@@ -68,6 +68,7 @@ struct RenderJob {
     Backend backend = Backend::cpu;
     CpuOptions cpu;
     GlOptions gl;
+    EmbreeOptions embree;
     SecondaryOptions secondary;
     std::string out_path;
     Scene scene;
@@ -165,9 +166,10 @@ void refuse_unhonoured_options(const RenderCommand& command, Backend backend) {
         {"--footprint", command.footprint_option, backend_bit(Backend::cpu)},
         {"--precision", command.precision_option, backend_bit(Backend::cpu)},
         {"--gl-cell", command.gl_cell_option, backend_bit(Backend::gl)},
+        {"--secondary", command.secondary_option, backend_bit(Backend::embree)},
     };
     if (method.method != RenderMethod::dof_secondary) {
-        for (const CLI::Option* option : command.secondary_options) {
+        for (const CLI::Option* option : command.dof_secondary_options) {
             if (option->count() > 0) {
                 throw std::invalid_argument(option->get_name() + ": only --method dof-secondary takes it (method " +
                                             method.name + ")");
@@ -229,7 +231,10 @@ RenderJob set_up(const RenderCommand& command) {
     job.cpu.footprint = command.footprint;
     job.cpu.precision = parse_kernel_precision(command.precision);
     job.gl.cell_pixels = command.gl_cell;
-    job.secondary = command.secondary;
+#if BLURCULL_HAVE_EMBREE
+    job.embree.secondary = parse_embree_secondary(command.secondary);
+#endif
+    job.secondary = command.dof_secondary;
     job.secondary.bounces = command.secondary_bounces == "exact"         ? SecondaryBounces::exact
                             : command.secondary_bounces == "environment" ? SecondaryBounces::environment_only
                                                                          : SecondaryBounces::image_space;
@@ -275,7 +280,7 @@ RenderResult dispatch(const RenderJob& job) {
         // choose_backend refused the backends this build does not have.
         switch (job.backend) {
 #if BLURCULL_HAVE_EMBREE
-            case Backend::embree: return render_embree(job.scene, job.settings);
+            case Backend::embree: return render_embree(job.scene, job.settings, job.embree);
 #endif
 #if BLURCULL_HAVE_GL
             case Backend::gl: return render_gl(job.scene, job.settings, job.gl);
@@ -315,6 +320,7 @@ void print_json_summary(const RenderCommand& command, const RenderJob& job, cons
     summary["triangles"] = stats.triangles;
     summary["samples_tested"] = stats.samples_tested;
     summary["samples_hit"] = stats.samples_hit;
+    if (stats.secondary_rays > 0) summary["secondary_rays"] = stats.secondary_rays;
     summary["ste"] = stats.ste();
     summary["bounds_computed"] = stats.bounds_computed;
     summary["bounds_empty"] = stats.bounds_empty;
@@ -379,19 +385,25 @@ void RenderCommand::add_options(CLI::App& app) {
                                     "computed for")
                          ->check(CLI::Range(1, 4096))
                          ->capture_default_str();
-    secondary_options = {
-        app.add_option("--secondary-layers", secondary.layers,
+    secondary_option = app.add_option("--secondary", secondary,
+                                      "embree: what a ray that hits a mirror or glass sees; bounce: one exact bounce "
+                                      "of reflection and refraction; none: the primary-only image (the environment "
+                                      "along the bounced pinhole ray, as the cpu and gl backends)")
+                           ->check(CLI::IsMember({"bounce", "none"}))
+                           ->capture_default_str();
+    dof_secondary_options = {
+        app.add_option("--secondary-layers", dof_secondary.layers,
                        "dof-secondary: depth-peeled layers per cluster view")
             ->check(CLI::Range(1, 8))->capture_default_str(),
-        app.add_option("--clusters-per-facet", secondary.clusters_per_facet,
+        app.add_option("--clusters-per-facet", dof_secondary.clusters_per_facet,
                        "dof-secondary: k-means clusters per dodecahedron facet at most")
             ->check(CLI::Range(1, 3))->capture_default_str(),
-        app.add_option("--secondary-fov", secondary.fov_degrees,
+        app.add_option("--secondary-fov", dof_secondary.fov_degrees,
                        "dof-secondary: field of view of a cluster's virtual view, degrees")
             ->check(CLI::Range(1.0f, 179.0f))->capture_default_str(),
-        app.add_option("--layer-size", secondary.layer_size, "dof-secondary: texels per side of a cluster's layers")
+        app.add_option("--layer-size", dof_secondary.layer_size, "dof-secondary: texels per side of a cluster's layers")
             ->check(CLI::Range(16, 4096))->capture_default_str(),
-        app.add_option("--lens-parts", secondary.lens_parts,
+        app.add_option("--lens-parts", dof_secondary.lens_parts,
                        "dof-secondary: lens parts with a depth interval each (1, 4 or 16)")
             ->check(CLI::IsMember({1, 4, 16}))->capture_default_str(),
         app.add_option("--secondary-bounces", secondary_bounces,

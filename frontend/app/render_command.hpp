@@ -26,9 +26,10 @@ struct RenderCommand : SceneFlags {
     int footprint = CpuOptions{}.footprint;
     std::string precision = to_string(CpuOptions{}.precision);
     int gl_cell = GlOptions{}.cell_pixels;
+    std::string secondary = "bounce";  // embree: bounce or none (EmbreeSecondary)
     bool quiet = false;
     // dof-secondary (render/secondary/secondary_options.hpp).
-    SecondaryOptions secondary;
+    SecondaryOptions dof_secondary;
     std::string secondary_bounces = "image-space";
 
     // The backend-specific options, to tell whether they were given
@@ -37,7 +38,8 @@ struct RenderCommand : SceneFlags {
     CLI::Option* footprint_option = nullptr;
     CLI::Option* precision_option = nullptr;
     CLI::Option* gl_cell_option = nullptr;
-    std::vector<CLI::Option*> secondary_options;  // only --method dof-secondary takes them
+    CLI::Option* secondary_option = nullptr;
+    std::vector<CLI::Option*> dof_secondary_options;  // only --method dof-secondary takes them
 
     // Declares the options on `app`, their checks and help read from the
     // registries of cull methods, render methods, precisions and backends.

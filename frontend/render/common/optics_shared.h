@@ -41,8 +41,10 @@ BC_OPTICS_FN vec3 bc_mirror_direction(vec3 incident, vec3 normal) {
 // Unpolarised Fresnel reflectance of a smooth dielectric boundary (the mean of
 // the s and p terms, exact, not Schlick's approximation). cos_i = |n . i| of the
 // unit incident direction, eta = n_incident / n_transmitted. Returns 1 under
-// total internal reflection.
+// total internal reflection, exactly 0 for eta = 1 (an index-matched boundary
+// is invisible; the formula's rounding of cos_t would leave ~1e-8).
 BC_OPTICS_FN float bc_fresnel_dielectric(float cos_i, float eta) {
+    if (eta == 1.0f) return 0.0f;
     float sin_t2 = eta * eta * max(0.0f, 1.0f - cos_i * cos_i);
     if (sin_t2 >= 1.0f) return 1.0f;
     float cos_t = sqrt(1.0f - sin_t2);

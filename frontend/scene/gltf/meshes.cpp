@@ -2,6 +2,7 @@
 
 #include "scene/gltf/accessors.hpp"
 #include "scene/gltf/skin.hpp"
+#include "scene/gltf/specular_material.hpp"
 #include "scene/scene_builder.hpp"
 
 #include <glm/glm.hpp>
@@ -182,6 +183,7 @@ private:
                                                            static_cast<float>(factor[2])),
                                                  0.0f, 1.0f);
             }
+            read_specular_kind(source, "material " + std::to_string(gltf_material), material, diagnostics_);
         } else {
             material.name = "default";
         }
