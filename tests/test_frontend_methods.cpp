@@ -285,7 +285,8 @@ TEST_CASE("every method is deterministic whatever the thread count") {
 
 TEST_CASE("methods: dispatch and bad input") {
     const Scene scene = blurred_scene();
-    CHECK(render_method_names() == std::vector<std::string>{"stochastic", "interleave", "interval", "accum"});
+    CHECK(render_method_names() ==
+          std::vector<std::string>{"stochastic", "interleave", "interval", "accum", "dof-secondary"});
     RenderSettings settings = settings_for(4, "stochastic");
     CHECK(same_pixels(render_with_method(scene, settings).image, render_cpu(scene, settings).image));
     settings.method = RenderMethod::interval;
