@@ -147,6 +147,8 @@ TEST_CASE("bad input: one line naming the problem, non-zero exit, no output file
         {"render --scene '" + data_dir + "/bad_truncated.glb'", "bad_truncated.glb"},
         {"render --scene '" + data_dir + "/bad_camera_yfov.gltf'", "bad_camera_yfov.gltf"},
         {"render --scene '" + data_dir + "/bad_node_cycle.gltf'", "bad_node_cycle.gltf"},
+        {"render --scene '" + data_dir + "/bad_version_1.gltf'", "glTF version 1.0 is not supported"},
+        {"render --scene '" + data_dir + "/bad_required_draco.gltf'", "required extension KHR_draco_mesh_compression"},
         // Refused before allocating: 64 GiB for the image alone.
         {"render --size 65536x65536 --spp 1024", "GiB of memory"},
     };
@@ -306,4 +308,30 @@ TEST_CASE("--backend auto with --method accum and no GL context: the cpu backend
     const nlohmann::json summary = nlohmann::json::parse(run.out);
     CHECK(summary["backend"] == "cpu");
     CHECK(summary["method"] == "accum");
+}
+
+TEST_CASE("blurcull render --motion-segments: K or auto reaches the scene, bad values are one line") {
+    const std::string box = shared_dir + "/scenes/khronos/BoxAnimated.gltf";
+    if (!std::filesystem::exists(box)) return;  // the shared scenes are optional
+    Run three = run_cli("render --scene '" + box + "' --backend cpu --size 48x36 --spp 2 --shutter 0.5,1.5 " +
+                        "--motion-segments 3 --json -q -o box_segments.png");
+    REQUIRE(three.status == 0);
+    CHECK(nlohmann::json::parse(three.out)["motion_segments"] == 3);
+    Run automatic = run_cli("render --scene '" + box + "' --backend cpu --size 48x36 --spp 2 --shutter 0.5,1.5 " +
+                            "--motion-segments auto --json -q -o box_auto.png");
+    REQUIRE(automatic.status == 0);
+    CHECK(nlohmann::json::parse(automatic.out)["motion_segments"] >= 1);
+    // Built-in scenes move linearly: one segment whatever K.
+    Run car = run_cli("render --scene car --size 32x24 --spp 2 --backend cpu --motion-segments 8 --json -q -o car_k8.png");
+    REQUIRE(car.status == 0);
+    CHECK(nlohmann::json::parse(car.out)["motion_segments"] == 1);
+    for (const char* bad : {"0", "65", "2.5", "many"}) {
+        Run run = run_cli(std::string("render --scene car --size 32x24 --spp 2 --motion-segments ") + bad +
+                          " -q -o never.png");
+        INFO(bad, ": ", run.err);
+        CHECK(run.status != 0);
+        CHECK(lines(run.err) == 1);
+        CHECK(run.err.find("--motion-segments") != std::string::npos);
+        CHECK_FALSE(std::filesystem::exists(std::filesystem::temp_directory_path() / "blurcull_cli_test" / "never.png"));
+    }
 }

@@ -4,6 +4,7 @@
 
 #include "render/common/backend.hpp"
 #include "render/common/image.hpp"
+#include "render/common/motion_segments.hpp"
 #include "render/common/render_types.hpp"
 #include "render/cpu/cpu_backend.hpp"
 #include "render/cpu/methods.hpp"
@@ -15,6 +16,7 @@
 #endif
 #include "render/secondary/dof_secondary.hpp"
 #include "scene/builtin_scenes.hpp"
+#include "scene/motion_segments.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -214,6 +216,8 @@ SceneRequest scene_request(const RenderCommand& command, const RenderSettings& s
     request.lens_radius = command.lens_radius;
     request.fstop = command.fstop;
     request.focus = command.focus;
+    request.motion_segments = parse_motion_segments(command.motion_segments);
+    request.image_height = settings.height;
     return request;
 }
 
@@ -318,6 +322,7 @@ void print_json_summary(const RenderCommand& command, const RenderJob& job, cons
     summary["lens_radius"] = job.scene.camera.lens_radius;
     summary["focus_distance"] = job.scene.camera.focus_distance;
     summary["triangles"] = stats.triangles;
+    summary["motion_segments"] = scene_motion_segments(job.scene);
     summary["samples_tested"] = stats.samples_tested;
     summary["samples_hit"] = stats.samples_hit;
     if (stats.secondary_rays > 0) summary["secondary_rays"] = stats.secondary_rays;
@@ -412,6 +417,10 @@ void RenderCommand::add_options(CLI::App& app) {
             ->check(CLI::IsMember({"image-space", "exact", "environment"}))->capture_default_str(),
     };
     app.add_flag("-q,--quiet", quiet, "no progress on stderr");
+    app.add_option("--motion-segments", motion_segments,
+                   "glTF: K linear motion segments over the shutter (1 to " + std::to_string(max_motion_segments) +
+                       "), or auto: K from the largest rotation, chord within 1/4 pixel (cpu and embree)")
+        ->capture_default_str();
 }
 
 int RenderCommand::run() const {

@@ -28,6 +28,7 @@ struct RenderCommand : SceneFlags {
     int gl_cell = GlOptions{}.cell_pixels;
     std::string secondary = "bounce";  // embree: bounce or none (EmbreeSecondary)
     bool quiet = false;
+    std::string motion_segments = "1";  // K, or "auto" (parse_motion_segments)
     // dof-secondary (render/secondary/secondary_options.hpp).
     SecondaryOptions dof_secondary;
     std::string secondary_bounces = "image-space";

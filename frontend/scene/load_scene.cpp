@@ -42,6 +42,8 @@ Scene build_gltf(const std::string& path, const SceneSettings& settings, const W
     GltfOptions gltf;
     gltf.aspect = settings.aspect;
     gltf.blur_scale = static_cast<float>(settings.blur_scale);
+    gltf.motion_segments = settings.motion_segments;
+    gltf.image_height = settings.image_height;
     if (settings.has_shutter) {
         gltf.shutter_open = settings.shutter_open;
         gltf.shutter_close = settings.shutter_close;

@@ -26,6 +26,11 @@ struct SceneSettings {
     double lens_radius = -1.0;   // >= 0: the lens radius (times blur_scale); < 0: the scene's own
     double fstop = -1.0;         // > 0: the lens radius of this f-number (times blur_scale)
     double focus = -1.0;         // > 0: the focus distance
+    // glTF: linear motion segments over the shutter, 1 to max_motion_segments,
+    // or 0 = auto for an image image_height pixels high (GltfOptions). Built-in
+    // scenes move linearly: any K is the same motion, so they stay one segment.
+    int motion_segments = 1;
+    int image_height = 480;
 };
 
 // Lens radius for an f-number: R = f / (2 N), with the focal length of a

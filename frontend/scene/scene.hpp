@@ -37,17 +37,30 @@ struct Material {
 struct Camera {
     glm::mat4 view_open{1.0f};   // world -> view at shutter open
     glm::mat4 view_close{1.0f};  // world -> view at shutter close
+    // Motion segments (Scene::position_at): world -> view at the interior
+    // times k / K, k = 1 .. K - 1; empty: interpolated between the ends.
+    std::vector<glm::mat4> view_at;
     float yfov = 0.8f;           // radians, full vertical field of view
     float znear = 0.05f;         // near plane (view depth)
     float lens_radius = 0.0f;    // thin-lens aperture radius, world units
     float focus_distance = 10.0f;// view depth that is in focus
 };
 
+// The most motion segments a scene may carry (--motion-segments K <= this;
+// `auto` clamps to it with a warning): each segment is one more copy of the
+// vertices and, on the CPU, of the moving triangles' setup.
+inline constexpr int max_motion_segments = 64;
+
 struct Scene {
     std::string name;
     // Per vertex; the two arrays have the same length.
     std::vector<glm::vec3> position_open;
     std::vector<glm::vec3> position_close;
+    // Motion segments (--motion-segments K > 1; docs/reference-renderer.md,
+    // "The motion model"): the world positions at the interior shutter times
+    // k / K, k = 1 .. K - 1, position_at[k - 1] per vertex like position_open.
+    // Empty (K = 1, every built-in scene): linear motion from open to close.
+    std::vector<std::vector<glm::vec3>> position_at;
     // Per triangle.
     std::vector<glm::uvec3> triangles;
     std::vector<std::uint32_t> triangle_material;

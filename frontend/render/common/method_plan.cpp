@@ -1,5 +1,6 @@
 #include "render/common/method_plan.hpp"
 
+#include "render/common/motion_segments.hpp"
 #include "render/common/moving_triangle.hpp"
 #include "render/common/shading.hpp"
 #include "scene/scene_checks.hpp"
@@ -117,6 +118,7 @@ MethodPlan make_method_plan(const Scene& scene, const RenderSettings& settings, 
         throw std::invalid_argument(std::string("method plan: '") + to_string(settings.method) +
                                     "' has no fixed passes");
     }
+    refuse_motion_segments(scene, std::string("method ") + to_string(settings.method));
     int side = 1;
     if (settings.method == RenderMethod::interleave) {
         side = exact_square_root(settings.spp);

@@ -4,6 +4,7 @@
 #include "render/common/method_plan.hpp"
 #include "render/cpu/coverage_test.hpp"
 #include "render/common/moving_triangle.hpp"
+#include "render/common/motion_segments.hpp"
 #include "render/common/progress.hpp"
 #include "render/common/shading.hpp"
 #include "render/cpu/parallel_items.hpp"
@@ -65,6 +66,7 @@ public:
         v_[k] = lens.y;
         t_[k] = time;
     }
+    void set_time(std::size_t k, float time) { t_[k] = time; }
     bool may_cover(const CoverageSetup& setup, std::size_t k) const {
         return frontend::may_cover(setup, sx_[k], sy_[k], u_[k], v_[k], t_[k]);
     }
@@ -97,6 +99,9 @@ struct FrameSetup {
         std::size_t hull_offset = 0;
         int hull_count = 0;
     };
+    // The motion-segment piece of each entry below (one whole-shutter piece
+    // per scene triangle when K = 1): its source triangle and window.
+    std::vector<SegmentPiece> pieces;
     std::vector<typename K::MovingTriangle> triangles;
     std::vector<PixelRect> rects;
     std::vector<int> classes;
@@ -128,7 +133,8 @@ template <class Real>
 void set_up_triangles(const Scene& scene, const CameraModel& model, int method, int threads, FrameSetup<Real>& setup) {
     using K = blurcull::kernel<Real>;
     const Real near = static_cast<Real>(model.znear);
-    const std::size_t count = scene.triangles.size();
+    setup.pieces = plan_segment_pieces(scene, model);
+    const std::size_t count = setup.pieces.size();
     setup.triangles.resize(count);
     setup.rects.resize(count);
     setup.classes.resize(count);
@@ -140,7 +146,7 @@ void set_up_triangles(const Scene& scene, const CameraModel& model, int method, 
     auto set_up = [&](std::size_t chunk) {
         const std::size_t first = count * chunk / chunks, last = count * (chunk + 1) / chunks;
         for (std::size_t i = first; i < last; ++i) {
-            setup.triangles[i] = make_moving_triangle<Real>(scene, model, i);
+            setup.triangles[i] = make_segment_triangle<Real>(scene, model, setup.pieces[i]);
             setup.classes[i] = K::classify(setup.triangles[i]);
             setup.rects[i] = PixelRect{0, 0, -1, -1};
             if (setup.classes[i] == BC_INVALID) {
@@ -227,11 +233,16 @@ public:
           by_time_t_(samples_.size()),
           depth_(samples_.size()),
           hit_(samples_.size()),
-          lanes_(samples_.size() + 32) {}
+          lanes_(samples_.size() + 32),
+          shutter_time_(samples_.size()),
+          in_window_(samples_.size()) {}
 
     // Rasterizes work tile `tile` (row-major over the tiles) into its pixels of `image`.
     void render_tile(int tile, Image& image) {
         const int tx = tile % frame_.setup.tiles_x, ty = tile / frame_.setup.tiles_x;
+        window_segment_ = 0;
+        window_segments_ = 1;
+        window_ = glm::vec2(0.0f, 1.0f);
         x0_ = tx * tile_size;
         y0_ = ty * tile_size;
         x1_ = std::min(x0_ + tile_size, frame_.settings.width) - 1;
@@ -240,7 +251,11 @@ public:
         load_samples();
         footprints_x_ = (tw_ + frame_.footprint - 1) / frame_.footprint;
         if (frame_.time_sorted) sort_footprints_by_time();
-        for (std::uint32_t index : frame_.setup.bins[static_cast<std::size_t>(tile)]) rasterize_triangle(index);
+        for (std::uint32_t index : frame_.setup.bins[static_cast<std::size_t>(tile)]) {
+            const SegmentPiece& piece = frame_.setup.pieces[index];
+            if (piece.segment != window_segment_ || piece.segments != window_segments_) enter_window(piece);
+            rasterize_triangle(index);
+        }
         resolve(image);
     }
 
@@ -266,10 +281,29 @@ private:
                     const glm::vec2 ndc = frame_.model.sample_ndc(px, py, s.offset);
                     samples_[k] = Sample{typename K::vec2(ndc), typename K::vec2(s.lens), static_cast<Real>(s.time)};
                     lanes_.set(k, ndc, s.lens, s.time);
+                    shutter_time_[k] = s.time;
+                    in_window_[k] = 1;
                     depth_[k] = std::numeric_limits<Real>::infinity();
                     hit_[k] = none;
                 }
             }
+        }
+    }
+
+    // Motion segments: the tile's samples as seen by the pieces of one window,
+    // each at its local time (kernel::segment_local_time, in float like the
+    // samples, so the fast test sees the time covers() sees), and marked when
+    // the window does not hold it. The footprints' time order (by_time_t_)
+    // stays in shutter time: test_samples maps a piece's bounds back to it.
+    void enter_window(const SegmentPiece& piece) {
+        window_segment_ = piece.segment;
+        window_segments_ = piece.segments;
+        window_ = kernelf::segment_window(piece.segment, piece.segments);
+        for (std::size_t k = 0; k < samples_.size(); ++k) {
+            const float local = kernelf::segment_local_time(window_, shutter_time_[k]);
+            in_window_[k] = kernelf::segment_holds(window_, shutter_time_[k]) ? 1 : 0;
+            samples_[k].time = static_cast<Real>(local);
+            lanes_.set_time(k, local);
         }
     }
 
@@ -367,8 +401,12 @@ private:
             K::screen_footprint(current.bound, typename K::vec2(box.x, box.y), typename K::vec2(box.z, box.w));
         if (state == BC_FOOTPRINT_OUTSIDE) return;
         current.check_screen = state != BC_FOOTPRINT_INSIDE;
-        const typename K::vec2 range = frame_.time_sorted && current.needs_bounds ? K::sample_time_range(sb)
-                                                                                  : typename K::vec2(Real(0), Real(1));
+        typename K::vec2 range = frame_.time_sorted && current.needs_bounds ? K::sample_time_range(sb)
+                                                                            : typename K::vec2(Real(0), Real(1));
+        // A motion segment's bounds are in its local time: back to shutter
+        // time, inside its window (in float, the samples' precision).
+        if (frame_.time_sorted && window_segments_ > 1)
+            range = typename K::vec2(kernelf::segment_shutter_range(window_, glm::vec2(range)));
         // Only the footprint's samples inside the bounds' shutter interval, when
         // that skips enough of them to pay for visiting them out of memory order.
         if (range.y - range.x < Real(0.5)) {
@@ -411,6 +449,7 @@ private:
 
     // The culls before the exact test: bounds, then screen bound.
     bool sample_culled(const Current& current, std::size_t k, const typename K::SampleBounds& sb) const {
+        if (!in_window_[k]) return true;  // another motion segment's time
         const Sample& s = samples_[k];
         // kernel::sample_test's chain up to the exact test (the lens/time
         // bounds first: cheaper than a hull and they cull more); the fast
@@ -425,9 +464,12 @@ private:
         Real z = Real(0);
         if (!K::covers(*current.tri, s.ndc, s.lens, s.time, frame_.near, z)) return;
         ++hits;
-        if (K::depth_nearer(z, depth_[k])) {
+        // The scene triangle wins, lowest index on equal depths also across
+        // the motion-segment groups (within one group the order does it).
+        const std::uint32_t source = frame_.setup.pieces[current.index].source;
+        if (K::depth_nearer(z, depth_[k]) || (z == depth_[k] && source < hit_[k])) {
             depth_[k] = z;
-            hit_[k] = current.index;
+            hit_[k] = source;
         }
     }
 
@@ -457,6 +499,10 @@ private:
     std::vector<Real> depth_;
     std::vector<std::uint32_t> hit_;
     FloatSamples lanes_;  // samples_ in float, for the fast coverage test
+    std::vector<float> shutter_time_;  // each sample's own time (samples_ hold the window's local time)
+    std::vector<char> in_window_;      // whether the current motion-segment window holds the sample
+    int window_segment_ = 0, window_segments_ = 1;  // the window samples_ are loaded for
+    glm::vec2 window_{0.0f, 1.0f};
     int x0_ = 0, y0_ = 0, x1_ = -1, y1_ = -1, tw_ = 0, footprints_x_ = 0;
 };
 

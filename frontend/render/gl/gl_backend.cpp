@@ -1,5 +1,6 @@
 #include "render/gl/gl_backend.hpp"
 
+#include "render/common/motion_segments.hpp"
 #include "render/common/camera_model.hpp"
 #include "render/common/cull_method.hpp"
 #include "render/common/moving_triangle.hpp"
@@ -546,6 +547,7 @@ RenderResult render_gl(const Scene& scene, const RenderSettings& settings, const
     const Clock::time_point start = Clock::now();
     validate_settings(settings);
     require_valid_scene(scene);
+    refuse_motion_segments(scene, "gl");
     GlRenderer renderer;
     // llvmpipe compiles a program's code on its first draw: one 1x1 frame
     // makes that happen here, so "raster+resolve" is the frame alone.

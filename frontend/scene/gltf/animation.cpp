@@ -89,14 +89,12 @@ Sampler read_sampler(const tg::Model& model, std::size_t animation_index, std::s
     return sampler;
 }
 
-// True for a translation, rotation or scale channel on a TRS node; false,
-// with a warning once per kind, for the channels blurcull ignores.
+// True for a translation, rotation or scale channel on a TRS node; false
+// for weights (morph.hpp reads those) and, with a warning once per kind,
+// for the channels blurcull ignores.
 bool channel_applies(const tg::AnimationChannel& channel, const NodeTransform& transform, Diagnostics& diagnostics) {
     const std::string& path = channel.target_path;
-    if (path == "weights") {
-        diagnostics.warn_once("weights", "morph target weight animation is ignored");
-        return false;
-    }
+    if (path == "weights") return false;  // morph weights: morph.hpp
     if (path != "translation" && path != "rotation" && path != "scale") {
         diagnostics.warn_once("path " + path, "animation path '" + path + "' is ignored");
         return false;

@@ -1,8 +1,9 @@
-// glTF 2.0 (.gltf / .glb) scenes for blurcull: node animation and skinning
-// are sampled at shutter open and close, giving every vertex its two world
-// positions; an animated camera node gives view_open / view_close.
-// The loader's steps live beside this header: parse, validate, accessors,
-// nodes, animation, skin, meshes, camera (docs/scenes.md).
+// glTF 2.0 (.gltf / .glb) scenes for blurcull: node animation, morph target
+// weights and skinning are sampled at shutter open and close, giving every
+// vertex its two world positions; an animated camera node gives view_open /
+// view_close. The loader's steps live beside this header: parse,
+// conformance, validate, accessors, nodes, animation, morph, skin, meshes,
+// camera (docs/scenes.md).
 #pragma once
 
 #include "scene/scene.hpp"
@@ -30,11 +31,17 @@ struct GltfOptions {
     // distance means "the view depth of the scene's bounding-box centre".
     float lens_radius = 0.0f;
     float focus_distance = -1.0f;
+    // Linear motion segments over the shutter (docs/reference-renderer.md,
+    // "The motion model"): K >= 1 samples the animation at K + 1 times;
+    // 0 = auto, K from the largest rotation so the chord stays within a
+    // quarter pixel at an image image_height pixels high.
+    int motion_segments = 1;
+    int image_height = 480;
 };
 
 // Loads and validates (validate_scene) the file. Throws SceneError
 // ("<path>: <problem>") for anything it cannot load. Non-fatal oddities
-// (points/lines primitives, non-finite positions, morph targets, ...) go to
+// (points/lines primitives, non-finite positions, unread extensions, ...) go to
 // `warn`, one "<path>: warning: ..." line per kind; an empty sink drops them.
 Scene load_gltf_scene(const std::string& path, const GltfOptions& options, const WarningSink& warn = {});
 

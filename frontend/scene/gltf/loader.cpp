@@ -4,6 +4,8 @@
 #include "scene/gltf/camera.hpp"
 #include "scene/gltf/diagnostics.hpp"
 #include "scene/gltf/meshes.hpp"
+#include "scene/gltf/morph.hpp"
+#include "scene/gltf/motion_times.hpp"
 #include "scene/gltf/nodes.hpp"
 #include "scene/gltf/parse.hpp"
 #include "scene/gltf/validate.hpp"
@@ -30,6 +32,10 @@ void check_options(const GltfOptions& o, const Diagnostics& diagnostics) {
         diagnostics.fail("lens radius " + std::to_string(o.lens_radius) + " must be finite and non-negative");
     }
     if (!std::isfinite(o.focus_distance)) diagnostics.fail("focus distance is not finite");
+    if (o.motion_segments < 0 || o.motion_segments > max_motion_segments) {
+        diagnostics.fail("motion segments " + std::to_string(o.motion_segments) + " must be 0 (auto) or 1 to " +
+                         std::to_string(max_motion_segments));
+    }
 }
 
 // World matrices of every node at animation time t.
@@ -55,12 +61,28 @@ Scene build_scene(const std::string& path, const GltfOptions& options, const War
     NodePoses poses;
     poses.open = pose_at(model, tree, samplers, options, t_open, diagnostics);
     poses.close = pose_at(model, tree, samplers, options, t_close, diagnostics);
+    poses.weights_open = morph_weights(model, samplers, options.animation_index, t_open, diagnostics);
+    poses.weights_close = morph_weights(model, samplers, options.animation_index, t_close, diagnostics);
 
     Scene scene;
     scene.name = stem(path);
     add_mesh_instances(model, rendered, poses, scene, diagnostics);
     if (scene.triangles.empty()) diagnostics.fail("no triangles to render");
     setup_camera(model, rendered, poses, options, scene, diagnostics);
+
+    // Motion segments: the same steps at the interior times.
+    const PosesAt poses_at = [&](float t) {
+        NodePoses at;
+        at.open = pose_at(model, tree, samplers, options, t, diagnostics);
+        at.close = at.open;
+        at.weights_open = morph_weights(model, samplers, options.animation_index, t, diagnostics);
+        at.weights_close = at.weights_open;
+        return at;
+    };
+    const int segments = options.motion_segments == 0
+                             ? auto_motion_segments(model, rendered, poses_at, options, t_open, t_close, scene, diagnostics)
+                             : options.motion_segments;
+    add_interior_times(model, rendered, poses_at, options, t_open, t_close, segments, scene, diagnostics);
     return scene;
 }
 

@@ -1,6 +1,7 @@
 #include "scene/gltf/meshes.hpp"
 
 #include "scene/gltf/accessors.hpp"
+#include "scene/gltf/morph.hpp"
 #include "scene/gltf/skin.hpp"
 #include "scene/gltf/specular_material.hpp"
 #include "scene/scene_builder.hpp"
@@ -98,6 +99,15 @@ bool all_finite(const std::vector<glm::vec3>& open, const std::vector<glm::vec3>
     return true;
 }
 
+// m * (x, y, z, 1) for every vertex of `raw` (x y z per vertex).
+void transform_positions(const glm::mat4& m, const std::vector<double>& raw, std::vector<glm::vec3>& out) {
+    for (std::size_t v = 0; v < out.size(); ++v) {
+        const glm::vec4 p(static_cast<float>(raw[3 * v]), static_cast<float>(raw[3 * v + 1]),
+                          static_cast<float>(raw[3 * v + 2]), 1.0f);
+        out[v] = glm::vec3(m * p);
+    }
+}
+
 class MeshInstancer {
 public:
     MeshInstancer(const tg::Model& model, const NodePoses& poses, Scene& scene, Diagnostics& diagnostics)
@@ -121,7 +131,6 @@ private:
             diagnostics_.warn_once("no position", name + " has no POSITION attribute; skipped");
             return;
         }
-        if (!primitive.targets.empty()) diagnostics_.warn_once("morph", "morph targets are ignored");
         const int position_accessor = position_attribute->second;
         if (model_.accessors[static_cast<std::size_t>(position_accessor)].type != TINYGLTF_TYPE_VEC3) {
             diagnostics_.fail(name + " POSITION accessor " + std::to_string(position_accessor) + " is not VEC3");
@@ -148,23 +157,21 @@ private:
         append_mesh(scene_, open, close, triangles, material_for(primitive.material));
     }
 
-    // Skinning when the node has a skin and the primitive has joints, the
-    // node's world matrix otherwise.
+    // glTF's order: morph targets (morph.hpp), then skinning when the node
+    // has a skin and the primitive has joints, else the node's world matrix.
     void world_positions(int node_index, const tg::Primitive& primitive, const std::vector<double>& raw,
                          const std::string& name, std::vector<glm::vec3>& open, std::vector<glm::vec3>& close) {
-        const tg::Node& node = model_.nodes[static_cast<std::size_t>(node_index)];
+        const auto node_slot = static_cast<std::size_t>(node_index);
+        const tg::Node& node = model_.nodes[node_slot];
+        const MorphedPositions morphed = morphed_positions(
+            model_, primitive, raw, poses_.weights_open[node_slot], poses_.weights_close[node_slot], name, diagnostics_);
         if (node.skin >= 0 && primitive.attributes.count("JOINTS_0") && primitive.attributes.count("WEIGHTS_0") &&
-            skin_vertices(model_, poses_, raw, node, primitive, name, open, close, diagnostics_)) {
+            skin_vertices(model_, poses_, morphed.open, morphed.close, node, primitive, name, open, close,
+                          diagnostics_)) {
             return;
         }
-        const glm::mat4& m0 = poses_.open[static_cast<std::size_t>(node_index)];
-        const glm::mat4& m1 = poses_.close[static_cast<std::size_t>(node_index)];
-        for (std::size_t v = 0; v < open.size(); ++v) {
-            const glm::vec4 p(static_cast<float>(raw[3 * v]), static_cast<float>(raw[3 * v + 1]),
-                              static_cast<float>(raw[3 * v + 2]), 1.0f);
-            open[v] = glm::vec3(m0 * p);
-            close[v] = glm::vec3(m1 * p);
-        }
+        transform_positions(poses_.open[node_slot], morphed.open, open);
+        transform_positions(poses_.close[node_slot], morphed.close, close);
     }
 
     // The scene material of a glTF material index (-1: the grey "default"),

@@ -25,10 +25,13 @@ struct NodeTransform {
     glm::mat4 local() const;
 };
 
-// World matrix of every node at the two shutter ends.
+// World matrix of every node at the two shutter ends, and its morph target
+// weights there (empty for a node without morph targets; morph.hpp).
 struct NodePoses {
     std::vector<glm::mat4> open;
     std::vector<glm::mat4> close;
+    std::vector<std::vector<float>> weights_open;
+    std::vector<std::vector<float>> weights_close;
 };
 
 // The nodes of the default scene (else scene 0, else every parentless node),

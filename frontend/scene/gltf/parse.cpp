@@ -1,5 +1,6 @@
 #include "scene/gltf/parse.hpp"
 
+#include "scene/gltf/conformance.hpp"
 #include "scene/scene_name.hpp"
 
 #include <climits>
@@ -39,11 +40,59 @@ std::string one_line(const std::string& text) {
     return out;
 }
 
-// Images are irrelevant to blurcull (flat base colours only): skip decoding,
-// so a broken or exotic texture never stops a scene from loading.
-bool ignore_image(tg::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int,
-                  void*) {
+// Images are kept encoded (as_is): decoding is the shading side's job, so a
+// broken or exotic image never stops a scene from loading. tinygltf hands
+// an image in a buffer view over without checking the view against its
+// buffer; `user_data` is the model being filled, whose views come first.
+bool keep_encoded_image(tg::Image* image, const int, std::string*, std::string*, int, int,
+                        const unsigned char* bytes, int size, void* user_data) {
+    if (size <= 0) return true;
+    if (image->bufferView >= 0) {
+        const auto* model = static_cast<const tg::Model*>(user_data);
+        const tg::BufferView& view = model->bufferViews[static_cast<std::size_t>(image->bufferView)];
+        const std::size_t buffer_size = model->buffers[static_cast<std::size_t>(view.buffer)].data.size();
+        if (view.byteOffset > buffer_size || view.byteLength > buffer_size - view.byteOffset) return true;
+    }
+    image->image.assign(bytes, bytes + size);
+    image->as_is = true;
     return true;
+}
+
+// tinygltf's own line for an image file it could not read (a warning only
+// for images: buffers are required, so their failures are errors);
+// image_warnings says it better, once per image.
+bool is_image_file_warning(const std::string& line) {
+    return line.rfind("Failed to load external 'uri' for image[", 0) == 0 ||
+           line.rfind("File not found : ", 0) == 0 || line.rfind("File read error : ", 0) == 0 ||
+           line.rfind("File is empty : ", 0) == 0;
+}
+
+std::string without_image_file_warnings(const std::string& text) {
+    std::string kept;
+    std::size_t start = 0;
+    while (start < text.size()) {
+        std::size_t end = text.find('\n', start);
+        if (end == std::string::npos) end = text.size();
+        const std::string line = text.substr(start, end - start);
+        if (!is_image_file_warning(line)) kept += line + "\n";
+        start = end + 1;
+    }
+    return kept;
+}
+
+// An image whose bytes could not be read (a missing external file, or a
+// buffer view outside its buffer) warns once; its textures are left to
+// fall back to their factors.
+void image_warnings(const tg::Model& model, Diagnostics& diagnostics) {
+    for (std::size_t i = 0; i < model.images.size(); ++i) {
+        const tg::Image& image = model.images[i];
+        if (!image.image.empty()) continue;
+        const std::string source = image.uri.empty() ? "buffer view " + std::to_string(image.bufferView)
+                                                     : "'" + Diagnostics::quoted(image.uri) + "'";
+        diagnostics.warn_once("image " + std::to_string(i), "image " + std::to_string(i) + " (" + source +
+                                                               ") cannot be read; its textures fall back to "
+                                                               "their factors");
+    }
 }
 
 std::vector<unsigned char> read_bytes(const Diagnostics& diagnostics) {
@@ -64,7 +113,10 @@ void check_glb_header(const std::vector<unsigned char>& bytes, const Diagnostics
     };
     if (bytes.size() < 20) diagnostics.fail("GLB file is shorter than its 20-byte header");
     if (std::memcmp(bytes.data(), "glTF", 4) != 0) diagnostics.fail("GLB file does not start with 'glTF'");
-    if (u32(4) != 2) diagnostics.fail("GLB version " + std::to_string(u32(4)) + " is not 2");
+    if (u32(4) != 2) {
+        diagnostics.fail("GLB container version " + std::to_string(u32(4)) +
+                         " is not supported (blurcull reads glTF 2.x, GLB version 2)");
+    }
     if (u32(8) > bytes.size()) {
         diagnostics.fail("GLB header says " + std::to_string(u32(8)) + " bytes but the file has " +
                          std::to_string(bytes.size()));
@@ -83,7 +135,7 @@ tg::Model parse_file(Diagnostics& diagnostics) {
 
     tg::Model model;
     tg::TinyGLTF parser;
-    parser.SetImageLoader(ignore_image, nullptr);
+    parser.SetImageLoader(keep_encoded_image, &model);
     std::string error;
     std::string warning;
     bool ok = false;
@@ -96,10 +148,14 @@ tg::Model parse_file(Diagnostics& diagnostics) {
                                         length, directory_of(path));
     }
     if (!ok) {
+        check_declared_version(model, diagnostics);
         const std::string reason = one_line(error.empty() ? warning : error);
         diagnostics.fail("cannot parse glTF: " + (reason.empty() ? std::string("unknown error") : reason));
     }
-    if (!warning.empty()) diagnostics.warn_once("tinygltf", one_line(warning));
+    check_conformance(model, diagnostics);
+    const std::string other_warnings = one_line(without_image_file_warnings(warning));
+    if (!other_warnings.empty()) diagnostics.warn_once("tinygltf", other_warnings);
+    image_warnings(model, diagnostics);
     return model;
 }
 

@@ -70,13 +70,19 @@ void blend_set(const tg::Model& model, const tg::Skin& skin, int joints_accessor
     }
 }
 
+// Vertex v of x y z positions as a point.
+glm::vec4 vertex(const std::vector<double>& raw, std::size_t v) {
+    return glm::vec4(static_cast<float>(raw[3 * v]), static_cast<float>(raw[3 * v + 1]),
+                     static_cast<float>(raw[3 * v + 2]), 1.0f);
+}
+
 }  // namespace
 
-bool skin_vertices(const tg::Model& model, const NodePoses& poses, const std::vector<double>& raw,
-                   const tg::Node& node, const tg::Primitive& primitive, const std::string& name,
+bool skin_vertices(const tg::Model& model, const NodePoses& poses, const std::vector<double>& raw_open,
+                   const std::vector<double>& raw_close, const tg::Node& node, const tg::Primitive& primitive, const std::string& name,
                    std::vector<glm::vec3>& open, std::vector<glm::vec3>& close, Diagnostics& diagnostics) {
     const tg::Skin& skin = model.skins[static_cast<std::size_t>(node.skin)];
-    const std::size_t vertex_count = raw.size() / 3;
+    const std::size_t vertex_count = raw_open.size() / 3;
     const std::vector<glm::mat4> joints_open = joint_matrices(model, skin, poses.open, diagnostics);
     const std::vector<glm::mat4> joints_close = joint_matrices(model, skin, poses.close, diagnostics);
     Blend blend{std::vector<glm::mat4>(vertex_count, glm::mat4(0.0f)),
@@ -90,17 +96,17 @@ bool skin_vertices(const tg::Model& model, const NodePoses& poses, const std::ve
     }
     bool any_weight = false;
     for (std::size_t v = 0; v < vertex_count; ++v) {
-        const glm::vec4 p(static_cast<float>(raw[3 * v]), static_cast<float>(raw[3 * v + 1]),
-                          static_cast<float>(raw[3 * v + 2]), 1.0f);
+        const glm::vec4 p0 = vertex(raw_open, v), p1 = vertex(raw_close, v);
         if (blend.weight_sum[v] > 0.0f) {
             any_weight = true;
             // Exporters round weights; renormalise instead of shrinking.
-            open[v] = glm::vec3(blend.open[v] * p) / blend.weight_sum[v];
-            close[v] = glm::vec3(blend.close[v] * p) / blend.weight_sum[v];
+            open[v] = glm::vec3(blend.open[v] * p0) / blend.weight_sum[v];
+            close[v] = glm::vec3(blend.close[v] * p1) / blend.weight_sum[v];
         } else {
             diagnostics.warn_once("unweighted " + name,
                                   name + " has vertices without skin weights; they are left untransformed");
-            open[v] = close[v] = glm::vec3(p);
+            open[v] = glm::vec3(p0);
+            close[v] = glm::vec3(p1);
         }
     }
     return any_weight;

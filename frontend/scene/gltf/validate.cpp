@@ -191,6 +191,13 @@ void validate_primitives(const tg::Model& model, const Diagnostics& diagnostics)
             for (const auto& attribute : primitive.attributes) {
                 check_accessor_index(model, attribute.second, name + " attribute " + attribute.first, diagnostics);
             }
+            for (std::size_t k = 0; k < primitive.targets.size(); ++k) {
+                for (const auto& attribute : primitive.targets[k]) {
+                    check_accessor_index(model, attribute.second,
+                                         name + " morph target " + std::to_string(k) + " " + attribute.first,
+                                         diagnostics);
+                }
+            }
             if (primitive.indices != -1) check_accessor_index(model, primitive.indices, name + " indices", diagnostics);
             if (primitive.material < -1 ||
                 (primitive.material >= 0 && static_cast<std::size_t>(primitive.material) >= model.materials.size())) {

@@ -90,6 +90,232 @@ def glb(model):
     return struct.pack("<4sII", b"glTF", 2, 12 + len(body)) + body
 
 
+def add_accessor(model, payload, component_type, count, type_, normalized=False, stride=None):
+    """Appends a buffer holding `payload`, a view over it and an accessor; returns its index."""
+    buffer_index = len(model["buffers"])
+    model["buffers"].append({"byteLength": len(payload), "uri": data_uri(payload)})
+    view = {"buffer": buffer_index, "byteOffset": 0, "byteLength": len(payload)}
+    if stride is not None:
+        view["byteStride"] = stride
+    model["bufferViews"].append(view)
+    accessor = {"bufferView": len(model["bufferViews"]) - 1, "componentType": component_type, "count": count,
+                "type": type_}
+    if normalized:
+        accessor["normalized"] = True
+    model["accessors"].append(accessor)
+    return len(model["accessors"]) - 1
+
+
+def add_sparse_accessor(model, count, indices, values):
+    """A float VEC3 accessor without a buffer view (zeros) whose elements at
+    `indices` (uint16) are `values`; returns its index."""
+    index_bytes = struct.pack("<%dH" % len(indices), *indices)
+    index_bytes += b"\0" * (-len(index_bytes) % 4)
+    payload = index_bytes + floats([c for v in values for c in v])
+    buffer_index = len(model["buffers"])
+    model["buffers"].append({"byteLength": len(payload), "uri": data_uri(payload)})
+    first_view = len(model["bufferViews"])
+    model["bufferViews"] += [
+        {"buffer": buffer_index, "byteOffset": 0, "byteLength": 2 * len(indices)},
+        {"buffer": buffer_index, "byteOffset": len(index_bytes), "byteLength": 12 * len(values)},
+    ]
+    model["accessors"].append({
+        "componentType": 5126, "count": count, "type": "VEC3",
+        "sparse": {"count": len(indices),
+                   "indices": {"bufferView": first_view, "componentType": 5123},
+                   "values": {"bufferView": first_view + 1}}})
+    return len(model["accessors"]) - 1
+
+
+def add_weights_animation(model, node, times, weights, interpolation="LINEAR"):
+    """Appends an animation of node `node`'s morph weights (one list per key)."""
+    times_accessor = add_accessor(model, floats(times), 5126, len(times), "SCALAR")
+    flat = [w for key in weights for w in key]
+    values_accessor = add_accessor(model, floats(flat), 5126, len(flat), "SCALAR")
+    model.setdefault("animations", []).append({
+        "samplers": [{"input": times_accessor, "output": values_accessor, "interpolation": interpolation}],
+        "channels": [{"sampler": 0, "target": {"node": node, "path": "weights"}}],
+    })
+    return model
+
+
+# Morph targets of the triangle (tests/test_frontend_gltf_corpus.cpp repeats
+# these numbers to compute the expected positions on its own).
+MORPH_DENSE = [(0.0, 0.0, 1.0), (0.0, 0.0, 1.0), (0.0, 0.0, 1.0)]
+MORPH_SPARSE_INDEX = 1
+MORPH_SPARSE = (0.0, 2.0, 0.0)
+
+
+def morph_model():
+    """The triangle with two morph targets: a dense float one (all +z) and a
+    sparse one (no buffer view; vertex 1 moves +2 y); mesh weights 0.5, 0."""
+    model = triangle_model()
+    dense = add_accessor(model, floats([c for p in MORPH_DENSE for c in p]), 5126, 3, "VEC3")
+    sparse = add_sparse_accessor(model, 3, [MORPH_SPARSE_INDEX], [MORPH_SPARSE])
+    model["meshes"][0]["primitives"][0]["targets"] = [{"POSITION": dense}, {"POSITION": sparse}]
+    model["meshes"][0]["weights"] = [0.5, 0.0]
+    return model
+
+
+def quantized_model():
+    """KHR_mesh_quantization: the triangle four times, positions stored as
+    SHORT (unnormalized, node scale 1/1000 dequantises), normalized BYTE,
+    normalized UNSIGNED_SHORT and UNSIGNED_BYTE (unnormalized, translated);
+    the SHORT primitive has a normalized SHORT morph target."""
+    model = triangle_model()
+    model["extensionsUsed"] = ["KHR_mesh_quantization"]
+    model["extensionsRequired"] = ["KHR_mesh_quantization"]
+    # Vertex attributes are aligned to 4 bytes: 3 shorts padded to 8, 3 bytes to 4.
+    shorts = b"".join(struct.pack("<3hxx", *v) for v in [(0, 0, 0), (1000, 0, 0), (0, 1000, 0)])
+    bytes_ = b"".join(struct.pack("<3bx", *v) for v in [(0, 0, 0), (127, 0, 0), (0, -127, 0)])
+    ushorts = b"".join(struct.pack("<3Hxx", *v) for v in [(0, 0, 0), (65535, 0, 0), (0, 65535, 0)])
+    ubytes = b"".join(struct.pack("<3Bx", *v) for v in [(0, 0, 0), (2, 0, 0), (0, 2, 0)])
+    target = b"".join(struct.pack("<3hxx", *v) for v in [(0, 0, 32767), (0, 0, 32767), (0, 0, 32767)])
+    position_short = add_accessor(model, shorts, 5122, 3, "VEC3", stride=8)
+    position_byte = add_accessor(model, bytes_, 5120, 3, "VEC3", normalized=True, stride=4)
+    position_ushort = add_accessor(model, ushorts, 5123, 3, "VEC3", normalized=True, stride=8)
+    position_ubyte = add_accessor(model, ubytes, 5121, 3, "VEC3", stride=4)
+    morph_target = add_accessor(model, target, 5122, 3, "VEC3", normalized=True, stride=8)
+    model["meshes"] = [
+        {"primitives": [{"attributes": {"POSITION": position_short}, "targets": [{"POSITION": morph_target}]}],
+         "weights": [0.5]},
+        {"primitives": [{"attributes": {"POSITION": position_byte}}]},
+        {"primitives": [{"attributes": {"POSITION": position_ushort}}]},
+        {"primitives": [{"attributes": {"POSITION": position_ubyte}}]},
+    ]
+    model["nodes"] = [
+        {"mesh": 0, "scale": [0.001, 0.001, 0.001]},
+        {"mesh": 1, "translation": [2.0, 0.0, 0.0]},
+        {"mesh": 2, "translation": [4.0, 0.0, 0.0]},
+        {"mesh": 3, "translation": [6.0, 0.0, 0.0], "scale": [0.5, 0.5, 0.5]},
+    ]
+    model["scenes"][0]["nodes"] = [0, 1, 2, 3]
+    return model
+
+
+def morph_skinned_model():
+    """A morph target (+1 x), skinned to one joint that the animation turns
+    90 degrees about z and moves +1 y over 1 s; glTF's order (morph, then
+    skin, then node) turns the morph offset into +y."""
+    model = triangle_model()
+    target = add_accessor(model, floats([1.0, 0.0, 0.0] * 3), 5126, 3, "VEC3")
+    joints = add_accessor(model, struct.pack("<12B", *([0, 0, 0, 0] * 3)), 5121, 3, "VEC4")
+    weights = add_accessor(model, floats([1.0, 0.0, 0.0, 0.0] * 3), 5126, 3, "VEC4")
+    primitive = model["meshes"][0]["primitives"][0]
+    primitive["attributes"].update({"JOINTS_0": joints, "WEIGHTS_0": weights})
+    primitive["targets"] = [{"POSITION": target}]
+    model["meshes"][0]["weights"] = [1.0]
+    # The skinned node's own transform is ignored (glTF); the joint is node 1.
+    model["nodes"] = [{"mesh": 0, "skin": 0, "translation": [50.0, 0.0, 0.0]}, {}]
+    model["scenes"][0]["nodes"] = [0, 1]
+    model["skins"] = [{"joints": [1]}]
+    times = add_accessor(model, floats([0.0, 1.0]), 5126, 2, "SCALAR")
+    half = math.sqrt(0.5)
+    rotations = add_accessor(model, floats([0.0, 0.0, 0.0, 1.0, 0.0, 0.0, half, half]), 5126, 2, "VEC4")
+    translations = add_accessor(model, floats([0.0, 0.0, 0.0, 0.0, 1.0, 0.0]), 5126, 2, "VEC3")
+    model["animations"] = [{
+        "samplers": [{"input": times, "output": rotations}, {"input": times, "output": translations}],
+        "channels": [{"sampler": 0, "target": {"node": 1, "path": "rotation"}},
+                     {"sampler": 1, "target": {"node": 1, "path": "translation"}}],
+    }]
+    return model
+
+
+def conformance_files():
+    """issue 14 item 6: versions, required extensions, quantization, images."""
+    # A glTF 1.0 file (objects keyed by id instead of arrays).
+    gltf1 = {
+        "asset": {"version": "1.0"},
+        "scene": "defaultScene",
+        "scenes": {"defaultScene": {"nodes": ["node0"]}},
+        "nodes": {"node0": {"meshes": ["mesh0"]}},
+        "meshes": {"mesh0": {"primitives": [{"attributes": {"POSITION": "accessor0"}, "mode": 4}]}},
+        "accessors": {"accessor0": {"bufferView": "view0", "byteOffset": 0, "componentType": 5126, "count": 3,
+                                    "type": "VEC3"}},
+        "bufferViews": {"view0": {"buffer": "buffer0", "byteOffset": 0, "byteLength": 36}},
+        "buffers": {"buffer0": {"byteLength": 36, "uri": data_uri(floats([0, 0, 0, 1, 0, 0, 0, 1, 0]))}},
+    }
+    write("bad_version_1.gltf", gltf1)
+    for name, asset in [("bad_version_3.gltf", {"version": "3.0"}),
+                        ("bad_version_text.gltf", {"version": "two"}),
+                        ("bad_min_version.gltf", {"version": "2.1", "minVersion": "2.1"}),
+                        ("version_2_1.gltf", {"version": "2.1"})]:
+        model = triangle_model()
+        model["asset"] = asset
+        write(name, model)
+    data = bytearray(glb(triangle_model()))
+    struct.pack_into("<I", data, 4, 1)
+    with open("bad_glb_version_1.glb", "wb") as out:
+        out.write(bytes(data))
+
+    model = triangle_model()
+    model["extensionsUsed"] = ["KHR_draco_mesh_compression"]
+    model["extensionsRequired"] = ["KHR_draco_mesh_compression"]
+    model["meshes"][0]["primitives"][0]["extensions"] = {
+        "KHR_draco_mesh_compression": {"bufferView": 0, "attributes": {"POSITION": 0}}}
+    write("bad_required_draco.gltf", model)
+    model = triangle_model()
+    model["extensionsUsed"] = ["EXT_blurcull_unknown"]
+    write("unknown_extension_used.gltf", model)
+    # Names from the file stay on one line: a newline shows as '?', a long
+    # name is cut.
+    model = triangle_model()
+    model["extensionsUsed"] = ["EXT_line\nbreak", "EXT_" + "x" * 300]
+    write("extension_names_odd.gltf", model)
+    model = triangle_model()
+    model["extensionsRequired"] = ["EXT_line\nbreak"]
+    write("bad_required_newline.gltf", model)
+
+    write("quantized.gltf", quantized_model())
+
+    # A base colour texture whose image file is missing: warning, factor kept.
+    model = triangle_model()
+    model["images"] = [{"uri": "missing_texture.png"}]
+    model["textures"] = [{"source": 0}]
+    model["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = {"index": 0}
+    write("missing_texture.gltf", model)
+    # An image file of 0 bytes (a truncated download): the same fallback.
+    with open("empty_texture.png", "wb"):
+        pass
+    model["images"] = [{"uri": "empty_texture.png"}]
+    write("empty_texture.gltf", model)
+
+
+def morph_files():
+    """issue 14 item 5: morph target animation as motion."""
+    # Weights over keys 0, 1, 2 s: (0, 0) -> (1, 0.5) -> (1, 1), LINEAR.
+    write("morph_animated.gltf",
+          add_weights_animation(morph_model(), 0, [0.0, 1.0, 2.0], [[0.0, 0.0], [1.0, 0.5], [1.0, 1.0]]))
+    # No animation: node 0 has its own weights (0, 1), node 1 uses the mesh's (0.5, 0).
+    model = morph_model()
+    model["nodes"] = [{"mesh": 0, "weights": [0.0, 1.0]}, {"mesh": 0, "translation": [5.0, 0.0, 0.0]}]
+    model["scenes"][0]["nodes"] = [0, 1]
+    write("morph_defaults.gltf", model)
+    write("morph_skinned.gltf", morph_skinned_model())
+    # The same weights with the node scaled 2x and translated 0 -> 10 x over
+    # 2 s by a second channel of the same animation: morph, then the node.
+    model = add_weights_animation(morph_model(), 0, [0.0, 1.0, 2.0], [[0.0, 0.0], [1.0, 0.5], [1.0, 1.0]])
+    model["nodes"][0]["scale"] = [2.0, 2.0, 2.0]
+    times = add_accessor(model, floats([0.0, 2.0]), 5126, 2, "SCALAR")
+    moves = add_accessor(model, floats([0.0, 0.0, 0.0, 10.0, 0.0, 0.0]), 5126, 2, "VEC3")
+    animation = model["animations"][0]
+    animation["samplers"].append({"input": times, "output": moves})
+    animation["channels"].append({"sampler": 1, "target": {"node": 0, "path": "translation"}})
+    write("morph_node_animated.gltf", model)
+
+    model = morph_model()
+    model["nodes"][0]["weights"] = [1.0, 0.0, 0.0]
+    write("bad_morph_node_weights.gltf", model)
+    write("bad_morph_channel.gltf", add_weights_animation(morph_model(), 0, [0.0, 1.0], [[0.0], [1.0]]))
+    model = morph_model()
+    model["accessors"][2]["count"] = 2
+    model["bufferViews"][2]["byteLength"] = 24
+    write("bad_morph_target_count.gltf", model)
+    model = morph_model()
+    model["meshes"][0]["primitives"].append({"attributes": {"POSITION": 0}})
+    write("bad_morph_primitives.gltf", model)
+
+
 def main():
     # --- valid files ---
     write("triangle.gltf", triangle_model())
@@ -250,6 +476,9 @@ def main():
     model = triangle_model()
     model["nodes"] = [{"mesh": 0, "children": [0]}]
     write("bad_node_self_child.gltf", model)
+
+    conformance_files()
+    morph_files()
 
 
 if __name__ == "__main__":
