@@ -292,6 +292,9 @@ std::vector<kernelf::LayerHit> trace_layers_on_host(const kernelf::LayerView& vi
 RenderResult render_dof_secondary(const Scene& scene, const RenderSettings& settings, const SecondaryOptions& options,
                                   SecondaryStats* stats_out, const LayerTracer* tracer, const PrimaryPass* primary_pass) {
     validate_secondary_options(options);
+    // The bounce resolves a hit with vertices linear over the shutter.
+    if (!scene.position_at.empty())
+        throw std::invalid_argument("dof-secondary: motion segments (K > 1) are not supported yet; use 1 segment");
     const Clock::time_point start = Clock::now();
     std::vector<std::uint32_t> ids;
     RenderSettings primary_settings = settings;
