@@ -293,7 +293,7 @@ TEST_CASE("methods: dispatch and bad input") {
     CHECK(same_pixels(render_with_method(scene, settings).image, render_interval(scene, settings).image));
     // An unknown name is refused where names become methods.
     CHECK_THROWS_WITH_AS(parse_render_method("stratified"),
-                         "unknown render method 'stratified' (valid: stochastic, interleave, interval, accum)",
+                         "unknown render method 'stratified' (valid: stochastic, interleave, interval, accum, dof-secondary)",
                          std::invalid_argument);
     CHECK(parse_render_method("accum") == RenderMethod::accum);
     settings.method = RenderMethod::interleave;
