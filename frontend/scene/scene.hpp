@@ -12,6 +12,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -72,6 +73,11 @@ struct Scene {
     // What a ray that leaves the scene sees: BC_ENVIRONMENT_NONE (the
     // background colour) or BC_ENVIRONMENT_SKY (render/common/optics_shared.h).
     int environment = 0;
+    // Where the scene's animation clock ends (scene/load_scene.hpp,
+    // frame_shutter_interval): for glTF the last keyframe time, in seconds,
+    // of the animation used (0 without one); a built-in scene's linear
+    // motion never ends (infinity).
+    double animation_end = std::numeric_limits<double>::infinity();
 
     // True when the maker that returned this scene validated it, so the
     // backends need not check it again. Code that edits such a scene in a

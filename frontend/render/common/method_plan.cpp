@@ -199,16 +199,20 @@ InterleaveTupleCells interleave_tuple_cells(const MethodPlan& plan, int width, i
 Image resolve_method_samples(const Scene& scene, const MethodPlan& plan, const std::vector<std::uint32_t>& ids,
                              int width, int height) {
     Image image(width, height);
+    image.coverage.resize(image.pixels.size());
     const int per_pixel = plan.per_pixel;
     for (int py = 0; py < image.height; ++py) {
         for (int px = 0; px < image.width; ++px) {
             const std::size_t base = image.index(px, py) * static_cast<std::size_t>(per_pixel);
             glm::vec3 sum(0.0f);
+            std::uint32_t covered = 0;
             for (int j = 0; j < per_pixel; ++j) {
                 const std::uint32_t id = ids[base + static_cast<std::size_t>(j)];
                 sum += id == no_sample_hit ? scene.background : plan.colours[id];
+                covered += id != no_sample_hit;
             }
             image.at(px, py) = resolve_box(sum, per_pixel);
+            image.coverage[image.index(px, py)] = resolve_coverage(covered, per_pixel);
         }
     }
     return image;

@@ -478,15 +478,18 @@ private:
         for (int py = y0_; py <= y1_; ++py) {
             for (int px = x0_; px <= x1_; ++px) {
                 glm::vec3 sum(0.0f);
+                std::uint32_t covered = 0;
                 for (std::uint32_t j = 0; j < frame_.spp; ++j) {
                     const std::uint32_t id = hit_[slot(px, py, j)];
                     sum += id == none ? frame_.scene.background : frame_.colours[id];
+                    covered += id != none;
                     if (frame_.sample_ids != nullptr) {
                         const std::size_t pixel = static_cast<std::size_t>(py) * frame_.settings.width + px;
                         (*frame_.sample_ids)[pixel * frame_.spp + j] = id == none ? no_sample_hit : id;
                     }
                 }
                 image.at(px, py) = resolve_box(sum, frame_.settings.spp);
+                image.coverage[image.index(px, py)] = resolve_coverage(covered, frame_.settings.spp);
             }
         }
     }
@@ -565,6 +568,7 @@ RenderResult render_cpu_in(const Scene& scene, const RenderSettings& settings, c
 
     phase = Clock::now();
     result.image = Image(settings.width, settings.height);
+    result.image.coverage.resize(result.image.pixels.size());
     const FrameContext<Real> frame{scene,
                                    settings,
                                    model,

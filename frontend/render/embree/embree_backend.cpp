@@ -247,6 +247,7 @@ private:
         const auto spp = static_cast<std::uint32_t>(settings_.spp);
         std::uint64_t hits = 0;
         for (int px = 0; px < settings_.width; ++px) {
+            const std::uint64_t hits_before = hits;
             glm::vec3 sum(0.0f);
             for (std::uint32_t j = 0; j < spp; ++j) {
                 const std::size_t index = static_cast<std::size_t>(px) * spp + j;
@@ -265,6 +266,8 @@ private:
                 }
             }
             image_.at(px, py) = sum;
+            image_.coverage[image_.index(px, py)] =
+                resolve_coverage(static_cast<std::uint32_t>(hits - hits_before), settings_.spp);
         }
         return hits;
     }
@@ -337,6 +340,7 @@ RenderResult render_embree(const Scene& scene, const RenderSettings& settings, c
 
     phase_start = Clock::now();
     result.image = Image(settings.width, settings.height);
+    result.image.coverage.resize(result.image.pixels.size());
     RowTracer tracer(rtc_scene.get(), scene, model, colours, settings, options, result.image, start);
     trace_on_threads(tracer, thread_count, settings.height, settings.progress);
     device.check("tracing");

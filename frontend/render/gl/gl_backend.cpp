@@ -477,7 +477,12 @@ Image StochasticFrame::read_back(std::vector<std::uint32_t>* sample_ids) const {
     std::vector<glm::vec4> sums(pixels_);
     sum_buffer_.read(sums.data(), pixels_ * sizeof(glm::vec4));
     Image image(settings_.width, settings_.height);
-    for (std::size_t i = 0; i < pixels_; ++i) image.pixels[i] = resolve_box(glm::vec3(sums[i]), settings_.spp);
+    image.coverage.resize(pixels_);
+    for (std::size_t i = 0; i < pixels_; ++i) {
+        image.pixels[i] = resolve_box(glm::vec3(sums[i]), settings_.spp);
+        // .w counts the samples that hit (render_resolve.comp): exact in float up to 2^24.
+        image.coverage[i] = resolve_coverage(static_cast<std::uint32_t>(sums[i].w), settings_.spp);
+    }
     if (keep_ids_) {
         sample_ids->assign(pixels_ * spp_, no_triangle);
         id_buffer_.read(sample_ids->data(), sample_ids->size() * sizeof(std::uint32_t));

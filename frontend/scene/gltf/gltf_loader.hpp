@@ -37,6 +37,11 @@ struct GltfOptions {
     // quarter pixel at an image image_height pixels high.
     int motion_segments = 1;
     int image_height = 480;
+    // A frame of a sequence: the automatic camera (and a file camera's
+    // automatic focus) frames the scene over its whole animation, sampled at
+    // fixed times, instead of over this shutter, so that every frame has the
+    // same camera whatever frame range is rendered.
+    bool frame_whole_animation = false;
 };
 
 // Loads and validates (validate_scene) the file. Throws SceneError

@@ -46,6 +46,29 @@ std::vector<glm::mat4> pose_at(const tg::Model& model, const NodeTree& tree, con
     return world_matrices(tree, std::move(transforms));
 }
 
+// The bounds of the scene posed at `framing_samples` + 1 evenly spaced times
+// over [0, the animation's end]: the same for every frame of a sequence.
+SceneStats animation_framing(const tg::Model& model, const NodeTree& tree, const AnimationSamplers& samplers,
+                             const GltfOptions& options, const std::vector<int>& rendered, Diagnostics& diagnostics) {
+    constexpr int framing_samples = 16;
+    const float end = animation_end_time(samplers, options.animation_index);
+    SceneStats framing;
+    for (int k = 0; k <= framing_samples; ++k) {
+        const float t = end * static_cast<float>(k) / static_cast<float>(framing_samples);
+        NodePoses poses;
+        poses.open = pose_at(model, tree, samplers, options, t, diagnostics);
+        poses.close = poses.open;
+        poses.weights_open = morph_weights(model, samplers, options.animation_index, t, diagnostics);
+        poses.weights_close = poses.weights_open;
+        Scene probe;
+        add_mesh_instances(model, rendered, poses, probe, diagnostics);
+        const SceneStats stats = describe(probe);
+        framing.bounds_min = k == 0 ? stats.bounds_min : glm::min(framing.bounds_min, stats.bounds_min);
+        framing.bounds_max = k == 0 ? stats.bounds_max : glm::max(framing.bounds_max, stats.bounds_max);
+    }
+    return framing;
+}
+
 }  // namespace
 
 Scene build_scene(const std::string& path, const GltfOptions& options, const WarningSink& warn) {
@@ -66,9 +89,15 @@ Scene build_scene(const std::string& path, const GltfOptions& options, const War
 
     Scene scene;
     scene.name = stem(path);
+    scene.animation_end = animation_end_time(samplers, options.animation_index);
     add_mesh_instances(model, rendered, poses, scene, diagnostics);
     if (scene.triangles.empty()) diagnostics.fail("no triangles to render");
-    setup_camera(model, rendered, poses, options, scene, diagnostics);
+    if (options.frame_whole_animation) {
+        const SceneStats framing = animation_framing(model, tree, samplers, options, rendered, diagnostics);
+        setup_camera(model, rendered, poses, options, scene, diagnostics, &framing);
+    } else {
+        setup_camera(model, rendered, poses, options, scene, diagnostics);
+    }
 
     // Motion segments: the same steps at the interior times.
     const PosesAt poses_at = [&](float t) {
