@@ -285,14 +285,15 @@ TEST_CASE("every method is deterministic whatever the thread count") {
 
 TEST_CASE("methods: dispatch and bad input") {
     const Scene scene = blurred_scene();
-    CHECK(render_method_names() == std::vector<std::string>{"stochastic", "interleave", "interval", "accum"});
+    CHECK(render_method_names() ==
+          std::vector<std::string>{"stochastic", "interleave", "interval", "accum", "dof-secondary"});
     RenderSettings settings = settings_for(4, "stochastic");
     CHECK(same_pixels(render_with_method(scene, settings).image, render_cpu(scene, settings).image));
     settings.method = RenderMethod::interval;
     CHECK(same_pixels(render_with_method(scene, settings).image, render_interval(scene, settings).image));
     // An unknown name is refused where names become methods.
     CHECK_THROWS_WITH_AS(parse_render_method("stratified"),
-                         "unknown render method 'stratified' (valid: stochastic, interleave, interval, accum)",
+                         "unknown render method 'stratified' (valid: stochastic, interleave, interval, accum, dof-secondary)",
                          std::invalid_argument);
     CHECK(parse_render_method("accum") == RenderMethod::accum);
     settings.method = RenderMethod::interleave;

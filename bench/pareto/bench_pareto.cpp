@@ -50,7 +50,10 @@ const std::vector<std::string>& known_methods() {
     static const std::vector<std::string> names = [] {
         std::vector<std::string> list = {"stochastic-clip2", "stochastic-bbox"};
         for (const RenderMethodInfo& info : render_methods()) {
-            if (info.method != RenderMethod::stochastic) list.emplace_back(info.name);
+            // dof-secondary is the stochastic rasterizer plus bounces off mirrors,
+            // which these diffuse scenes do not have.
+            if (info.method != RenderMethod::stochastic && info.method != RenderMethod::dof_secondary)
+                list.emplace_back(info.name);
         }
         return list;
     }();

@@ -12,6 +12,11 @@
 #include "render/cpu/methods.hpp"
 #include "render/embree/embree_backend.hpp"
 #include "render/gl/gl_backend.hpp"
+#if BLURCULL_HAVE_GL
+#include "render/gl/gl_context.hpp"
+#include "render/gl/gl_layer_trace.hpp"
+#endif
+#include "render/secondary/dof_secondary.hpp"
 #include "scene/builtin_scenes.hpp"
 #include "scene/motion_segments.hpp"
 
@@ -75,6 +80,7 @@ struct RenderJob {
     CpuOptions cpu;
     GlOptions gl;
     EmbreeOptions embree;
+    SecondaryOptions secondary;
     OutputPattern output;
     ImageFormat format = ImageFormat::png;
     ExrPixelType exr_type = ExrPixelType::half;
@@ -93,6 +99,8 @@ struct SettingFlag {
 constexpr SettingFlag setting_flags[] = {
     {"image size", "--size"},           {"samples per pixel", "--spp"},    {"thread count", "--threads"},
     {"footprint", "--footprint"},       {"kernel precision", "--precision"}, {"cell_pixels", "--gl-cell"},
+    {"secondary layers", "--secondary-layers"}, {"clusters per facet", "--clusters-per-facet"},
+    {"secondary field of view", "--secondary-fov"}, {"layer size", "--layer-size"}, {"lens parts", "--lens-parts"},
 };
 
 // `error` with the flag of the setting it names in front ("--spp: interleave:
@@ -232,6 +240,14 @@ void refuse_unhonoured_options(const RenderCommand& command, Backend backend) {
         {"--gl-cell", command.gl_cell_option, backend_bit(Backend::gl)},
         {"--secondary", command.secondary_option, backend_bit(Backend::embree)},
     };
+    if (method.method != RenderMethod::dof_secondary) {
+        for (const CLI::Option* option : command.dof_secondary_options) {
+            if (option->count() > 0) {
+                throw std::invalid_argument(option->get_name() + ": only --method dof-secondary takes it (method " +
+                                            method.name + ")");
+            }
+        }
+    }
     for (const BackendOption& option : options) {
         if (option.option == nullptr || option.option->count() == 0) continue;
         if (!takes(option.backends, backend)) {
@@ -305,7 +321,42 @@ RenderJob set_up(const RenderCommand& command) {
 #if BLURCULL_HAVE_EMBREE
     job.embree.secondary = parse_embree_secondary(command.secondary);
 #endif
+    job.secondary = command.dof_secondary;
+    job.secondary.bounces = command.secondary_bounces == "exact"         ? SecondaryBounces::exact
+                            : command.secondary_bounces == "environment" ? SecondaryBounces::environment_only
+                                                                         : SecondaryBounces::image_space;
+    try {
+        validate_secondary_options(job.secondary);
+    } catch (const std::invalid_argument& error) {
+        throw naming_the_flag(error);
+    }
     return job;
+}
+
+// dof-secondary: on gl its image-space traces run in a compute pass of a
+// headless context (the rest of the method on the host, for now).
+RenderResult render_secondary(const RenderJob& job) {
+#if BLURCULL_HAVE_GL
+    if (job.backend == Backend::gl) {
+        // The GL rasterizer's per-sample winners (its own context), then the
+        // trace pass on a second context: each made current before its use.
+        GlRenderer rasterizer;
+        const PrimaryPass primary = [&](const RenderSettings& settings, std::vector<std::uint32_t>& ids) {
+            GlOptions options = job.gl;
+            options.keep_sample_ids = true;
+            return rasterizer.render(job.scene, settings, options, &ids);
+        };
+        const gl::HeadlessContext context = gl::HeadlessContext::create();
+        const GlLayerTracer gl_tracer(context);
+        const LayerTracer tracer = [&](const kernelf::LayerView& view, const std::vector<float>& depth, int layers,
+                                       float thickness, const std::vector<kernelf::LayerSegment>& segments) {
+            context.make_current();
+            return gl_tracer.trace(view, depth, layers, thickness, segments);
+        };
+        return render_dof_secondary(job.scene, job.settings, job.secondary, nullptr, &tracer, &primary);
+    }
+#endif
+    return render_dof_secondary(job.scene, job.settings, job.secondary);
 }
 
 // Loads the scene of `frame` (none: the single render's) into the job.
@@ -352,6 +403,7 @@ void keep_frames_in_animation(const RenderCommand& command, RenderJob& job) {
 // Renders on the job's backend with its method.
 RenderResult dispatch(const RenderJob& job) {
     try {
+        if (job.settings.method == RenderMethod::dof_secondary) return render_secondary(job);
         // choose_backend refused the backends this build does not have.
         switch (job.backend) {
 #if BLURCULL_HAVE_EMBREE
@@ -412,6 +464,11 @@ void print_json_summary(const RenderCommand& command, const RenderJob& job, cons
     nlohmann::ordered_json phases = nlohmann::ordered_json::object();
     for (const auto& [name, ms] : stats.ms_per_phase) phases[name] = ms;
     summary["ms_per_phase"] = phases;
+    if (!stats.counters.empty()) {
+        nlohmann::ordered_json counters = nlohmann::ordered_json::object();
+        for (const auto& [name, value] : stats.counters) counters[name] = value;
+        summary["counters"] = counters;
+    }
     summary["output"] = job.out_path;
     summary["format"] = job.format == ImageFormat::png ? "png" : "exr";
     summary["encoding"] = image_encoding(job.format, job.exr_type);
@@ -529,6 +586,26 @@ void RenderCommand::add_options(CLI::App& app) {
                                       "along the bounced pinhole ray, as the cpu and gl backends)")
                            ->check(CLI::IsMember({"bounce", "none"}))
                            ->capture_default_str();
+    dof_secondary_options = {
+        app.add_option("--secondary-layers", dof_secondary.layers,
+                       "dof-secondary: depth-peeled layers per cluster view")
+            ->check(CLI::Range(1, 8))->capture_default_str(),
+        app.add_option("--clusters-per-facet", dof_secondary.clusters_per_facet,
+                       "dof-secondary: k-means clusters per dodecahedron facet at most")
+            ->check(CLI::Range(1, 3))->capture_default_str(),
+        app.add_option("--secondary-fov", dof_secondary.fov_degrees,
+                       "dof-secondary: field of view of a cluster's virtual view, degrees")
+            ->check(CLI::Range(1.0f, 179.0f))->capture_default_str(),
+        app.add_option("--layer-size", dof_secondary.layer_size, "dof-secondary: texels per side of a cluster's layers")
+            ->check(CLI::Range(16, 4096))->capture_default_str(),
+        app.add_option("--lens-parts", dof_secondary.lens_parts,
+                       "dof-secondary: lens parts with a depth interval each (1, 4 or 16)")
+            ->check(CLI::IsMember({1, 4, 16}))->capture_default_str(),
+        app.add_option("--secondary-bounces", secondary_bounces,
+                       "dof-secondary: image-space (the method), exact (every bounce against every triangle: the "
+                       "reference) or environment (the primary-only image)")
+            ->check(CLI::IsMember({"image-space", "exact", "environment"}))->capture_default_str(),
+    };
     app.add_flag("-q,--quiet", quiet, "no progress on stderr");
     app.add_option("--motion-segments", motion_segments,
                    "glTF: K linear motion segments over the shutter (1 to " + std::to_string(max_motion_segments) +

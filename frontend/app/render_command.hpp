@@ -5,11 +5,13 @@
 #include "render/common/render_types.hpp"
 #include "render/cpu/cpu_backend.hpp"
 #include "render/gl/gl_backend.hpp"
+#include "render/secondary/secondary_options.hpp"
 
 #include <CLI/CLI.hpp>
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace blurcull::frontend {
 
@@ -32,6 +34,9 @@ struct RenderCommand : SceneFlags {
     std::string secondary = "bounce";  // embree: bounce or none (EmbreeSecondary)
     bool quiet = false;
     std::string motion_segments = "1";  // K, or "auto" (parse_motion_segments)
+    // dof-secondary (render/secondary/secondary_options.hpp).
+    SecondaryOptions dof_secondary;
+    std::string secondary_bounces = "image-space";
 
     // The backend-specific options, to tell whether they were given
     // (count() > 0) when the backend in use cannot honour them.
@@ -45,6 +50,8 @@ struct RenderCommand : SceneFlags {
     CLI::Option* fps_option = nullptr;
     CLI::Option* shutter_angle_option = nullptr;
     CLI::Option* exr_type_option = nullptr;
+    CLI::Option* secondary_option = nullptr;
+    std::vector<CLI::Option*> dof_secondary_options;  // only --method dof-secondary takes them
 
     // Declares the options on `app`, their checks and help read from the
     // registries of cull methods, render methods, precisions and backends.

@@ -31,6 +31,27 @@ glm::vec3 eye_position(const glm::mat4& view) {
     return glm::vec3(glm::inverse(view)[3]);
 }
 
+// Kinds, indices of refraction and the environment (the optics of
+// render/common/optics_shared.h need ior > 0 and finite).
+void check_materials(const Scene& scene) {
+    for (std::size_t m = 0; m < scene.materials.size(); ++m) {
+        const Material& material = scene.materials[m];
+        if (material.kind != MaterialKind::diffuse && material.kind != MaterialKind::mirror &&
+            material.kind != MaterialKind::dielectric) {
+            fail(scene, "material " + std::to_string(m) + " has unknown kind " +
+                            std::to_string(static_cast<int>(material.kind)));
+        }
+        if (!(material.ior > 0.0f) || !std::isfinite(material.ior)) {
+            fail(scene, "material " + std::to_string(m) + " has index of refraction " + std::to_string(material.ior) +
+                            " (must be positive and finite)");
+        }
+        if (!is_finite(material.base_color)) fail(scene, "material " + std::to_string(m) + " has a non-finite colour");
+    }
+    if (scene.environment != BC_ENVIRONMENT_NONE && scene.environment != BC_ENVIRONMENT_SKY) {
+        fail(scene, "environment " + std::to_string(scene.environment) + " is unknown (0 background, 1 sky)");
+    }
+}
+
 // Motion segments: one position per vertex at every interior time, finite,
 // and no more interior times than the cap; camera views, if any, at the same times.
 void check_interior_times(const Scene& scene) {

@@ -20,6 +20,7 @@ set(units
   "scene|frontend/scene|scenes: built-in, glTF"
   "common|frontend/render/common|render/common: settings, registries, camera, image"
   "cpu|frontend/render/cpu|render/cpu: stochastic rasterizer, interleave, interval, accum"
+  "secondary|frontend/render/secondary|render/secondary: dof-secondary, CPU build"
   "embree|frontend/render/embree|render/embree: ray-traced reference"
   "gl|frontend/render/gl|render/gl: OpenGL backend, contexts, shader mains"
   "app|frontend/app|app: the blurcull command (render, view)")
@@ -30,9 +31,10 @@ set(allowed
   "scene|kernel"
   "common|kernel,scene"
   "cpu|kernel,scene,common"
+  "secondary|kernel,scene,common,cpu"
   "embree|kernel,scene,common"
   "gl|kernel,glsl,scene,common"
-  "app|kernel,glsl,scene,common,cpu,embree,gl")
+  "app|kernel,glsl,scene,common,cpu,secondary,embree,gl")
 
 function(unit_of path out)
   set(found "")

@@ -128,8 +128,9 @@ void plan_interleave_passes(const RenderSettings& settings, const InterleaveOpti
 
 MethodPlan make_method_plan(const Scene& scene, const RenderSettings& settings, const InterleaveOptions& options) {
     validate_settings(settings);
-    if (settings.method == RenderMethod::stochastic) {
-        throw std::invalid_argument("method plan: 'stochastic' has no fixed passes");
+    if (settings.method == RenderMethod::stochastic || settings.method == RenderMethod::dof_secondary) {
+        throw std::invalid_argument(std::string("method plan: '") + to_string(settings.method) +
+                                    "' has no fixed passes");
     }
     refuse_motion_segments(scene, std::string("method ") + to_string(settings.method));
     int side = 1;
@@ -156,6 +157,7 @@ MethodPlan make_method_plan(const Scene& scene, const RenderSettings& settings, 
             break;
         case RenderMethod::accum:
         case RenderMethod::stochastic:  // refused above
+        case RenderMethod::dof_secondary:
             plan.passes = settings.spp;
             for (int k = 0; k < plan.passes; ++k) {
                 plan.pass_samples.push_back(patternsf::accum_sample(static_cast<std::uint32_t>(k), settings.seed));

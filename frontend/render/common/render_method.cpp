@@ -14,6 +14,13 @@ const std::vector<RenderMethodInfo>& render_methods() {
          12.0, rasterizers},
         {RenderMethod::accum, "accum", {}, "the accumulation buffer, one pinhole pass per sample", false, 4.0,
          rasterizers},
+        // The stochastic rasterizer's samples (culled) with one bounce on
+        // mirrors and glass traced through clusters' layered images
+        // (docs/secondary-rays.md); per sample: the winning id and colour.
+        {RenderMethod::dof_secondary, "dof-secondary", {"secondary"},
+         "stochastic rasterization plus one bounce on mirrors and glass traced in image space (clusters, virtual "
+         "views, layered images)",
+         true, 16.0, rasterizers},
     };
     return methods;
 }

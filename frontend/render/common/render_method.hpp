@@ -11,7 +11,7 @@
 
 namespace blurcull::frontend {
 
-enum class RenderMethod { stochastic, interleave, interval, accum };
+enum class RenderMethod { stochastic, interleave, interval, accum, dof_secondary };
 
 struct RenderMethodInfo {
     RenderMethod method;
@@ -34,7 +34,7 @@ const std::vector<RenderMethodInfo>& render_methods();
 // The registry entry of `method`.
 const RenderMethodInfo& render_method_info(RenderMethod method);
 
-// "stochastic", "interleave", "interval", "accum".
+// "stochastic", "interleave", "interval", "accum", "dof-secondary".
 const char* to_string(RenderMethod method);
 
 // The names of render_methods(), in order.

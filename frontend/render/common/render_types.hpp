@@ -62,6 +62,9 @@ struct RenderStats {
     std::uint64_t secondary_rays = 0;  // rays bounced off mirrors and dielectrics (embree --secondary bounce)
     double ms_total = 0;
     std::vector<std::pair<std::string, double>> ms_per_phase;  // in the order they ran
+    // A method's own counts (dof-secondary: clusters, trace steps, culls), in
+    // the JSON summary as "counters".
+    std::vector<std::pair<std::string, double>> counters;
     std::size_t triangles = 0;
 
     // Sample test efficiency: hits / tests (0 when nothing was tested).

@@ -1,6 +1,7 @@
 #include "render/cpu/cpu_backend.hpp"
 
 #include "render/common/camera_model.hpp"
+#include "render/common/method_plan.hpp"
 #include "render/cpu/coverage_test.hpp"
 #include "render/common/moving_triangle.hpp"
 #include "render/common/motion_segments.hpp"
@@ -211,6 +212,9 @@ struct FrameContext {
     int block;          // a multiple of the footprint
     bool cull_bounds;   // the method bounds lens and time per footprint
     bool time_sorted;   // footprints tile the work tiles: their samples are sorted by time
+    // When set, each sample's winning triangle (or no_sample_hit) goes to
+    // (*sample_ids)[(py * width + px) * spp + j], for a resolve after the raster.
+    std::vector<std::uint32_t>* sample_ids = nullptr;
 };
 
 // One worker's rasterization of work tiles: its sample, depth and hit
@@ -495,6 +499,10 @@ private:
                     const Sample& s = samples_[k];
                     sum += frame_.shader.sample_colour(hit_[k], glm::vec2(s.ndc), glm::vec2(s.lens), shutter_time_[k]);
                     covered += hit_[k] != none;
+                    if (frame_.sample_ids != nullptr) {
+                        const std::size_t pixel = static_cast<std::size_t>(py) * frame_.settings.width + px;
+                        (*frame_.sample_ids)[pixel * frame_.spp + j] = hit_[k] == none ? no_sample_hit : hit_[k];
+                    }
                 }
                 image.at(px, py) = resolve_box(sum, frame_.settings.spp);
                 image.coverage[image.index(px, py)] = resolve_coverage(covered, frame_.settings.spp);
@@ -548,7 +556,8 @@ void rasterize_tiles(const FrameContext<Real>& frame, int threads, Clock::time_p
 }
 
 template <class Real>
-RenderResult render_cpu_in(const Scene& scene, const RenderSettings& settings, const CpuOptions& options) {
+RenderResult render_cpu_in(const Scene& scene, const RenderSettings& settings, const CpuOptions& options,
+                           std::vector<std::uint32_t>* sample_ids) {
     const Clock::time_point start = Clock::now();
     const CameraModel model(scene.camera, settings.width, settings.height);
     const CullMethodInfo& cull = cull_method_info(settings.cull);
@@ -590,7 +599,10 @@ RenderResult render_cpu_in(const Scene& scene, const RenderSettings& settings, c
                                    block,
                                    cull_bounds,
                                    // Footprints that tile the work tiles get their samples sorted by time.
-                                   cull_bounds && footprint <= tile_size && tile_size % footprint == 0};
+                                   cull_bounds && footprint <= tile_size && tile_size % footprint == 0,
+                                   sample_ids};
+    if (sample_ids != nullptr)
+        sample_ids->assign(static_cast<std::size_t>(settings.width) * settings.height * frame.spp, no_sample_hit);
     rasterize_tiles(frame, threads, start, result);
     result.stats.ms_per_phase.emplace_back("raster+resolve", ms_since(phase));
     result.stats.ms_total = ms_since(start);
@@ -599,16 +611,17 @@ RenderResult render_cpu_in(const Scene& scene, const RenderSettings& settings, c
 
 }  // namespace
 
-RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, const CpuOptions& options) {
+RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, const CpuOptions& options,
+                        std::vector<std::uint32_t>* sample_ids) {
     validate_settings(settings);
     require_valid_scene(scene);
     if (options.footprint < 1) throw std::invalid_argument("cpu: footprint must be >= 1 pixel");
     if (options.block < 0) throw std::invalid_argument("cpu: block must be >= 0 pixels");
     switch (options.precision) {
     case KernelPrecision::float32:
-        return render_cpu_in<float>(scene, settings, options);
+        return render_cpu_in<float>(scene, settings, options, sample_ids);
     case KernelPrecision::float64:
-        return render_cpu_in<double>(scene, settings, options);
+        return render_cpu_in<double>(scene, settings, options, sample_ids);
     }
     throw std::invalid_argument("cpu: unknown kernel precision");
 }

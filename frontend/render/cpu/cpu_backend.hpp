@@ -5,6 +5,7 @@
 #include "render/common/render_types.hpp"
 #include "scene/scene.hpp"
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,7 @@ struct CpuOptions {
 // cull), stats.samples_hit those that found coverage. Deterministic whatever
 // the thread count. Throws std::invalid_argument for bad settings and
 // SceneError for a bad scene. Triangles it skips are in result.warnings.
-RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, const CpuOptions& options = {});
+RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, const CpuOptions& options = {},
+                        std::vector<std::uint32_t>* sample_ids = nullptr);
 
 }  // namespace blurcull::frontend

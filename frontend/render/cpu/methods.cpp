@@ -9,7 +9,8 @@ RenderResult render_with_method(const Scene& scene, const RenderSettings& settin
         case RenderMethod::interleave: return render_interleave(scene, settings);
         case RenderMethod::interval: return render_interval(scene, settings);
         case RenderMethod::accum: return render_accum(scene, settings);
-        case RenderMethod::stochastic: break;
+        case RenderMethod::stochastic:
+        case RenderMethod::dof_secondary: break;
     }
     return render_cpu(scene, settings);
 }

@@ -1,0 +1,68 @@
+#include "render/gl/gl_layer_trace.hpp"
+
+#include "render/gl/gl_render_targets.hpp"
+
+#include <cstdint>
+#include <cstring>
+
+namespace blurcull::frontend {
+
+GlLayerTracer::GlLayerTracer(const gl::HeadlessContext& context)
+    : gl_(&context.gl()),
+      program_(std::make_unique<gl::Program>(context.gl(), std::vector<gl::ShaderStage>{
+                                                               kernel_stage(GL_COMPUTE_SHADER, "render_secondary_trace.comp")})) {}
+
+GlLayerTracer::~GlLayerTracer() = default;
+
+std::vector<kernelf::LayerHit> GlLayerTracer::trace(const kernelf::LayerView& view, const std::vector<float>& depth,
+                                                    int layers, float thickness,
+                                                    const std::vector<kernelf::LayerSegment>& segments) const {
+    std::vector<kernelf::LayerHit> hits(segments.size());
+    if (segments.empty()) return hits;
+    const gl::Functions& f = *gl_;
+    std::vector<float> packed(segments.size() * 10, 0.0f);
+    for (std::size_t i = 0; i < segments.size(); ++i) {
+        const kernelf::LayerSegment& s = segments[i];
+        const float values[10] = {s.empty ? 1.0f : 0.0f, s.s0, s.s1, s.z0, s.z1, s.p0.x, s.p0.y, s.p1.x, s.p1.y, 0.0f};
+        std::memcpy(&packed[i * 10], values, sizeof values);
+    }
+    const float view_values[18] = {view.eye.x,     view.eye.y,     view.eye.z,     view.forward.x,     view.forward.y,
+                                   view.forward.z, view.right.x,   view.right.y,   view.right.z,       view.up.x,
+                                   view.up.y,      view.up.z,      view.tan_half_fov, view.near,       view.far,
+                                   float(view.size), float(layers), thickness};
+    const gl::Buffer depth_buffer(f, GL_SHADER_STORAGE_BUFFER, depth.size() * sizeof(float), depth.data());
+    const gl::Buffer segment_buffer(f, GL_SHADER_STORAGE_BUFFER, packed.size() * sizeof(float), packed.data());
+    const gl::Buffer view_buffer(f, GL_SHADER_STORAGE_BUFFER, sizeof view_values, view_values);
+    const gl::Buffer hit_buffer(f, GL_SHADER_STORAGE_BUFFER, segments.size() * 8 * sizeof(std::uint32_t));
+    depth_buffer.bind_base(0);
+    segment_buffer.bind_base(1);
+    view_buffer.bind_base(2);
+    hit_buffer.bind_base(3);
+    const auto count = static_cast<GLuint>(segments.size());
+    f.UseProgram(program_->id());
+    f.Uniform1ui(f.GetUniformLocation(program_->id(), "count"), count);
+    f.DispatchCompute((count + 63u) / 64u, 1, 1);
+    f.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    gl::check_gl(f, "dof-secondary: the layer trace pass");
+    std::vector<std::uint32_t> out(segments.size() * 8);
+    hit_buffer.read(out.data(), out.size() * sizeof(std::uint32_t));
+    f.UseProgram(0);
+    auto as_float = [](std::uint32_t bits) {
+        float value;
+        std::memcpy(&value, &bits, sizeof value);
+        return value;
+    };
+    for (std::size_t i = 0; i < segments.size(); ++i) {
+        const std::uint32_t* o = &out[i * 8];
+        kernelf::LayerHit& h = hits[i];
+        h.hit = o[0] != 0u;
+        h.layer = static_cast<int>(o[1]) - 1;
+        h.steps = static_cast<int>(o[2]);
+        h.s = as_float(o[3]);
+        h.depth = as_float(o[4]);
+        h.image = glm::vec2(as_float(o[5]), as_float(o[6]));
+    }
+    return hits;
+}
+
+}  // namespace blurcull::frontend

@@ -1,0 +1,355 @@
+#include "render/secondary/dof_secondary.hpp"
+
+#include "render/common/camera_model.hpp"
+#include "render/common/progress.hpp"
+#include "render/common/shading.hpp"
+#include "render/cpu/cpu_backend.hpp"
+#include "render/cpu/parallel_items.hpp"
+#include "render/secondary/exact_trace.hpp"
+#include "render/secondary/secondary_rays.hpp"
+
+#include <blurcull/layer_trace.hpp>
+#include <blurcull/secondary_clusters.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+
+namespace blurcull::frontend {
+namespace {
+
+using K = kernelf;
+using Clock = std::chrono::steady_clock;
+constexpr float huge_depth = std::numeric_limits<float>::max();
+constexpr int interval_rounds = 3;  // Lee et al.: clip, re-read the pyramid, clip again
+
+// What every cluster's work shares.
+struct BounceContext {
+    const Scene& scene;
+    const SecondaryOptions& options;
+    const std::vector<SecondaryRay>& rays;
+    const WorldTriangles& world;
+    const std::vector<glm::vec3>& colours;
+    float tan_half_fov;
+    float min_near;
+    float thickness;
+    float offset;  // rays start this far along their direction, off their own surface
+    int spp;
+    const LayerTracer* tracer;  // null: the host loop
+};
+
+// What one ray sees when traced against every triangle.
+glm::vec3 exact_radiance(const BounceContext& c, const SecondaryRay& ray, SecondaryStats& stats) {
+    ++stats.rays_exact;
+    const ExactHit hit = trace_exact(c.world, ray.origin, ray.direction, c.offset);
+    if (!hit.hit) return environment_radiance(c.scene, ray.direction);
+    ++stats.rays_hit;
+    return bounce_hit_radiance(c.scene, c.colours, hit.triangle, ray.direction, c.world.normals[hit.triangle]);
+}
+
+// The cluster's virtual view: along the mean direction, else along the facet
+// normal (holds every direction of the facet from 74.76 degrees); the flags
+// tell the caller what is left outside.
+K::VirtualView fit_cluster_view(const BounceContext& c, const Cluster<float>& cluster,
+                                const std::vector<std::uint32_t>& members, SecondaryStats& stats) {
+    std::vector<glm::vec3> positions, directions;
+    for (std::uint32_t r : members) {
+        positions.push_back(c.rays[r].origin);
+        directions.push_back(c.rays[r].direction);
+    }
+    K::VirtualView view = fit_virtual_view<float>(cluster.sums, positions, directions, c.tan_half_fov, c.min_near);
+    if (view.flags == BC_VIEW_DIRECTION_OUTSIDE) {
+        ++stats.clusters_refit_on_normal;
+        K::VirtualViewFit fit =
+            K::virtual_view_begin_along(cluster.sums, K::dodecahedron_normal(cluster.facet), c.tan_half_fov, c.min_near);
+        for (std::size_t i = 0; i < positions.size(); ++i) fit = K::virtual_view_add(fit, positions[i], directions[i]);
+        view = K::virtual_view_finish(fit);
+    }
+    return view;
+}
+
+// The culls of a cluster's layers: its own triangles and surface depth, and
+// the normal threshold from the cone of its directions.
+ClusterCulls cluster_culls(const BounceContext& c, const K::LayerView& view, const std::vector<std::uint32_t>& members) {
+    ClusterCulls culls;
+    culls.own.assign(c.world.vertices.size(), 0);
+    float cos_widest = 1.0f;
+    for (std::uint32_t r : members) {
+        culls.own[c.rays[r].triangle] = 1;
+        cos_widest = std::min(cos_widest, glm::dot(c.rays[r].direction, view.forward));
+    }
+    culls.cluster_depth.assign(static_cast<std::size_t>(view.size) * view.size, -1.0f);
+    if (c.options.cull_in_front) {
+        std::vector<glm::vec3> origins;
+        for (std::uint32_t r : members) origins.push_back(c.rays[r].origin);
+        culls.cluster_depth = cluster_origin_depth(view, origins);
+    }
+    if (c.options.cull_normals && cos_widest > 0.0f)
+        culls.normal_threshold = std::sqrt(std::max(0.0f, 1.0f - cos_widest * cos_widest));
+    return culls;
+}
+
+// The triangle stored nearest the hit: the layer's texel under the hit, or
+// the neighbour whose depth there is closest to the hit's.
+std::uint32_t hit_triangle(const LayerImages& images, const K::LayerHit& hit) {
+    const int hx = std::clamp(static_cast<int>(std::floor(hit.image.x)), 0, images.size - 1);
+    const int hy = std::clamp(static_cast<int>(std::floor(hit.image.y)), 0, images.size - 1);
+    float best = std::numeric_limits<float>::infinity();
+    std::uint32_t triangle = images.triangle[images.index(hit.layer, hx, hy)];
+    for (int y = std::max(0, hy - 1); y <= std::min(images.size - 1, hy + 1); ++y) {
+        for (int x = std::max(0, hx - 1); x <= std::min(images.size - 1, hx + 1); ++x) {
+            const float gap = std::abs(images.depth[images.index(hit.layer, x, y)] - hit.depth);
+            if (gap < best || (x == hx && y == hy && gap <= best)) {
+                best = gap;
+                triangle = images.triangle[images.index(hit.layer, x, y)];
+            }
+        }
+    }
+    return triangle;
+}
+
+// Clips one group of rays (one pixel's samples in one lens part) for the
+// cluster's layers: their segments clipped together, interval_rounds times,
+// by the pyramid's min/max depth over the union of their footprints.
+void clip_group(const BounceContext& c, const K::LayerView& view, const DepthPyramid& pyramid,
+                const std::uint32_t* group, std::size_t count, K::LayerSegment* segments) {
+    std::vector<glm::vec3> origins(count);
+    for (std::size_t i = 0; i < count; ++i) {
+        const SecondaryRay& ray = c.rays[group[i]];
+        origins[i] = ray.origin + c.offset * ray.direction;
+        segments[i] = K::layer_segment(view, origins[i], ray.direction, huge_depth, glm::vec2(0.0f, huge_depth));
+    }
+    for (int round = 0; round < interval_rounds; ++round) {
+        glm::vec4 box(float(view.size), float(view.size), -1.0f, -1.0f);
+        for (std::size_t i = 0; i < count; ++i) {
+            const glm::vec4 f = K::layer_footprint(view, segments[i]);
+            if (f.x > f.z) continue;
+            box = glm::vec4(glm::min(glm::vec2(box), glm::vec2(f)), glm::max(glm::vec2(box.z, box.w), glm::vec2(f.z, f.w)));
+        }
+        if (box.x > box.z) break;  // every segment empty: all leave the layers
+        const glm::vec2 range = pyramid.interval(int(box.x), int(box.y), int(box.z), int(box.w));
+        const glm::vec2 clip = range.x > range.y ? glm::vec2(huge_depth, 0.0f) : glm::vec2(range.x, range.y + c.thickness);
+        for (std::size_t i = 0; i < count; ++i) {
+            if (segments[i].empty) continue;
+            segments[i] = K::layer_segment(view, origins[i], c.rays[group[i]].direction, huge_depth, clip);
+        }
+    }
+}
+
+// The rays' radiance from their hits in the layers (the environment on a miss).
+void shade_hits(const BounceContext& c, const LayerImages& images, const std::vector<std::uint32_t>& members,
+                const std::vector<K::LayerHit>& hits, std::vector<glm::vec3>& radiance, SecondaryStats& stats) {
+    for (std::size_t i = 0; i < members.size(); ++i) {
+        const SecondaryRay& ray = c.rays[members[i]];
+        const K::LayerHit& hit = hits[i];
+        ++stats.rays_image_space;
+        stats.trace_steps += static_cast<std::uint64_t>(std::max(hit.steps, 0));
+        if (!hit.hit) {
+            radiance[members[i]] = environment_radiance(c.scene, ray.direction);
+            continue;
+        }
+        ++stats.rays_hit;
+        const std::uint32_t triangle = hit_triangle(images, hit);
+        radiance[members[i]] =
+            bounce_hit_radiance(c.scene, c.colours, triangle, ray.direction, c.world.normals[triangle]);
+    }
+}
+
+// The far plane of a view: beyond every vertex of the scene.
+float far_plane(const WorldTriangles& world, const K::LayerView& view) {
+    float far = view.near * 2.0f;
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::vec3 p((corner & 1) ? world.box_max.x : world.box_min.x, (corner & 2) ? world.box_max.y : world.box_min.y,
+                          (corner & 4) ? world.box_max.z : world.box_min.z);
+        far = std::max(far, glm::length(p - view.eye) * 1.01f + view.near);
+    }
+    return far;
+}
+
+// One cluster: its view, its layers with the culls, its pyramid, and the
+// traces of its rays (or their exact fallback).
+void bounce_cluster(const BounceContext& c, const Cluster<float>& cluster, std::vector<std::uint32_t> members,
+                    std::vector<glm::vec3>& radiance, SecondaryStats& stats) {
+    const K::VirtualView fitted = fit_cluster_view(c, cluster, members, stats);
+    if ((fitted.flags & ~BC_VIEW_DIRECTION_OUTSIDE) != 0) {
+        ++stats.clusters_unusable;
+        for (std::uint32_t r : members) radiance[r] = exact_radiance(c, c.rays[r], stats);
+        return;
+    }
+    K::LayerView view = K::layer_view_from(fitted, 1.0f, c.options.layer_size);
+    view.far = far_plane(c.world, view);
+    if ((fitted.flags & BC_VIEW_DIRECTION_OUTSIDE) != 0) {
+        // Split: the rays this view cannot hold are traced against the scene.
+        ++stats.clusters_split;
+        const auto outside = std::stable_partition(members.begin(), members.end(), [&](std::uint32_t r) {
+            return K::virtual_view_direction_inside(view.forward, view.right, view.up, view.tan_half_fov,
+                                                    c.rays[r].direction);
+        });
+        for (auto it = outside; it != members.end(); ++it) radiance[*it] = exact_radiance(c, c.rays[*it], stats);
+        members.erase(outside, members.end());
+        if (members.empty()) return;
+    }
+    const ClusterCulls culls = cluster_culls(c, view, members);
+    const LayerImages images = build_layer_images(c.world, view, c.options.layers, culls, stats.layers);
+    const DepthPyramid pyramid(images);
+    // Groups: the rays of one pixel and one lens part.
+    const auto spp = static_cast<std::uint32_t>(c.spp);
+    auto key = [&](std::uint32_t r) { return std::make_pair(c.rays[r].sample / spp, c.rays[r].lens_part); };
+    std::stable_sort(members.begin(), members.end(), [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
+    std::vector<K::LayerSegment> segments(members.size());
+    for (std::size_t first = 0; first < members.size();) {
+        std::size_t last = first + 1;
+        while (last < members.size() && key(members[last]) == key(members[first])) ++last;
+        clip_group(c, view, pyramid, &members[first], last - first, &segments[first]);
+        first = last;
+    }
+    const std::vector<K::LayerHit> hits =
+        c.tracer != nullptr ? (*c.tracer)(view, images.depth, images.layers, c.thickness, segments)
+                            : trace_layers_on_host(view, images.depth, images.layers, c.thickness, segments);
+    shade_hits(c, images, members, hits, radiance, stats);
+}
+
+void add_stats(SecondaryStats& into, const SecondaryStats& from) {
+    into.rays_image_space += from.rays_image_space;
+    into.rays_exact += from.rays_exact;
+    into.rays_hit += from.rays_hit;
+    into.trace_steps += from.trace_steps;
+    into.clusters_refit_on_normal += from.clusters_refit_on_normal;
+    into.clusters_split += from.clusters_split;
+    into.clusters_unusable += from.clusters_unusable;
+    into.layers.fragments += from.layers.fragments;
+    into.layers.culled_near += from.layers.culled_near;
+    into.layers.culled_in_front += from.layers.culled_in_front;
+    into.layers.culled_normal += from.layers.culled_normal;
+    into.layers.dropped += from.layers.dropped;
+}
+
+// Every ray's radiance by the options' bounce mode, in parallel over
+// clusters (or rays); each ray's value is written by one thread only.
+std::vector<glm::vec3> bounce_all(const BounceContext& c, int threads, SecondaryStats& stats) {
+    std::vector<glm::vec3> radiance(c.rays.size(), glm::vec3(0.0f));
+    std::mutex merge;
+    auto done = [&](const SecondaryStats& local) {
+        std::lock_guard<std::mutex> lock(merge);
+        add_stats(stats, local);
+    };
+    if (c.options.bounces != SecondaryBounces::image_space) {
+        const int chunks = static_cast<int>(std::min<std::size_t>(c.rays.size() / 256 + 1, 4096));
+        cpu_methods::run_parallel_items(
+            threads, chunks, [] { return SecondaryStats{}; },
+            [&](SecondaryStats& local, int chunk) {
+                for (std::size_t r = c.rays.size() * std::size_t(chunk) / std::size_t(chunks);
+                     r < c.rays.size() * std::size_t(chunk + 1) / std::size_t(chunks); ++r)
+                    radiance[r] = c.options.bounces == SecondaryBounces::exact
+                                      ? exact_radiance(c, c.rays[r], local)
+                                      : environment_radiance(c.scene, c.rays[r].direction);
+            },
+            done);
+        return radiance;
+    }
+    std::vector<glm::vec3> positions, directions;
+    for (const SecondaryRay& ray : c.rays) {
+        positions.push_back(ray.origin);
+        directions.push_back(ray.direction);
+    }
+    ClusterOptions cluster_options;
+    cluster_options.wanted_clusters = static_cast<std::uint32_t>(c.options.wanted_clusters);
+    cluster_options.max_per_facet = static_cast<std::uint32_t>(c.options.clusters_per_facet);
+    const Clustering<float> clustering = cluster_reflector_pixels<float>(positions, directions, cluster_options);
+    stats.clusters = static_cast<int>(clustering.clusters.size());
+    std::vector<std::vector<std::uint32_t>> members(clustering.clusters.size());
+    for (std::size_t r = 0; r < c.rays.size(); ++r)
+        members[static_cast<std::size_t>(clustering.cluster_of[r])].push_back(static_cast<std::uint32_t>(r));
+    cpu_methods::run_parallel_items(
+        threads, stats.clusters, [] { return SecondaryStats{}; },
+        [&](SecondaryStats& local, int j) {
+            bounce_cluster(c, clustering.clusters[static_cast<std::size_t>(j)], members[static_cast<std::size_t>(j)],
+                           radiance, local);
+        },
+        done);
+    return radiance;
+}
+
+}  // namespace
+
+std::vector<kernelf::LayerHit> trace_layers_on_host(const kernelf::LayerView& view, const std::vector<float>& depth,
+                                                    int layers, float thickness,
+                                                    const std::vector<kernelf::LayerSegment>& segments) {
+    const std::size_t plane = static_cast<std::size_t>(view.size) * static_cast<std::size_t>(view.size);
+    std::vector<kernelf::LayerHit> hits(segments.size());
+    for (std::size_t i = 0; i < segments.size(); ++i) {
+        hits[i] = trace_layers<float>(view, segments[i], layers, thickness, [&](int l, int x, int y) {
+            return depth[plane * static_cast<std::size_t>(l) + static_cast<std::size_t>(y) * view.size + x];
+        });
+    }
+    return hits;
+}
+
+RenderResult render_dof_secondary(const Scene& scene, const RenderSettings& settings, const SecondaryOptions& options,
+                                  SecondaryStats* stats_out, const LayerTracer* tracer, const PrimaryPass* primary_pass) {
+    validate_secondary_options(options);
+    // The bounce resolves a hit with vertices linear over the shutter.
+    if (!scene.position_at.empty())
+        throw std::invalid_argument("dof-secondary: motion segments (K > 1) are not supported yet; use 1 segment");
+    const Clock::time_point start = Clock::now();
+    std::vector<std::uint32_t> ids;
+    RenderSettings primary_settings = settings;
+    primary_settings.method = RenderMethod::stochastic;
+    RenderResult result = primary_pass != nullptr ? (*primary_pass)(primary_settings, ids)
+                                                  : render_cpu(scene, primary_settings, CpuOptions{}, &ids);
+    if (ids.size() != static_cast<std::size_t>(settings.width) * settings.height * settings.spp)
+        throw std::invalid_argument("dof-secondary: the primary pass returned no sample ids");
+    const CameraModel model(scene.camera, settings.width, settings.height);
+
+    Clock::time_point phase = Clock::now();
+    PrimaryResolve primary = resolve_primary(scene, model, settings, ids, options.lens_parts);
+    const WorldTriangles world = world_triangles(scene, 0.5f);
+    const std::vector<glm::vec3> colours = shade_all(scene);
+    result.stats.ms_per_phase.emplace_back("resolve", ms_since(phase));
+
+    phase = Clock::now();
+    const float diagonal = std::max(world.diagonal(), 1e-6f);
+    const BounceContext context{scene, options, primary.rays, world, colours,
+                                std::tan(0.5f * options.fov_degrees * 3.14159265358979f / 180.0f),
+                                1e-3f * diagonal, options.thickness_fraction * diagonal, 1e-4f * diagonal,
+                                settings.spp, tracer};
+    SecondaryStats stats;
+    stats.reflector_samples = primary.reflector_samples;
+    stats.rays = primary.rays.size();
+    const int threads = tracer != nullptr ? 1 : cpu_methods::render_threads(settings);
+    const std::vector<glm::vec3> radiance = bounce_all(context, threads, stats);
+    for (std::size_t r = 0; r < primary.rays.size(); ++r)
+        primary.sample_colour[primary.rays[r].sample] += primary.rays[r].weight * radiance[r];
+    result.stats.ms_per_phase.emplace_back("bounce", ms_since(phase));
+    result.image = resolve_samples(primary.sample_colour, settings.width, settings.height, settings.spp);
+    result.stats.ms_total = ms_since(start);
+    if (stats.clusters_split + stats.clusters_unusable > 0) {
+        result.warnings.push_back("dof-secondary: " + std::to_string(stats.clusters_split + stats.clusters_unusable) +
+                                  " clusters had rays no virtual view of this field of view holds; their " +
+                                  std::to_string(stats.rays_exact) + " rays were traced against the scene");
+    }
+    result.stats.secondary_rays = stats.rays;
+    result.stats.counters = {{"reflector_samples", double(stats.reflector_samples)},
+                             {"secondary_rays", double(stats.rays)},
+                             {"rays_image_space", double(stats.rays_image_space)},
+                             {"rays_exact", double(stats.rays_exact)},
+                             {"rays_hit", double(stats.rays_hit)},
+                             {"trace_steps", double(stats.trace_steps)},
+                             {"clusters", double(stats.clusters)},
+                             {"clusters_refit_on_normal", double(stats.clusters_refit_on_normal)},
+                             {"clusters_split", double(stats.clusters_split)},
+                             {"clusters_unusable", double(stats.clusters_unusable)},
+                             {"layer_fragments", double(stats.layers.fragments)},
+                             {"culled_near_triangles", double(stats.layers.culled_near)},
+                             {"culled_in_front_fragments", double(stats.layers.culled_in_front)},
+                             {"culled_normal_triangles", double(stats.layers.culled_normal)},
+                             {"dropped_fragments", double(stats.layers.dropped)}};
+    if (stats_out != nullptr) *stats_out = stats;
+    return result;
+}
+
+}  // namespace blurcull::frontend

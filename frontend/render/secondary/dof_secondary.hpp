@@ -1,0 +1,70 @@
+// The dof-secondary renderer, CPU build: depth of field seen through mirrors
+// and glass (Xie, Sun and Wang, JCST 28(3) 2013; docs/secondary-rays.md,
+// "The renderer"). Primary visibility is the stochastic rasterizer's
+// per-sample winning triangles (render_cpu, culled, so motion blur and the
+// thin lens are exact there); each sample on a reflector bounces once from
+// its own lens point and hit point; the bounced rays are clustered by
+// dodecahedron facet and position, each cluster gets a virtual view with a
+// layered image, and the rays are traced through it in image space.
+#pragma once
+
+#include "render/common/render_types.hpp"
+#include "render/secondary/layer_images.hpp"
+#include "render/secondary/secondary_options.hpp"
+#include "scene/scene.hpp"
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+namespace blurcull::frontend {
+
+// What a render did, for tests, the bench and the docs.
+struct SecondaryStats {
+    std::uint64_t reflector_samples = 0;   // primary samples on a mirror or dielectric
+    std::uint64_t rays = 0;                // bounced rays
+    std::uint64_t rays_image_space = 0;    // traced through a cluster's layers
+    std::uint64_t rays_exact = 0;          // traced against the triangles (fallback or the exact mode)
+    std::uint64_t rays_hit = 0;            // of all rays, those that found a surface
+    std::uint64_t trace_steps = 0;         // texels visited by the image-space traces
+    int clusters = 0;
+    int clusters_refit_on_normal = 0;      // mean axis left a ray outside: fitted along the facet normal
+    int clusters_split = 0;                // still some ray outside (FOV < 74.76 deg): those rays traced exactly
+    int clusters_unusable = 0;             // empty or non-finite fit: every ray traced exactly
+    LayerStats layers;                     // summed over the clusters
+};
+
+// Traces clipped segments through a cluster's layered depth images (depth
+// [layer][y][x], +infinity for none): the kernel's layer_trace_begin/step
+// loop, on the host (trace_layers_on_host) or in a GPU pass
+// (render/gl/gl_layer_trace.hpp) that runs the same emitted text.
+using LayerTracer = std::function<std::vector<kernelf::LayerHit>(
+    const kernelf::LayerView& view, const std::vector<float>& depth, int layers, float thickness,
+    const std::vector<kernelf::LayerSegment>& segments)>;
+
+// The primary visibility: renders settings' samples and fills the winning
+// triangle of each (render_cpu's layout, no_sample_hit for none); render_cpu
+// by default, the GL rasterizer's sample ids on the gl backend (the backends
+// agree sample for sample).
+using PrimaryPass = std::function<RenderResult(const RenderSettings& settings, std::vector<std::uint32_t>& ids)>;
+
+// The host loop: trace_layers per segment.
+std::vector<kernelf::LayerHit> trace_layers_on_host(const kernelf::LayerView& view, const std::vector<float>& depth,
+                                                    int layers, float thickness,
+                                                    const std::vector<kernelf::LayerSegment>& segments);
+
+// Renders `scene` with settings.spp samples per pixel (the stochastic
+// rasterizer's samples and culling) and one bounce on every mirror and
+// dielectric sample. The bounced rays see the scene at mid-shutter (t = 0.5).
+// A bounced ray that hits a surface gets its flat shade(); one that leaves
+// the scene (or hits nothing in its cluster's layers) the environment.
+// Deterministic for any thread count. With `primary` the primary samples come
+// from there, else from render_cpu; with `tracer` the image-space traces
+// run there (one cluster at a time, on the calling thread: a GL context is
+// current on one thread), else on the host. Throws std::invalid_argument for
+// bad settings or options, SceneError for a bad scene.
+RenderResult render_dof_secondary(const Scene& scene, const RenderSettings& settings,
+                                  const SecondaryOptions& options = {}, SecondaryStats* stats = nullptr,
+                                  const LayerTracer* tracer = nullptr, const PrimaryPass* primary = nullptr);
+
+}  // namespace blurcull::frontend

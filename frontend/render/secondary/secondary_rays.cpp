@@ -1,0 +1,151 @@
+#include "render/secondary/secondary_rays.hpp"
+
+#include "render/common/method_plan.hpp"
+#include "render/common/optics_shared.h"
+#include "render/common/shading.hpp"
+
+#include <blurcull/kernel.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace blurcull::frontend {
+namespace {
+
+// A sample's hit in world space: the point, the unit incident direction and
+// the unit geometric normal of the triangle at the sample's time.
+struct SurfaceHit {
+    glm::vec3 point, incident, normal;
+    bool valid;
+};
+
+// The sample's lens ray (view space at time t) meets the plane of the
+// triangle's view-space vertices at t; the world point has the same
+// barycentric coordinates on the world triangle at t (exact for a static
+// camera). The world incident direction runs from the world lens point.
+SurfaceHit sample_hit(const Scene& scene, const CameraModel& model, std::uint32_t triangle, glm::vec2 ndc,
+                      glm::vec2 lens, float time) {
+    const glm::uvec3& tri = scene.triangles[triangle];
+    glm::dvec3 view[3], world[3];
+    for (int k = 0; k < 3; ++k) {
+        view[k] = glm::dvec3(model.view_position_at(scene, tri[k], time));
+        world[k] = glm::dvec3(glm::mix(scene.position_open[tri[k]], scene.position_close[tri[k]], time));
+    }
+    const Ray ray = model.lens_ray(ndc, lens);
+    const glm::dvec3 o(ray.origin), d(ray.direction);
+    const glm::dvec3 e1 = view[1] - view[0], e2 = view[2] - view[0];
+    const glm::dvec3 n = glm::cross(e1, e2);
+    const double denom = glm::dot(n, d);
+    SurfaceHit hit{};
+    if (denom == 0.0 || !std::isfinite(denom)) return hit;
+    const double s = glm::dot(n, view[0] - o) / denom;
+    const glm::dvec3 p = o + s * d - view[0];
+    // Barycentrics of p in the plane (least squares via the Gram matrix).
+    const double d11 = glm::dot(e1, e1), d12 = glm::dot(e1, e2), d22 = glm::dot(e2, e2);
+    const double p1 = glm::dot(p, e1), p2 = glm::dot(p, e2);
+    const double det = d11 * d22 - d12 * d12;
+    if (!(det > 0.0)) return hit;
+    const double b1 = (d22 * p1 - d12 * p2) / det, b2 = (d11 * p2 - d12 * p1) / det;
+    const glm::dvec3 point = world[0] + b1 * (world[1] - world[0]) + b2 * (world[2] - world[0]);
+    const glm::dmat4 inverse_open = glm::inverse(glm::dmat4(model.view_open));
+    const glm::dmat4 inverse_close = glm::inverse(glm::dmat4(model.view_close));
+    const glm::dvec4 lens_view(o, 1.0);
+    const glm::dvec3 lens_world =
+        glm::mix(glm::dvec3(inverse_open * lens_view), glm::dvec3(inverse_close * lens_view), double(time));
+    const glm::dvec3 normal = glm::cross(world[1] - world[0], world[2] - world[0]);
+    const double normal_length = glm::length(normal), incident_length = glm::length(point - lens_world);
+    if (!(normal_length > 0.0) || !(incident_length > 0.0) || !std::isfinite(point.x + point.y + point.z)) return hit;
+    hit.point = glm::vec3(point);
+    hit.incident = glm::vec3((point - lens_world) / incident_length);
+    hit.normal = glm::vec3(normal / normal_length);
+    hit.valid = true;
+    return hit;
+}
+
+// The rays a reflector sample spawns (one for a mirror, up to two for a dielectric).
+void spawn_rays(const Material& material, const SurfaceHit& hit, std::uint32_t sample, std::uint32_t part,
+                std::uint32_t triangle, std::vector<SecondaryRay>& rays) {
+    using namespace optics;
+    if (material.kind == MaterialKind::mirror) {
+        const glm::vec3 r = glm::normalize(bc_mirror_direction(hit.incident, hit.normal));
+        rays.push_back({hit.point, r, glm::vec3(1.0f), sample, part, triangle});
+        return;
+    }
+    const float reflectance = bc_dielectric_reflectance(hit.incident, hit.normal, material.ior);
+    if (reflectance > 0.0f) {
+        const glm::vec3 r = glm::normalize(bc_mirror_direction(hit.incident, hit.normal));
+        rays.push_back({hit.point, r, glm::vec3(reflectance), sample, part, triangle});
+    }
+    const glm::vec3 t = bc_refract_direction(hit.incident, hit.normal, material.ior);
+    if (reflectance < 1.0f && glm::dot(t, t) > 0.0f)
+        rays.push_back(
+            {hit.point, glm::normalize(t), glm::vec3(1.0f - reflectance), sample, part, triangle});
+}
+
+}  // namespace
+
+std::uint32_t lens_part_of(glm::vec2 lens, int parts) {
+    if (parts <= 1) return 0;
+    const int cells = parts == 4 ? 2 : 4;
+    auto cell = [&](float c) {
+        return std::clamp(static_cast<int>(std::floor((c + 1.0f) * 0.5f * float(cells))), 0, cells - 1);
+    };
+    return static_cast<std::uint32_t>(cell(lens.y) * cells + cell(lens.x));
+}
+
+PrimaryResolve resolve_primary(const Scene& scene, const CameraModel& model, const RenderSettings& settings,
+                               const std::vector<std::uint32_t>& sample_ids, int lens_parts) {
+    const std::vector<glm::vec3> colours = shade_all(scene);
+    const auto spp = static_cast<std::uint32_t>(settings.spp);
+    PrimaryResolve out;
+    out.sample_colour.assign(sample_ids.size(), glm::vec3(0.0f));
+    for (int py = 0; py < settings.height; ++py) {
+        for (int px = 0; px < settings.width; ++px) {
+            const kernelf::PixelSampleSetup pattern = kernelf::pixel_sample_setup(
+                static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py), spp, settings.seed);
+            for (std::uint32_t j = 0; j < spp; ++j) {
+                const std::uint32_t k = (static_cast<std::uint32_t>(py * settings.width + px)) * spp + j;
+                const std::uint32_t id = sample_ids[k];
+                if (id == no_sample_hit) {
+                    out.sample_colour[k] = scene.background;
+                    continue;
+                }
+                const Material& material = scene.materials[scene.triangle_material[id]];
+                if (material.kind == MaterialKind::diffuse) {
+                    out.sample_colour[k] = colours[id];
+                    continue;
+                }
+                ++out.reflector_samples;
+                const kernelf::PixelSample s = kernelf::pixel_sample_from(pattern, j);
+                const SurfaceHit hit = sample_hit(scene, model, id, model.sample_ndc(px, py, s.offset), s.lens, s.time);
+                // A degenerate hit (grazing to the rounding) sees the environment straight on.
+                if (!hit.valid) continue;
+                spawn_rays(material, hit, k, lens_part_of(s.lens, lens_parts), id, out.rays);
+            }
+        }
+    }
+    return out;
+}
+
+glm::vec3 bounce_hit_radiance(const Scene& scene, const std::vector<glm::vec3>& colours, std::uint32_t triangle,
+                              glm::vec3 direction, glm::vec3 normal) {
+    const Material& material = scene.materials[scene.triangle_material[triangle]];
+    if (material.kind == MaterialKind::diffuse || glm::dot(normal, normal) == 0.0f) return colours[triangle];
+    return specular_environment_colour(scene, material, direction, normal);
+}
+
+Image resolve_samples(const std::vector<glm::vec3>& sample_colour, int width, int height, int spp) {
+    Image image(width, height);
+    const auto per_pixel = static_cast<std::size_t>(spp);
+    for (int py = 0; py < height; ++py) {
+        for (int px = 0; px < width; ++px) {
+            const std::size_t first = (static_cast<std::size_t>(py) * width + px) * per_pixel;
+            glm::vec3 sum(0.0f);
+            for (std::size_t j = 0; j < per_pixel; ++j) sum += sample_colour[first + j];
+            image.at(px, py) = resolve_box(sum, spp);
+        }
+    }
+    return image;
+}
+
+}  // namespace blurcull::frontend
