@@ -50,7 +50,6 @@ struct RenderCommand : SceneFlags {
     CLI::Option* fps_option = nullptr;
     CLI::Option* shutter_angle_option = nullptr;
     CLI::Option* exr_type_option = nullptr;
-    CLI::Option* secondary_option = nullptr;
     std::vector<CLI::Option*> dof_secondary_options;  // only --method dof-secondary takes them
 
     // Declares the options on `app`, their checks and help read from the

@@ -124,27 +124,6 @@ void validate_surface_attributes(const Scene& scene) {
     if (!is_finite(scene.light_color)) fail(scene, "light colour is not finite");
 }
 
-// Kinds, indices of refraction and the environment (the optics of
-// render/common/optics_shared.h need ior > 0 and finite).
-void check_materials(const Scene& scene) {
-    for (std::size_t m = 0; m < scene.materials.size(); ++m) {
-        const Material& material = scene.materials[m];
-        if (material.kind != MaterialKind::diffuse && material.kind != MaterialKind::mirror &&
-            material.kind != MaterialKind::dielectric) {
-            fail(scene, "material " + std::to_string(m) + " has unknown kind " +
-                            std::to_string(static_cast<int>(material.kind)));
-        }
-        if (!(material.ior > 0.0f) || !std::isfinite(material.ior)) {
-            fail(scene, "material " + std::to_string(m) + " has index of refraction " + std::to_string(material.ior) +
-                            " (must be positive and finite)");
-        }
-        if (!is_finite(material.base_color)) fail(scene, "material " + std::to_string(m) + " has a non-finite colour");
-    }
-    if (scene.environment != BC_ENVIRONMENT_NONE && scene.environment != BC_ENVIRONMENT_SKY) {
-        fail(scene, "environment " + std::to_string(scene.environment) + " is unknown (0 background, 1 sky)");
-    }
-}
-
 }  // namespace
 
 void validate_scene(const Scene& scene) {
