@@ -53,6 +53,7 @@ inline void validate_settings(const RenderSettings& settings) {
 struct RenderStats {
     std::uint64_t samples_tested = 0;  // (sample, triangle) tests, or rays for a ray tracer
     std::uint64_t samples_hit = 0;     // tests that found coverage
+    std::uint64_t samples_visited = 0; // cpu stochastic: samples the culls looked at (>= samples_tested)
     std::uint64_t bounds_computed = 0; // per-footprint sample bounds set up (cpu: blocks and footprints)
     std::uint64_t bounds_empty = 0;    // of those, how many proved the footprint empty
     double ms_total = 0;

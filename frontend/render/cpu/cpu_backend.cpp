@@ -6,6 +6,7 @@
 #include "render/common/progress.hpp"
 #include "render/common/shading.hpp"
 #include "render/cpu/parallel_items.hpp"
+#include "render/cpu/sample_chain.hpp"
 #include "scene/scene_checks.hpp"
 
 #include <blurcull/kernel.hpp>
@@ -51,30 +52,6 @@ SampleBox sample_box(const CameraModel& model, const PixelRect& r) {
     const glm::vec4 bottom_right = model.pixel_ndc_bounds(r.x1, r.y1);
     return SampleBox{top_left.x, bottom_right.y, bottom_right.z, top_left.w};
 }
-
-// A tile's samples in float, one array per coordinate: the fast coverage
-// test's input (exact: the samples are floats).
-class FloatSamples {
-public:
-    explicit FloatSamples(std::size_t size) : sx_(size), sy_(size), u_(size), v_(size), t_(size) {}
-    void set(std::size_t k, glm::vec2 ndc, glm::vec2 lens, float time) {
-        sx_[k] = ndc.x;
-        sy_[k] = ndc.y;
-        u_[k] = lens.x;
-        v_[k] = lens.y;
-        t_[k] = time;
-    }
-    bool may_cover(const CoverageSetup& setup, std::size_t k) const {
-        return frontend::may_cover(setup, sx_[k], sy_[k], u_[k], v_[k], t_[k]);
-    }
-    // Samples first .. first + 31, those in `wanted` (the arrays are padded by 32).
-    std::uint32_t may_cover32(const CoverageSetup& setup, std::size_t first, std::uint32_t wanted) const {
-        return frontend::may_cover32(setup, &sx_[first], &sy_[first], &u_[first], &v_[first], &t_[first], wanted);
-    }
-
-private:
-    std::vector<float> sx_, sy_, u_, v_, t_;
-};
 
 template <class K>
 struct TileSample {
@@ -220,10 +197,10 @@ public:
         : frame_(frame),
           samples_(static_cast<std::size_t>(tile_size) * tile_size * frame.spp),
           by_time_(samples_.size()),
-          by_time_t_(samples_.size()),
           depth_(samples_.size()),
           hit_(samples_.size()),
-          lanes_(samples_.size() + 32) {}
+          lanes_(samples_.size()),
+          time_lanes_(samples_.size()) {}
 
     // Rasterizes work tile `tile` (row-major over the tiles) into its pixels of `image`.
     void render_tile(int tile, Image& image) {
@@ -241,7 +218,7 @@ public:
     }
 
     // This worker's counts: exact tests, hits, sample bounds set up, and empty ones.
-    std::uint64_t tested = 0, hits = 0, bounded = 0, bounded_empty = 0;
+    std::uint64_t tested = 0, hits = 0, bounded = 0, bounded_empty = 0, visited = 0;
 
 private:
     static constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
@@ -261,7 +238,7 @@ private:
                     const std::size_t k = slot(px, py, j);
                     const glm::vec2 ndc = frame_.model.sample_ndc(px, py, s.offset);
                     samples_[k] = Sample{typename K::vec2(ndc), typename K::vec2(s.lens), static_cast<Real>(s.time)};
-                    lanes_.set(k, ndc, s.lens, s.time);
+                    lanes_.set(k, ndc.x, ndc.y, s.lens.x, s.lens.y, s.time);
                     depth_[k] = std::numeric_limits<Real>::infinity();
                     hit_[k] = none;
                 }
@@ -269,8 +246,9 @@ private:
         }
     }
 
-    // Per footprint of the tile's grid, its sample slots sorted by time, so
-    // that a footprint's bounds visit only their shutter interval.
+    // Per footprint of the tile's grid, its samples sorted by time (copied
+    // into time_lanes_, slots in by_time_), so that a footprint's bounds
+    // visit only the contiguous run of their shutter interval.
     void sort_footprints_by_time() {
         const int footprint = frame_.footprint;
         const int th = y1_ - y0_ + 1;
@@ -288,7 +266,7 @@ private:
                 std::sort(by_time_.begin() + static_cast<std::ptrdiff_t>(first),
                           by_time_.begin() + static_cast<std::ptrdiff_t>(next),
                           [&](std::uint32_t a, std::uint32_t b) { return samples_[a].time < samples_[b].time; });
-                for (std::size_t q = first; q < next; ++q) by_time_t_[q] = samples_[by_time_[q]].time;
+                for (std::size_t q = first; q < next; ++q) time_lanes_.copy(q, lanes_, by_time_[q]);
             }
         }
         footprint_start_.back() = next;
@@ -363,55 +341,61 @@ private:
             K::screen_footprint(current.bound, typename K::vec2(box.x, box.y), typename K::vec2(box.z, box.w));
         if (state == BC_FOOTPRINT_OUTSIDE) return;
         current.check_screen = state != BC_FOOTPRINT_INSIDE;
-        const typename K::vec2 range = frame_.time_sorted && current.needs_bounds ? K::sample_time_range(sb)
-                                                                                  : typename K::vec2(Real(0), Real(1));
-        // Only the footprint's samples inside the bounds' shutter interval, when
-        // that skips enough of them to pay for visiting them out of memory order.
-        if (range.y - range.x < Real(0.5)) {
-            const std::size_t f = static_cast<std::size_t>((py0 - y0_) / frame_.footprint) * footprints_x_ +
-                                  static_cast<std::size_t>((px0 - x0_) / frame_.footprint);
-            const auto begin = by_time_t_.begin() + static_cast<std::ptrdiff_t>(footprint_start_[f]);
-            const auto end = by_time_t_.begin() + static_cast<std::ptrdiff_t>(footprint_start_[f + 1]);
-            for (auto it = std::lower_bound(begin, end, range.x); it != end && *it <= range.y; ++it) {
-                const std::uint32_t k = by_time_[static_cast<std::size_t>(it - by_time_t_.begin())];
-                const int local = static_cast<int>(k / frame_.spp);
-                const int px = x0_ + local % tw_, py = y0_ + local / tw_;
-                if (px < px0 || px > px1 || py < py0 || py > py1) continue;
-                if (sample_culled(current, k, sb)) continue;
-                ++tested;
-                if (lanes_.may_cover(*current.fast, k)) test_exactly(current, k);
-            }
-            return;
+        if (frame_.time_sorted && current.needs_bounds && test_time_run(current, px0, py0, px1, py1, sb)) return;
+        for (int py = py0; py <= py1; ++py) {
+            const std::size_t first = slot(px0, py, 0);
+            test_run(current, sb, lanes_, first, static_cast<std::size_t>(px1 - px0 + 1) * frame_.spp,
+                     [](std::size_t k) { return k; });
         }
-        for (int py = py0; py <= py1; ++py)
-            for (int px = px0; px <= px1; ++px) test_pixel(current, slot(px, py, 0), sb);
     }
 
-    // A pixel's samples from slot `first` on, up to 32 at a time: the culls,
-    // then the fast test on those that passed, then covers on what it kept.
-    void test_pixel(const Current& current, std::size_t first, const typename K::SampleBounds& sb) {
-        const std::uint32_t spp = frame_.spp;
-        for (std::uint32_t j0 = 0; j0 < spp; j0 += 32) {
-            std::uint32_t passed = 0;
-            for (std::uint32_t j = j0; j < std::min(spp, j0 + 32); ++j) {
-                if (sample_culled(current, first + j, sb)) continue;
-                passed |= 1u << (j - j0);
-                ++tested;
-            }
+    // The footprint's samples inside the bounds' shutter interval, one
+    // contiguous run of its time-sorted copy, when that visits fewer samples
+    // than the footprint's rows (false: not worth it, nothing done). The run
+    // spans the whole footprint cell of the tile's grid; where the triangle's
+    // rectangle clips the cell, the screen test is kept on: the cell's
+    // pixels outside the rectangle hold no sample inside the screen bound.
+    bool test_time_run(Current& current, int px0, int py0, int px1, int py1, const typename K::SampleBounds& sb) {
+        const typename K::vec2 range = K::sample_time_range(sb);
+        const int fp = frame_.footprint;
+        const int fx = (px0 - x0_) / fp, fy = (py0 - y0_) / fp;
+        const int cx0 = x0_ + fx * fp, cy0 = y0_ + fy * fp;
+        const int cx1 = std::min(x1_, cx0 + fp - 1), cy1 = std::min(y1_, cy0 + fp - 1);
+        const double cell_pixels = double((cx1 - cx0 + 1) * (cy1 - cy0 + 1));
+        const double pixels = double((px1 - px0 + 1) * (py1 - py0 + 1));
+        const double share = std::max(0.0, double(range.y) - double(range.x));
+        if (!(share * cell_pixels < pixels)) return false;
+        const std::size_t f = static_cast<std::size_t>(fy) * footprints_x_ + static_cast<std::size_t>(fx);
+        const double* times = time_lanes_.t();
+        const double* begin = times + footprint_start_[f];
+        const double* end = times + footprint_start_[f + 1];
+        const double* lo = std::lower_bound(begin, end, double(range.x));
+        const double* hi = std::upper_bound(lo, end, double(range.y));
+        current.check_screen = current.check_screen || cx0 != px0 || cy0 != py0 || cx1 != px1 || cy1 != py1;
+        const std::size_t first = static_cast<std::size_t>(lo - times);
+        test_run(current, sb, time_lanes_, first, static_cast<std::size_t>(hi - lo),
+                 [this](std::size_t i) { return static_cast<std::size_t>(by_time_[i]); });
+        return true;
+    }
+
+    // Samples first .. first + count - 1 of `lanes` (slot_of(i) the slot of
+    // its sample i), 32 at a time: the culls (samples_passing, the kernel's
+    // chain), the fast test on those that passed, covers on what it kept.
+    template <class SlotOf>
+    void test_run(const Current& current, const typename K::SampleBounds& sb, const SampleLanes& lanes,
+                  std::size_t first, std::size_t count, SlotOf slot_of) {
+        visited += count;
+        for (std::size_t done = 0; done < count; done += 32) {
+            const std::size_t at = first + done;
+            const int n = static_cast<int>(std::min<std::size_t>(32, count - done));
+            const std::uint32_t passed = samples_passing<Real>(current.bound, current.check_screen, sb, lanes, at, n);
             if (passed == 0) continue;
-            for (std::uint32_t maybe = passed & lanes_.may_cover32(*current.fast, first + j0, passed); maybe != 0;
-                 maybe &= maybe - 1)
-                test_exactly(current, first + j0 + static_cast<std::uint32_t>(__builtin_ctz(maybe)));
+            tested += static_cast<std::uint64_t>(__builtin_popcount(passed));
+            const std::uint32_t kept = may_cover32(*current.fast, lanes.fsx() + at, lanes.fsy() + at, lanes.fu() + at,
+                                                   lanes.fv() + at, lanes.ft() + at, passed);
+            for (std::uint32_t maybe = passed & kept; maybe != 0; maybe &= maybe - 1)
+                test_exactly(current, slot_of(at + static_cast<std::size_t>(__builtin_ctz(maybe))));
         }
-    }
-
-    // The culls before the exact test: bounds, then screen bound.
-    bool sample_culled(const Current& current, std::size_t k, const typename K::SampleBounds& sb) const {
-        const Sample& s = samples_[k];
-        // kernel::sample_test's chain up to the exact test (the lens/time
-        // bounds first: cheaper than a hull and they cull more); the fast
-        // test and covers follow in test_pixel and test_exactly.
-        return K::sample_culled(current.bound, current.check_screen, sb, s.ndc, s.lens, s.time);
     }
 
     // The exact test of a sample the fast test kept (sample_test's last
@@ -443,12 +427,12 @@ private:
 
     const FrameContext<Real>& frame_;
     std::vector<Sample> samples_;
-    std::vector<std::uint32_t> by_time_;
-    std::vector<Real> by_time_t_;
+    std::vector<std::uint32_t> by_time_;  // slot of each time_lanes_ sample
     std::vector<std::size_t> footprint_start_;
     std::vector<Real> depth_;
     std::vector<std::uint32_t> hit_;
-    FloatSamples lanes_;  // samples_ in float, for the fast coverage test
+    SampleLanes lanes_;       // samples_ as arrays, in slot order
+    SampleLanes time_lanes_;  // the same, per footprint sorted by time (time_sorted)
     int x0_ = 0, y0_ = 0, x1_ = -1, y1_ = -1, tw_ = 0, footprints_x_ = 0;
 };
 
@@ -457,7 +441,8 @@ private:
 // does not depend on the schedule.
 template <class Real>
 void rasterize_tiles(const FrameContext<Real>& frame, int threads, Clock::time_point start, RenderResult& result) {
-    std::atomic<std::uint64_t> total_tested{0}, total_hit{0}, total_bounded{0}, total_bounded_empty{0};
+    std::atomic<std::uint64_t> total_tested{0}, total_hit{0}, total_bounded{0}, total_bounded_empty{0},
+        total_visited{0};
     const int tile_count = frame.setup.tiles_x * frame.setup.tiles_y;
     Progress progress(frame.settings.progress, start, tile_count);
     cpu_methods::run_parallel_items(
@@ -471,6 +456,7 @@ void rasterize_tiles(const FrameContext<Real>& frame, int threads, Clock::time_p
             total_hit.fetch_add(rasterizer.hits);
             total_bounded.fetch_add(rasterizer.bounded);
             total_bounded_empty.fetch_add(rasterizer.bounded_empty);
+            total_visited.fetch_add(rasterizer.visited);
         });
     progress.finish();
     RenderStats& stats = result.stats;
@@ -478,6 +464,7 @@ void rasterize_tiles(const FrameContext<Real>& frame, int threads, Clock::time_p
     stats.samples_hit = total_hit.load();
     stats.bounds_computed = total_bounded.load();
     stats.bounds_empty = total_bounded_empty.load();
+    stats.samples_visited = total_visited.load();
 }
 
 template <class Real>
