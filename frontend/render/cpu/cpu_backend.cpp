@@ -280,6 +280,30 @@ private:
         typename K::ScreenBound bound;
         bool needs_bounds;  // the method bounds lens and time, and the triangle moves or is defocused
         bool check_screen;  // false while the footprint is inside the screen bound
+        bool share_axes;    // footprint bounds from per-column and per-row axis bounds
+    };
+
+    // One axis's bounds per footprint column (row) of the triangle's
+    // rectangle, computed when first needed.
+    struct AxisCache {
+        std::vector<typename K::SampleAxisBounds> bounds;
+        std::vector<char> ready;
+        int origin = 0;  // first pixel of column (row) 0
+
+        void reset(int first, int last, int footprint) {
+            origin = first - first % footprint;
+            ready.assign(static_cast<std::size_t>((last - origin) / footprint + 1), 0);
+            bounds.resize(ready.size());
+        }
+        template <class Compute>
+        const typename K::SampleAxisBounds& get(int pixel, int footprint, Compute compute) {
+            const std::size_t i = static_cast<std::size_t>((pixel - origin) / footprint);
+            if (!ready[i]) {
+                bounds[i] = compute();
+                ready[i] = 1;
+            }
+            return bounds[i];
+        }
     };
 
     // NDC box (lo.xy, hi.xy) of the pixels [px0, px1] x [py0, py1] (rows grow downwards).
@@ -297,6 +321,26 @@ private:
         return sb;
     }
 
+    // The sample bounds of a footprint, counted: with share_axes from its
+    // column's and its row's axis bounds (the kernel's sample_bounds split
+    // in two: the same bounds, each axis computed once per column or row).
+    typename K::SampleBounds footprint_bounds(const Current& current, int px0, int py0, int px1, int py1) {
+        if (!current.share_axes) return bounds_of(current, px0, py0, px1, py1);
+        const typename K::vec4 box = footprint(px0, py0, px1, py1);
+        const int fp = frame_.footprint, method = frame_.method;
+        const typename K::MovingTriangle& tri = *current.tri;
+        ++bounded;
+        const auto& x = columns_.get(px0, fp, [&] { return K::sample_axis_bounds(tri, 0, box.x, box.z, method); });
+        typename K::SampleBounds sb = K::no_sample_bounds();
+        sb.empty = true;
+        if (!x.empty) {
+            const auto& y = rows_.get(py0, fp, [&] { return K::sample_axis_bounds(tri, 1, box.y, box.w, method); });
+            sb = K::combine_axis_bounds(x, y);
+        }
+        if (sb.empty) ++bounded_empty;
+        return sb;
+    }
+
     // Blocks of the image grid clipped to the triangle's rectangle; the
     // bounds hold for any footprint. A block whose bounds hold nothing is
     // skipped whole; the others are bounded again per footprint when
@@ -305,9 +349,16 @@ private:
         const PixelRect& r = frame_.setup.rects[index];
         Current current{index, &frame_.setup.triangles[index], &frame_.setup.fast_tests[index],
                         frame_.setup.screen_bound(index),
-                        frame_.cull_bounds && frame_.setup.classes[index] != 0, true};
+                        frame_.cull_bounds && frame_.setup.classes[index] != 0, true, false};
         const int rx0 = std::max(r.x0, x0_), rx1 = std::min(r.x1, x1_);
         const int ry0 = std::max(r.y0, y0_), ry1 = std::min(r.y1, y1_);
+        current.share_axes = current.needs_bounds &&
+                             (frame_.method == BC_CULL_DUALSPACE || frame_.method == BC_CULL_TWO_STAGE) &&
+                             K::bc_triangle_boundable(*current.tri);
+        if (current.share_axes) {
+            columns_.reset(rx0, rx1, frame_.footprint);
+            rows_.reset(ry0, ry1, frame_.footprint);
+        }
         const int block = frame_.block, footprint = frame_.footprint;
         for (int by = ry0 - (ry0 % block); by <= ry1; by += block) {
             for (int bx = rx0 - (rx0 % block); bx <= rx1; bx += block) {
@@ -317,14 +368,17 @@ private:
                     test_samples(current, bx0, by0, bx1, by1, K::no_sample_bounds());
                     continue;
                 }
-                if (block > footprint) {
+                // The block's own bound pays only where it can spare several
+                // footprint bounds (on one footprint it is the same bound).
+                const int spanned = (bx1 / footprint - bx0 / footprint + 1) + (by1 / footprint - by0 / footprint + 1);
+                if (block > footprint && spanned > 4) {
                     if (bounds_of(current, bx0, by0, bx1, by1).empty) continue;
                 }
                 for (int fy = by0 - (by0 % footprint); fy <= by1; fy += footprint) {
                     for (int fx = bx0 - (bx0 % footprint); fx <= bx1; fx += footprint) {
                         const int px0 = std::max(fx, bx0), px1 = std::min(fx + footprint - 1, bx1);
                         const int py0 = std::max(fy, by0), py1 = std::min(fy + footprint - 1, by1);
-                        const typename K::SampleBounds sb = bounds_of(current, px0, py0, px1, py1);
+                        const typename K::SampleBounds sb = footprint_bounds(current, px0, py0, px1, py1);
                         if (!sb.empty) test_samples(current, px0, py0, px1, py1, sb);
                     }
                 }
@@ -433,6 +487,7 @@ private:
     std::vector<std::uint32_t> hit_;
     SampleLanes lanes_;       // samples_ as arrays, in slot order
     SampleLanes time_lanes_;  // the same, per footprint sorted by time (time_sorted)
+    AxisCache columns_, rows_;  // the current triangle's axis bounds (share_axes)
     int x0_ = 0, y0_ = 0, x1_ = -1, y1_ = -1, tw_ = 0, footprints_x_ = 0;
 };
 

@@ -72,7 +72,7 @@ __attribute__((target("avx"))) inline __m256d outside(__m256d x, double lo, doub
 
 // kernel<double>::sample_culled (sample_passes without edge planes, then
 // screen_contains) on four lanes: the lanes culled, as a 4-bit mask.
-__attribute__((target("avx"))) int culled4(const kernel<double>::ScreenBound& screen, bool check_screen,
+__attribute__((target("avx"))) inline int culled4(const kernel<double>::ScreenBound& screen, bool check_screen,
                                            const kernel<double>::SampleBounds& b, const SampleLanes& lanes,
                                            std::size_t k) {
     const __m256d u = _mm256_loadu_pd(lanes.u() + k), v = _mm256_loadu_pd(lanes.v() + k);
@@ -97,7 +97,7 @@ __attribute__((target("avx"))) int culled4(const kernel<double>::ScreenBound& sc
     return _mm256_movemask_pd(culled);
 }
 
-std::uint32_t passing_avx(const kernel<double>::ScreenBound& screen, bool check_screen,
+__attribute__((target("avx"))) std::uint32_t passing_avx(const kernel<double>::ScreenBound& screen, bool check_screen,
                           const kernel<double>::SampleBounds& bounds, const SampleLanes& lanes, std::size_t first,
                           int count) {
     std::uint32_t culled = 0;
