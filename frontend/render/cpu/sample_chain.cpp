@@ -24,6 +24,7 @@ void SampleLanes::set(std::size_t k, float sx, float sy, float u, float v, float
     fu_[k] = u;
     fv_[k] = v;
     ft_[k] = t;
+    in_unit_range_ = in_unit_range_ && u >= -1.0f && u <= 1.0f && v >= -1.0f && v <= 1.0f && t >= 0.0f && t <= 1.0f;
 }
 
 void SampleLanes::copy(std::size_t k, const SampleLanes& other, std::size_t from) {
@@ -72,16 +73,20 @@ __attribute__((target("avx"))) inline __m256d outside(__m256d x, double lo, doub
 
 // kernel<double>::sample_culled (sample_passes without edge planes, then
 // screen_contains) on four lanes: the lanes culled, as a 4-bit mask.
+// check_bounds false: sample_passes is known to pass every lane.
 __attribute__((target("avx"))) inline int culled4(const kernel<double>::ScreenBound& screen, bool check_screen,
-                                           const kernel<double>::SampleBounds& b, const SampleLanes& lanes,
-                                           std::size_t k) {
-    const __m256d u = _mm256_loadu_pd(lanes.u() + k), v = _mm256_loadu_pd(lanes.v() + k);
-    const __m256d t = _mm256_loadu_pd(lanes.t() + k);
-    __m256d culled = _mm256_or_pd(outside(u, b.u_range.x, b.u_range.y), outside(v, b.v_range.x, b.v_range.y));
-    culled = _mm256_or_pd(culled, time_line_rejects(b.u_time_a, t, u));
-    culled = _mm256_or_pd(culled, time_line_rejects(b.v_time_a, t, v));
-    culled = _mm256_or_pd(culled, time_line_rejects(b.u_time_b, t, u));
-    culled = _mm256_or_pd(culled, time_line_rejects(b.v_time_b, t, v));
+                                                  bool check_bounds, const kernel<double>::SampleBounds& b,
+                                                  const SampleLanes& lanes, std::size_t k) {
+    __m256d culled = _mm256_setzero_pd();
+    if (check_bounds) {
+        const __m256d u = _mm256_loadu_pd(lanes.u() + k), v = _mm256_loadu_pd(lanes.v() + k);
+        const __m256d t = _mm256_loadu_pd(lanes.t() + k);
+        culled = _mm256_or_pd(outside(u, b.u_range.x, b.u_range.y), outside(v, b.v_range.x, b.v_range.y));
+        culled = _mm256_or_pd(culled, time_line_rejects(b.u_time_a, t, u));
+        culled = _mm256_or_pd(culled, time_line_rejects(b.v_time_a, t, v));
+        culled = _mm256_or_pd(culled, time_line_rejects(b.u_time_b, t, u));
+        culled = _mm256_or_pd(culled, time_line_rejects(b.v_time_b, t, v));
+    }
     if (check_screen) {
         const __m256d sx = _mm256_loadu_pd(lanes.sx() + k), sy = _mm256_loadu_pd(lanes.sy() + k);
         culled = _mm256_or_pd(culled, outside(sx, screen.lo.x, screen.hi.x));
@@ -97,13 +102,26 @@ __attribute__((target("avx"))) inline int culled4(const kernel<double>::ScreenBo
     return _mm256_movemask_pd(culled);
 }
 
+// Whether `b` is no_sample_bounds() (bitwise, -0 aside): then sample_passes
+// holds for every lens in [-1, 1]^2 and time in [0, 1], since t < 0 + 0 u
+// and t > 1 + 0 u are false there, as are the range tests.
+bool passes_unit_range(const kernel<double>::SampleBounds& b) {
+    const kernel<double>::SampleBounds none = kernel<double>::no_sample_bounds();
+    return !b.empty && b.u_range == none.u_range && b.v_range == none.v_range && b.u_time_a == none.u_time_a &&
+           b.u_time_b == none.u_time_b && b.v_time_a == none.v_time_a && b.v_time_b == none.v_time_b;
+}
+
 __attribute__((target("avx"))) std::uint32_t passing_avx(const kernel<double>::ScreenBound& screen, bool check_screen,
                           const kernel<double>::SampleBounds& bounds, const SampleLanes& lanes, std::size_t first,
                           int count) {
-    std::uint32_t culled = 0;
-    for (int i = 0; i < count; i += 4)
-        culled |= static_cast<std::uint32_t>(culled4(screen, check_screen, bounds, lanes, first + static_cast<std::size_t>(i))) << i;
     const std::uint32_t wanted = count >= 32 ? ~0u : (1u << count) - 1u;
+    const bool check_bounds = !(lanes.in_unit_range() && passes_unit_range(bounds));
+    if (!check_bounds && !check_screen) return wanted;
+    std::uint32_t culled = 0;
+    for (int i = 0; i < count; i += 4) {
+        const std::size_t k = first + static_cast<std::size_t>(i);
+        culled |= static_cast<std::uint32_t>(culled4(screen, check_screen, check_bounds, bounds, lanes, k)) << i;
+    }
     return ~culled & wanted;
 }
 #endif

@@ -32,10 +32,14 @@ public:
     const float* fu() const { return fu_.data(); }
     const float* fv() const { return fv_.data(); }
     const float* ft() const { return ft_.data(); }
+    // Whether every sample set so far has its lens in [-1, 1]^2 and its time
+    // in [0, 1] (every pattern's samples do): no_sample_bounds() passes them all.
+    bool in_unit_range() const { return in_unit_range_; }
 
 private:
     std::vector<double> dsx_, dsy_, du_, dv_, dt_;
     std::vector<float> fsx_, fsy_, fu_, fv_, ft_;
+    bool in_unit_range_ = true;
 };
 
 // Bit i (i < count <= 32) set when sample first + i of `lanes` is NOT culled
