@@ -18,6 +18,8 @@ packages=(
   doctest-dev libbenchmark-dev valgrind
   # frontend: scenes, CPU and Embree backends, PNG output
   libtinygltf-dev libembree-dev libstb-dev
+  # EXR output (-o out.exr): OpenEXR 3 and its Imath
+  libopenexr-dev
   # the blurcull command: option parsing and JSON output
   libcli11-dev nlohmann-json3-dev
   # robustness: clang with libFuzzer and its sanitizer runtimes (fuzz/);

@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -151,7 +152,41 @@ TEST_CASE("bad input: one line naming the problem, non-zero exit, no output file
         {"render --scene '" + data_dir + "/bad_required_draco.gltf'", "required extension KHR_draco_mesh_compression"},
         // Refused before allocating: 64 GiB for the image alone.
         {"render --size 65536x65536 --spp 1024", "GiB of memory"},
+        // Output types and sequences (docs/cpu-renderer.md, "Sequences and output files").
+        {"render -o should_not_exist.tiff", "unknown image type '.tiff'"},
+        {"render -o should_not_exist", "unknown image type (no extension)"},
+        {"render --exr-type float", "--exr-type: only an .exr output takes it"},
+        {"render --exr-type double -o should_not_exist.exr", "--exr-type"},
+        {"render --frames 5:2", "reversed"},
+        {"render --frames ''", "empty"},
+        {"render --frames 3", "--frames '3': expected A:B"},
+        {"render --frames=-1:4", "--frames '-1:4': expected"},
+        {"render --frames 0:4:0", "step"},
+        {"render --frames 0:x", "--frames"},
+        {"render --frames 0:2 --shutter-angle 0", "--shutter-angle 0: expected degrees in (0, 360]"},
+        {"render --frames 0:2 --shutter-angle 361", "--shutter-angle 361"},
+        {"render --frames 0:2 --shutter-angle -90", "--shutter-angle"},
+        {"render --frames 0:2 --fps 0", "--fps 0"},
+        {"render --frames 0:2 --fps nan", "--fps"},
+        {"render --fps 30", "--fps: only a sequence takes it"},
+        {"render --shutter-angle 90", "--shutter-angle: only a sequence takes it"},
+        {"render --frames 0:2 --shutter 0,1", "--shutter"},
+        {"render --frames 0:2 -o should_not_exist.png", "needs a frame field"},
+        {"render --frames 0:2 -o should_not_exist_%04d_%d.png", "more than one frame field"},
+        {"render --frames 0:2 -o should_not_exist_%s.png", "starts no frame field"},
+        {"render --frames 0:2 -o should_not_exist_%04d.jpg", "unknown image type '.jpg'"},
+        {"render --frames 0:2 -o should_not_exist_%04d/x.png", "not its folder"},
+        {"render -o should_not_exist_%04d.png", "needs --frames"},
+        {"render --frames 100:110 -o should_not_exist_%04d.png --scene '" + shared_dir +
+             "/scenes/khronos/BoxAnimated.gltf'",
+         "after the animation of"},
     };
+    // Left by an older build, they would fail the check below.
+    run_cli("scenes");  // makes the folder
+    for (const auto& entry :
+         std::filesystem::directory_iterator(std::filesystem::temp_directory_path() / "blurcull_cli_test")) {
+        if (entry.path().filename().string().rfind("should_not_exist", 0) == 0) std::filesystem::remove(entry.path());
+    }
     for (const Case& c : cases) {
         bool has_output = c.arguments.find(" -o ") != std::string::npos;
         // A second --size would be an error of its own and hide the case's.
@@ -164,8 +199,13 @@ TEST_CASE("bad input: one line naming the problem, non-zero exit, no output file
         CHECK(lines(run.err) == 1);
         CHECK(run.err.find(c.expected) != std::string::npos);
         CHECK(run.out.empty());
-        CHECK_FALSE(std::filesystem::exists(std::filesystem::temp_directory_path() /
-                                            "blurcull_cli_test/should_not_exist.png"));
+        // Nothing written, not even in part (a .partial-PID file).
+        for (const auto& entry :
+             std::filesystem::directory_iterator(std::filesystem::temp_directory_path() / "blurcull_cli_test")) {
+            const std::string name = entry.path().filename().string();
+            CHECK_MESSAGE(name.rfind("should_not_exist", 0) != 0, name);
+            CHECK_MESSAGE(name.find(".partial-") == std::string::npos, name);
+        }
     }
 }
 
@@ -308,4 +348,160 @@ TEST_CASE("--backend auto with --method accum and no GL context: the cpu backend
     const nlohmann::json summary = nlohmann::json::parse(run.out);
     CHECK(summary["backend"] == "cpu");
     CHECK(summary["method"] == "accum");
+}
+
+TEST_CASE("blurcull render --motion-segments: K or auto reaches the scene, bad values are one line") {
+    const std::string box = shared_dir + "/scenes/khronos/BoxAnimated.gltf";
+    if (!std::filesystem::exists(box)) return;  // the shared scenes are optional
+    Run three = run_cli("render --scene '" + box + "' --backend cpu --size 48x36 --spp 2 --shutter 0.5,1.5 " +
+                        "--motion-segments 3 --json -q -o box_segments.png");
+    REQUIRE(three.status == 0);
+    CHECK(nlohmann::json::parse(three.out)["motion_segments"] == 3);
+    Run automatic = run_cli("render --scene '" + box + "' --backend cpu --size 48x36 --spp 2 --shutter 0.5,1.5 " +
+                            "--motion-segments auto --json -q -o box_auto.png");
+    REQUIRE(automatic.status == 0);
+    CHECK(nlohmann::json::parse(automatic.out)["motion_segments"] >= 1);
+    // Built-in scenes move linearly: one segment whatever K.
+    Run car = run_cli("render --scene car --size 32x24 --spp 2 --backend cpu --motion-segments 8 --json -q -o car_k8.png");
+    REQUIRE(car.status == 0);
+    CHECK(nlohmann::json::parse(car.out)["motion_segments"] == 1);
+    for (const char* bad : {"0", "65", "2.5", "many"}) {
+        Run run = run_cli(std::string("render --scene car --size 32x24 --spp 2 --motion-segments ") + bad +
+                          " -q -o never.png");
+        INFO(bad, ": ", run.err);
+        CHECK(run.status != 0);
+        CHECK(lines(run.err) == 1);
+        CHECK(run.err.find("--motion-segments") != std::string::npos);
+        CHECK_FALSE(std::filesystem::exists(std::filesystem::temp_directory_path() / "blurcull_cli_test" / "never.png"));
+    }
+}
+
+namespace {
+
+const std::string cli_folder = (std::filesystem::temp_directory_path() / "blurcull_cli_test").string();
+
+std::string file_bytes(const std::string& path) {
+    FILE* f = std::fopen(path.c_str(), "rb");
+    REQUIRE_MESSAGE(f != nullptr, path);
+    std::string bytes;
+    std::array<char, 4096> buffer{};
+    while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), f)) bytes.append(buffer.data(), n);
+    std::fclose(f);
+    return bytes;
+}
+
+// One JSON object per line of `out`.
+std::vector<nlohmann::json> json_lines(const std::string& out) {
+    std::vector<nlohmann::json> objects;
+    std::size_t start = 0;
+    for (std::size_t end = out.find('\n'); end != std::string::npos; start = end + 1, end = out.find('\n', start)) {
+        objects.push_back(nlohmann::json::parse(out.substr(start, end - start)));
+    }
+    return objects;
+}
+
+}  // namespace
+
+TEST_CASE("-o out.exr: linear RGBA with alpha = coverage, the PNG's pixels before sRGB encoding") {
+    // A triangle framed on the background, so some pixels have no coverage.
+    const std::string args = "render --scene '" + data_dir + "/triangle.gltf' --size 48x36 --spp 4 -q --json ";
+    Run exr = run_cli(args + "--exr-type float -o triangle_linear.exr");
+    INFO(exr.err);
+    REQUIRE(exr.status == 0);
+    const nlohmann::json summary = nlohmann::json::parse(exr.out);
+    CHECK(summary["output"] == "triangle_linear.exr");
+    CHECK(summary["format"] == "exr");
+    CHECK(summary["encoding"] == "linear float RGBA, alpha = coverage");
+    Run png = run_cli(args + "-o triangle_srgb.png");
+    REQUIRE(png.status == 0);
+    CHECK(nlohmann::json::parse(png.out)["encoding"] == "sRGB 8-bit RGB");
+    using namespace blurcull::frontend;
+    const Image linear = read_exr(cli_folder + "/triangle_linear.exr");
+    const Image encoded = read_png(cli_folder + "/triangle_srgb.png");
+    REQUIRE(linear.pixels.size() == encoded.pixels.size());
+    std::size_t empty = 0, full = 0;
+    for (std::size_t i = 0; i < linear.pixels.size(); ++i) {
+        for (int c = 0; c < 3; ++c) {
+            // The PNG is the EXR's value, sRGB-encoded and rounded to 8 bits.
+            const float byte = std::round(linear_to_srgb(linear.pixels[i][c]) * 255.0f);
+            CHECK(std::abs(linear_to_srgb(encoded.pixels[i][c]) * 255.0f - byte) < 0.01f);
+        }
+        const float samples = linear.coverage[i] * 4.0f;
+        CHECK(samples == std::round(samples));
+        empty += samples == 0.0f;
+        full += samples == 4.0f;
+    }
+    CHECK(empty > 0);
+    CHECK(full > 0);
+    // Half by default.
+    Run half = run_cli(args + "-o triangle_half.exr");
+    REQUIRE(half.status == 0);
+    CHECK(nlohmann::json::parse(half.out)["encoding"] == "linear half RGBA, alpha = coverage");
+    CHECK(read_exr(cli_folder + "/triangle_half.exr").coverage == linear.coverage);
+}
+
+TEST_CASE("--frames: numbered files on the glTF clock, each frame independent of the range") {
+    const std::string box = shared_dir + "/scenes/khronos/BoxAnimated.gltf";
+    if (!std::filesystem::exists(box)) {
+        MESSAGE("skipped: " << box << " is missing");
+        return;
+    }
+    const std::string args = "render --scene '" + box + "' --size 48x36 --spp 2 --json --fps 24 --shutter-angle 180 ";
+    Run run = run_cli(args + "--frames 10:14:2 -o box_seq_%04d.png");
+    INFO(run.err);
+    REQUIRE(run.status == 0);
+    const std::vector<nlohmann::json> frames = json_lines(run.out);
+    REQUIRE(frames.size() == 3);
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+        const long frame = 10 + 2 * static_cast<long>(i);
+        CHECK(frames[i]["frame"] == frame);
+        // Frame f opens at f / fps seconds, for half the frame interval.
+        CHECK(frames[i]["shutter_open"].get<double>() == doctest::Approx(static_cast<double>(frame) / 24.0));
+        CHECK(frames[i]["shutter_close"].get<double>() == doctest::Approx((static_cast<double>(frame) + 0.5) / 24.0));
+        char name[32];
+        std::snprintf(name, sizeof name, "box_seq_%04ld.png", frame);
+        CHECK(frames[i]["output"] == name);
+        CHECK(std::filesystem::exists(cli_folder + "/" + name));
+    }
+    // One camera for the whole animation (framed over all of it), not one per frame.
+    CHECK(frames[0]["focus_distance"] == frames[2]["focus_distance"]);
+    // Progress over the whole sequence, one line a frame.
+    CHECK(run.err.find("frame 14: 3 of 3 (100%)") != std::string::npos);
+    // The box moves: the frames differ.
+    CHECK(file_bytes(cli_folder + "/box_seq_0010.png") != file_bytes(cli_folder + "/box_seq_0014.png"));
+    // Another machine rendering 12:12 alone makes the same file.
+    Run alone = run_cli(args + "--frames 12:12 -o box_alone_%d.png -q");
+    INFO(alone.err);
+    REQUIRE(alone.status == 0);
+    CHECK(file_bytes(cli_folder + "/box_alone_12.png") == file_bytes(cli_folder + "/box_seq_0012.png"));
+    // A range past the animation's end (3.708 s: frame 89 at 24 fps) is cut there, with one warning.
+    Run past = run_cli(args + "--frames 88:95 -o box_end_%04d.png");
+    INFO(past.err);
+    REQUIRE(past.status == 0);
+    CHECK(json_lines(past.out).size() == 2);
+    CHECK(past.err.find("warning: --frames 88:95: the animation of") != std::string::npos);
+    CHECK(past.err.find("rendering frames 88 to 89") != std::string::npos);
+    CHECK_FALSE(std::filesystem::exists(cli_folder + "/box_end_0090.png"));
+}
+
+TEST_CASE("--frames on a built-in scene: the nominal shutter is one frame interval, extended linearly") {
+    // Frame 0 with a 360-degree shutter is the scene's default render.
+    Run plain = run_cli("render --scene car --size 48x36 --spp 2 -q -o car_plain.png");
+    Run frame = run_cli("render --scene car --size 48x36 --spp 2 -q --frames 0:1 --shutter-angle 360 -o car_f%d.png");
+    INFO(frame.err);
+    REQUIRE(plain.status == 0);
+    REQUIRE(frame.status == 0);
+    CHECK(file_bytes(cli_folder + "/car_f0.png") == file_bytes(cli_folder + "/car_plain.png"));
+    // Frame 1 is the next interval of the same linear motion: --shutter 1,2.
+    Run shutter = run_cli("render --scene car --size 48x36 --spp 2 -q --shutter 1,2 -o car_next.png");
+    REQUIRE(shutter.status == 0);
+    CHECK(file_bytes(cli_folder + "/car_f1.png") == file_bytes(cli_folder + "/car_next.png"));
+    CHECK(file_bytes(cli_folder + "/car_f1.png") != file_bytes(cli_folder + "/car_f0.png"));
+    // EXR frames too.
+    Run exr = run_cli("render --scene car --size 32x24 --spp 2 -q --frames 2:3 -o car_%03d.exr --json");
+    INFO(exr.err);
+    REQUIRE(exr.status == 0);
+    CHECK(json_lines(exr.out).size() == 2);
+    CHECK(std::filesystem::exists(cli_folder + "/car_002.exr"));
+    CHECK(std::filesystem::exists(cli_folder + "/car_003.exr"));
 }

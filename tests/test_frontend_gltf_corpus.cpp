@@ -97,6 +97,7 @@ TEST_CASE("glTF corpus: each malformed file is one SceneError line naming the fi
         {"bad_glb_version_1.glb", "GLB container version 1 is not supported"},
         {"bad_required_draco.gltf",
          "required extension KHR_draco_mesh_compression is not supported (blurcull implements KHR_mesh_quantization)"},
+        {"bad_required_newline.gltf", "required extension EXT_line?break is not supported"},
         // Morph targets (issue 14 item 5).
         {"bad_morph_node_weights.gltf", "node 0 has 3 weights but mesh 0 has 2 morph targets"},
         {"bad_morph_channel.gltf", "animation 0 channel 0 has 1 weights per key for node 0's 2 morph targets"},
@@ -180,6 +181,10 @@ TEST_CASE("glTF conformance: glTF 2.1 loads; unread extensions, missing images w
     const Outcome used = load(unknown);
     CHECK(used.triangles == 1);
     CHECK(used.warnings == unknown + ": warning: extension EXT_blurcull_unknown is not read; ignored\n");
+
+    const std::string odd = kDataDir + "extension_names_odd.gltf";
+    CHECK(load(odd).warnings == odd + ": warning: extension EXT_line?break is not read; ignored\n" + odd +
+                                    ": warning: extension EXT_" + std::string(116, 'x') + "... is not read; ignored\n");
 
     // A missing texture image: one warning naming it, the factor stays.
     const std::string textured = kDataDir + "missing_texture.gltf";

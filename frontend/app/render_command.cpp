@@ -1,31 +1,40 @@
 #include "app/render_command.hpp"
 
+#include "app/frame_sequence.hpp"
 #include "app/scene_setup.hpp"
 
 #include "render/common/backend.hpp"
 #include "render/common/image.hpp"
+#include "render/common/motion_segments.hpp"
+#include "render/common/progress.hpp"
 #include "render/common/render_types.hpp"
 #include "render/cpu/cpu_backend.hpp"
 #include "render/cpu/methods.hpp"
 #include "render/embree/embree_backend.hpp"
 #include "render/gl/gl_backend.hpp"
 #include "scene/builtin_scenes.hpp"
+#include "scene/motion_segments.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace blurcull::frontend {
 namespace {
 
 // Memory budget: refuse a render whose buffers cannot fit before allocating
-// any. Per pixel: the float RGB image and the 8-bit PNG rows (15 bytes); per
+// any. Per pixel: the float RGB image, its coverage, and the file's rows
+// (8-bit RGB for a PNG, four floats for an EXR: 32 bytes at most); per
 // sample what the method's registry entry says its CPU renderer keeps. The
 // limit is MemAvailable from /proc/meminfo (sysconf's available pages without it).
 double available_memory_bytes() {
@@ -44,7 +53,7 @@ double available_memory_bytes() {
 void check_memory_budget(const std::string& size_text, const RenderSettings& settings) {
     const double pixels = double(settings.width) * double(settings.height);
     const double per_sample = render_method_info(settings.method).bytes_per_sample;
-    const double needed = pixels * (15.0 + per_sample * settings.spp);
+    const double needed = pixels * (32.0 + per_sample * settings.spp);
     const double available = available_memory_bytes();
     if (needed > available) {
         char message[256];
@@ -57,13 +66,20 @@ void check_memory_budget(const std::string& size_text, const RenderSettings& set
 }
 
 // Everything a render needs once the options are checked: the settings, the
-// backend chosen and its options, where the PNG goes, and the scene.
+// backend chosen and its options, where the images go and in which format,
+// the frames (none: one render of the scene's own or --shutter's shutter),
+// and the scene of the frame being rendered.
 struct RenderJob {
     RenderSettings settings;
     Backend backend = Backend::cpu;
     CpuOptions cpu;
     GlOptions gl;
-    std::string out_path;
+    OutputPattern output;
+    ImageFormat format = ImageFormat::png;
+    ExrPixelType exr_type = ExrPixelType::half;
+    std::vector<long> frames;
+    std::optional<long> frame;  // the frame being rendered, in a sequence
+    std::string out_path;       // its file
     Scene scene;
 };
 
@@ -102,15 +118,71 @@ RenderSettings make_settings(const RenderCommand& command) {
     return settings;
 }
 
-// The PNG's path; refused before rendering when its folder is not writable.
-std::string writable_output_path(const RenderCommand& command) {
-    const std::string out_path = command.output.empty() ? stem(command.scene) + ".png" : command.output;
-    const std::size_t slash = out_path.find_last_of('/');
-    const std::string folder = slash == std::string::npos ? "." : (slash == 0 ? "/" : out_path.substr(0, slash));
-    if (access(folder.c_str(), W_OK) != 0) {
-        throw std::runtime_error("-o: cannot write '" + out_path + "': folder '" + folder + "' is not writable");
+// The output name (a pattern with a frame field for a sequence) and its
+// format; refused before rendering when the type is unknown, the frame
+// field is missing or misplaced, or the folder is not writable.
+OutputPattern writable_output(const RenderCommand& command, bool sequence, ImageFormat& format) {
+    const std::string name = !command.output.empty() ? command.output
+                             : sequence              ? stem(command.scene) + "_%04d.png"
+                                                     : stem(command.scene) + ".png";
+    OutputPattern pattern = parse_output_pattern(name, sequence);
+    const std::string first = pattern.path_for(0);
+    try {
+        format = image_format_for_path(first);
+    } catch (const std::invalid_argument& error) {
+        throw std::invalid_argument(std::string("-o: ") + error.what());
     }
-    return out_path;
+    const std::size_t slash = first.find_last_of('/');
+    if (pattern.has_field && slash != std::string::npos && slash >= pattern.before.size()) {
+        throw std::invalid_argument("-o " + name + ": the frame field must be in the file's name, not its folder");
+    }
+    const std::string folder = slash == std::string::npos ? "." : (slash == 0 ? "/" : first.substr(0, slash));
+    if (access(folder.c_str(), W_OK) != 0) {
+        throw std::runtime_error("-o: cannot write '" + name + "': folder '" + folder + "' is not writable");
+    }
+    return pattern;
+}
+
+// --frames and the options that go with it: the frame numbers (empty
+// without --frames); throws naming the flag for a bad range, an angle
+// outside (0, 360], an fps that is not positive, or --fps, --shutter-angle
+// without --frames and --shutter with it.
+std::vector<long> sequence_frames(const RenderCommand& command) {
+    const bool fps_given = command.fps_option != nullptr && command.fps_option->count() > 0;
+    const bool angle_given = command.shutter_angle_option != nullptr && command.shutter_angle_option->count() > 0;
+    if (command.frames_option == nullptr || command.frames_option->count() == 0) {
+        if (fps_given) throw std::invalid_argument("--fps: only a sequence takes it (give --frames A:B)");
+        if (angle_given) {
+            throw std::invalid_argument("--shutter-angle: only a sequence takes it (give --frames A:B, or --shutter "
+                                        "OPEN,CLOSE for one frame)");
+        }
+        return {};
+    }
+    if (!command.shutter.empty()) {
+        throw std::invalid_argument("--shutter: a sequence's shutter comes from --fps and --shutter-angle, not "
+                                    "--shutter");
+    }
+    if (!(command.shutter_angle > 0.0 && command.shutter_angle <= 360.0)) {
+        char message[160];
+        std::snprintf(message, sizeof message, "--shutter-angle %g: expected degrees in (0, 360]",
+                      command.shutter_angle);
+        throw std::invalid_argument(message);
+    }
+    if (!(command.fps > 0.0) || !std::isfinite(command.fps)) {
+        char message[160];
+        std::snprintf(message, sizeof message, "--fps %g: expected a positive number of frames per second",
+                      command.fps);
+        throw std::invalid_argument(message);
+    }
+    return parse_frame_range(command.frames).frames();
+}
+
+// --exr-type: the EXR's channel type; refused for a PNG.
+ExrPixelType exr_pixel_type(const RenderCommand& command, ImageFormat format) {
+    if (format != ImageFormat::exr && command.exr_type_option != nullptr && command.exr_type_option->count() > 0) {
+        throw std::invalid_argument("--exr-type: only an .exr output takes it");
+    }
+    return command.exr_type == "float" ? ExrPixelType::full_float : ExrPixelType::half;
 }
 
 // --backend: the one named, or for auto gl on a hardware OpenGL 4.5 context
@@ -184,37 +256,92 @@ void require_gl_context([[maybe_unused]] const RenderCommand& command) {
 #endif
 }
 
-// The scene, its lens, focus, shutter and blur-scale overrides; throws naming
-// --shutter when it is malformed.
-SceneRequest scene_request(const RenderCommand& command, const RenderSettings& settings) {
+// The frame's shutter on the scene's animation clock (scene/load_scene.hpp).
+FrameShutter frame_shutter(const RenderCommand& command, long frame) {
+    FrameShutter shutter;
+    shutter.frame = frame;
+    shutter.fps = command.fps;
+    shutter.shutter_angle_degrees = command.shutter_angle;
+    return shutter;
+}
+
+// The scene, its lens, focus, shutter (or the frame's) and blur-scale
+// overrides; throws naming --shutter when it is malformed.
+SceneRequest scene_request(const RenderCommand& command, const RenderSettings& settings, std::optional<long> frame) {
     SceneRequest request;
     request.scene = command.scene;
     request.aspect = static_cast<float>(settings.width) / static_cast<float>(settings.height);
     request.blur_scale = command.blur_scale;
     request.has_shutter = !command.shutter.empty();
     if (request.has_shutter) parse_shutter(command.shutter, request.shutter_open, request.shutter_close);
+    request.has_frame = frame.has_value();
+    if (frame) request.frame = frame_shutter(command, *frame);
     request.lens_radius = command.lens_radius;
     request.fstop = command.fstop;
     request.focus = command.focus;
+    request.motion_segments = parse_motion_segments(command.motion_segments);
+    request.image_height = settings.height;
     return request;
 }
 
-// Checks the options and loads the scene; throws with a one-line message
-// naming the flag.
+// Checks the options (all of them, before any frame is rendered); throws
+// with a one-line message naming the flag.
 RenderJob set_up(const RenderCommand& command) {
     RenderJob job;
     job.settings = make_settings(command);
     check_memory_budget(command.size, job.settings);
-    const SceneRequest request = scene_request(command, job.settings);
-    job.out_path = writable_output_path(command);
+    job.frames = sequence_frames(command);
+    scene_request(command, job.settings, std::nullopt);  // checks --shutter
+    job.output = writable_output(command, !job.frames.empty(), job.format);
+    job.exr_type = exr_pixel_type(command, job.format);
     job.backend = choose_backend(command);
     refuse_unhonoured_options(command, job.backend);
     require_gl_context(command);
     job.cpu.footprint = command.footprint;
     job.cpu.precision = parse_kernel_precision(command.precision);
     job.gl.cell_pixels = command.gl_cell;
-    job.scene = load_scene(request);
     return job;
+}
+
+// Loads the scene of `frame` (none: the single render's) into the job.
+// The scene's warnings are printed for the first load only: every frame
+// of a file would repeat them.
+void load_frame(const RenderCommand& command, RenderJob& job, std::optional<long> frame, bool print_warnings) {
+    job.frame = frame;
+    job.out_path = job.output.path_for(frame.value_or(0));
+    const SceneRequest request = scene_request(command, job.settings, frame);
+    job.scene = print_warnings ? load_scene(request) : load_scene(request.scene, request, WarningSink{});
+}
+
+// The frame's shutter open time on the scene's clock.
+double frame_open_time(const RenderCommand& command, long frame) {
+    return frame_shutter_interval(command.scene, frame_shutter(command, frame)).first;
+}
+
+// The sequence's frames whose shutter opens within the animation
+// (job.scene, the first frame's, says where it ends): refused when the
+// first opens after the end, cut with a warning when later ones do.
+void keep_frames_in_animation(const RenderCommand& command, RenderJob& job) {
+    const double end = job.scene.animation_end;
+    const double slack = 1e-6 * std::max(1.0, std::abs(end));  // the end is a float keyframe time
+    const auto past_end = [&](long frame) { return frame_open_time(command, frame) > end + slack; };
+    if (past_end(job.frames.front())) {
+        char message[320];
+        std::snprintf(message, sizeof message,
+                      "--frames %s: frame %ld opens at %g s, after the animation of '%s' ends (%g s, frame %ld at "
+                      "--fps %g)",
+                      command.frames.c_str(), job.frames.front(), frame_open_time(command, job.frames.front()),
+                      command.scene.c_str(), end, static_cast<long>(std::floor((end + slack) * command.fps)), command.fps);
+        throw std::invalid_argument(message);
+    }
+    if (!past_end(job.frames.back())) return;
+    while (past_end(job.frames.back())) job.frames.pop_back();
+    if (!command.quiet) {
+        std::fprintf(stderr,
+                     "warning: --frames %s: the animation of '%s' ends at %g s; rendering frames %ld to %ld (the last "
+                     "that open before it)\n",
+                     command.frames.c_str(), command.scene.c_str(), end, job.frames.front(), job.frames.back());
+    }
 }
 
 // Renders on the job's backend with its method.
@@ -247,6 +374,14 @@ bool culled(const RenderJob& job) {
 void print_json_summary(const RenderCommand& command, const RenderJob& job, const RenderStats& stats) {
     nlohmann::ordered_json summary;
     summary["scene"] = job.scene.name.empty() ? stem(command.scene) : job.scene.name;
+    if (job.frame) {
+        const std::pair<double, double> shutter = frame_shutter_interval(command.scene, frame_shutter(command, *job.frame));
+        summary["frame"] = *job.frame;
+        summary["fps"] = command.fps;
+        summary["shutter_angle"] = command.shutter_angle;
+        summary["shutter_open"] = shutter.first;
+        summary["shutter_close"] = shutter.second;
+    }
     summary["backend"] = to_string(job.backend);
     summary["method"] = to_string(job.settings.method);
     summary["cull"] = culled(job) ? to_string(job.settings.cull) : "none";
@@ -261,6 +396,7 @@ void print_json_summary(const RenderCommand& command, const RenderJob& job, cons
     summary["lens_radius"] = job.scene.camera.lens_radius;
     summary["focus_distance"] = job.scene.camera.focus_distance;
     summary["triangles"] = stats.triangles;
+    summary["motion_segments"] = scene_motion_segments(job.scene);
     summary["samples_tested"] = stats.samples_tested;
     summary["samples_hit"] = stats.samples_hit;
     if (stats.samples_visited > 0) summary["samples_visited"] = stats.samples_visited;
@@ -272,19 +408,63 @@ void print_json_summary(const RenderCommand& command, const RenderJob& job, cons
     for (const auto& [name, ms] : stats.ms_per_phase) phases[name] = ms;
     summary["ms_per_phase"] = phases;
     summary["output"] = job.out_path;
+    summary["format"] = job.format == ImageFormat::png ? "png" : "exr";
+    summary["encoding"] = image_encoding(job.format, job.exr_type);
     std::printf("%s\n", summary.dump().c_str());
+    std::fflush(stdout);  // a sequence's lines as its frames finish
 }
 
 void print_text_summary(const RenderCommand& command, const RenderJob& job, const RenderStats& stats) {
     const std::string sampling = job.settings.method != RenderMethod::stochastic
                                      ? std::string("method ") + to_string(job.settings.method)
                                      : std::string("cull ") + (culled(job) ? to_string(job.settings.cull) : "none");
-    std::printf("%s: %zu triangles, %dx%d, %d spp, backend %s, %s\n", command.scene.c_str(), stats.triangles,
-                job.settings.width, job.settings.height, job.settings.spp, to_string(job.backend), sampling.c_str());
+    const std::string frame = job.frame ? " frame " + std::to_string(*job.frame) : std::string();
+    std::printf("%s%s: %zu triangles, %dx%d, %d spp, backend %s, %s\n", command.scene.c_str(), frame.c_str(),
+                stats.triangles, job.settings.width, job.settings.height, job.settings.spp, to_string(job.backend),
+                sampling.c_str());
     std::printf("  %llu samples tested, %llu hit, STE %.1f%%, %.0f ms\n",
                 static_cast<unsigned long long>(stats.samples_tested),
                 static_cast<unsigned long long>(stats.samples_hit), 100.0 * stats.ste(), stats.ms_total);
-    std::printf("  wrote %s\n", job.out_path.c_str());
+    std::printf("  wrote %s (%s)\n", job.out_path.c_str(), image_encoding(job.format, job.exr_type).c_str());
+    std::fflush(stdout);
+}
+
+// Renders the job's frame, writes its file and prints its summary.
+void render_and_write(const RenderCommand& command, const RenderJob& job) {
+    const RenderResult result = dispatch(job);
+    for (const std::string& warning : result.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
+    if (job.format == ImageFormat::exr && result.image.coverage.empty()) {
+        std::fprintf(stderr, "warning: backend %s, method %s did not report coverage: the EXR's alpha is 1\n",
+                     to_string(job.backend), to_string(job.settings.method));
+    }
+    write_image(job.out_path, result.image, job.format, job.exr_type);
+    if (command.json) {
+        print_json_summary(command, job, result.stats);
+    } else {
+        print_text_summary(command, job, result.stats);
+    }
+}
+
+// "frame 12: 3 of 10 (30%), 1.4 s per frame, about 9.8 s left" on stderr.
+void report_sequence_progress(const RenderJob& job, std::size_t done, RenderClock::time_point start) {
+    const double seconds = ms_since(start) / 1000.0;
+    const double per_frame = seconds / static_cast<double>(done);
+    std::fprintf(stderr, "frame %ld: %zu of %zu (%d%%), %.2f s per frame, about %.1f s left\n", *job.frame, done,
+                 job.frames.size(), static_cast<int>(100 * done / job.frames.size()), per_frame,
+                 per_frame * static_cast<double>(job.frames.size() - done));
+}
+
+// Every frame of the sequence, each loaded, rendered and written on its own
+// (a frame depends on nothing but its number and the options).
+void render_sequence(const RenderCommand& command, RenderJob& job) {
+    const RenderClock::time_point start = RenderClock::now();
+    load_frame(command, job, job.frames.front(), true);
+    keep_frames_in_animation(command, job);
+    for (std::size_t i = 0; i < job.frames.size(); ++i) {
+        if (i > 0) load_frame(command, job, job.frames[i], false);
+        render_and_write(command, job);
+        if (!command.quiet) report_sequence_progress(job, i + 1, start);
+    }
 }
 
 std::string joined(const std::vector<std::string>& names, const char* separator) {
@@ -305,7 +485,22 @@ void RenderCommand::add_options(CLI::App& app) {
     method_option = app.add_option("--method", method, render_method_help())
                         ->check(CLI::IsMember(render_method_names_and_aliases()))
                         ->capture_default_str();
-    app.add_option("-o,--output", output, "PNG to write (default: <scene>.png in the current folder)");
+    app.add_option("-o,--output", output,
+                   "image to write, .png (sRGB 8-bit) or .exr (linear RGBA, alpha = coverage); for --frames a name "
+                   "with a frame field such as %04d (default: <scene>.png, <scene>_%04d.png for --frames)");
+    exr_type_option = app.add_option("--exr-type", exr_type, "an .exr output's channels: half or float")
+                          ->check(CLI::IsMember({"half", "float"}))
+                          ->capture_default_str();
+    frames_option = app.add_option("--frames", frames,
+                   "A:B[:STEP]: render frames A to B (included) of the animation, each to its own file (-o's frame "
+                   "field); glTF frame f opens at f / fps seconds, a built-in scene's frame f at f times its nominal "
+                   "shutter");
+    fps_option = app.add_option("--fps", fps, "frames per second of --frames")->capture_default_str();
+    shutter_angle_option =
+        app.add_option("--shutter-angle", shutter_angle,
+                       "degrees of each frame interval the shutter is open, in (0, 360] (180: half, opening at the "
+                       "frame's time)")
+            ->capture_default_str();
     app.add_flag("--json", json, "print one JSON object with the render's statistics on stdout");
     app.add_option("--threads", threads, "worker threads (0: all cores)")->check(CLI::Range(0, 1024));
     footprint_option = app.add_option("--footprint", footprint, "cpu: pixels per side of a culling footprint")
@@ -324,18 +519,20 @@ void RenderCommand::add_options(CLI::App& app) {
                          ->check(CLI::Range(1, 4096))
                          ->capture_default_str();
     app.add_flag("-q,--quiet", quiet, "no progress on stderr");
+    app.add_option("--motion-segments", motion_segments,
+                   "glTF: K linear motion segments over the shutter (1 to " + std::to_string(max_motion_segments) +
+                       "), or auto: K from the largest rotation, chord within 1/4 pixel (cpu and embree)")
+        ->capture_default_str();
 }
 
 int RenderCommand::run() const {
-    const RenderJob job = set_up(*this);
-    const RenderResult result = dispatch(job);
-    for (const std::string& warning : result.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
-    write_png(job.out_path, result.image);
-    if (json) {
-        print_json_summary(*this, job, result.stats);
-    } else {
-        print_text_summary(*this, job, result.stats);
+    RenderJob job = set_up(*this);
+    if (!job.frames.empty()) {
+        render_sequence(*this, job);
+        return 0;
     }
+    load_frame(*this, job, std::nullopt, true);
+    render_and_write(*this, job);
     return 0;
 }
 

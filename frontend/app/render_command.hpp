@@ -18,13 +18,19 @@ struct RenderCommand : SceneFlags {
 
     std::string backend = "auto";
     std::string method = to_string(RenderSettings{}.method);
-    std::string output;         // empty: <scene>.png in the current folder
+    std::string output;         // empty: <scene>.png, or <scene>_%04d.png for --frames, in the current folder
+    std::string exr_type = "half";  // an .exr output's channels: half or float
+    // A sequence (app/frame_sequence.hpp): "A:B[:STEP]"; empty: one frame.
+    std::string frames;
+    double fps = 24.0;
+    double shutter_angle = 180.0;  // degrees of the frame interval the shutter is open, (0, 360]
     bool json = false;
     int threads = 0;
     int footprint = CpuOptions{}.footprint;
     std::string precision = to_string(CpuOptions{}.precision);
     int gl_cell = GlOptions{}.cell_pixels;
     bool quiet = false;
+    std::string motion_segments = "1";  // K, or "auto" (parse_motion_segments)
 
     // The backend-specific options, to tell whether they were given
     // (count() > 0) when the backend in use cannot honour them.
@@ -32,6 +38,11 @@ struct RenderCommand : SceneFlags {
     CLI::Option* footprint_option = nullptr;
     CLI::Option* precision_option = nullptr;
     CLI::Option* gl_cell_option = nullptr;
+    // The sequence's and the EXR's options, refused without --frames or an .exr output.
+    CLI::Option* frames_option = nullptr;
+    CLI::Option* fps_option = nullptr;
+    CLI::Option* shutter_angle_option = nullptr;
+    CLI::Option* exr_type_option = nullptr;
 
     // Declares the options on `app`, their checks and help read from the
     // registries of cull methods, render methods, precisions and backends.

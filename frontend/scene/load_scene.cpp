@@ -42,10 +42,13 @@ Scene build_gltf(const std::string& path, const SceneSettings& settings, const W
     GltfOptions gltf;
     gltf.aspect = settings.aspect;
     gltf.blur_scale = static_cast<float>(settings.blur_scale);
+    gltf.motion_segments = settings.motion_segments;
+    gltf.image_height = settings.image_height;
     if (settings.has_shutter) {
         gltf.shutter_open = settings.shutter_open;
         gltf.shutter_close = settings.shutter_close;
     }
+    gltf.frame_whole_animation = settings.has_frame;
     return gltf::build_scene(path, gltf, warn);
 }
 
@@ -65,7 +68,29 @@ float lens_radius_for_fstop(float yfov, double fstop) {
     return static_cast<float>(focal_length / (2.0 * fstop));
 }
 
-Scene load_scene(const std::string& name_or_path, const SceneSettings& settings, const WarningSink& warn) {
+std::pair<double, double> frame_shutter_interval(const std::string& name_or_path, const FrameShutter& frame) {
+    if (frame.frame < 0) throw SceneError("frame " + std::to_string(frame.frame) + " is negative");
+    if (!(frame.fps > 0.0) || !std::isfinite(frame.fps)) {
+        throw SceneError("frame rate " + std::to_string(frame.fps) + " must be finite and positive");
+    }
+    if (!(frame.shutter_angle_degrees > 0.0 && frame.shutter_angle_degrees <= 360.0)) {
+        throw SceneError("shutter angle " + std::to_string(frame.shutter_angle_degrees) +
+                         " degrees is outside (0, 360]");
+    }
+    const double open_fraction = frame.shutter_angle_degrees / 360.0;  // of the frame interval
+    const auto f = static_cast<double>(frame.frame);
+    if (scene_file_type(name_or_path) == SceneFileType::none) return {f, f + open_fraction};
+    return {f / frame.fps, (f + open_fraction) / frame.fps};
+}
+
+Scene load_scene(const std::string& name_or_path, const SceneSettings& given, const WarningSink& warn) {
+    SceneSettings settings = given;
+    if (settings.has_frame) {
+        const std::pair<double, double> interval = frame_shutter_interval(name_or_path, settings.frame);
+        settings.has_shutter = true;
+        settings.shutter_open = static_cast<float>(interval.first);
+        settings.shutter_close = static_cast<float>(interval.second);
+    }
     switch (scene_file_type(name_or_path)) {
         case SceneFileType::gltf:
         case SceneFileType::glb: {

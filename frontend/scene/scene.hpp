@@ -12,6 +12,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -37,17 +38,30 @@ struct Material {
 struct Camera {
     glm::mat4 view_open{1.0f};   // world -> view at shutter open
     glm::mat4 view_close{1.0f};  // world -> view at shutter close
+    // Motion segments (Scene::position_at): world -> view at the interior
+    // times k / K, k = 1 .. K - 1; empty: interpolated between the ends.
+    std::vector<glm::mat4> view_at;
     float yfov = 0.8f;           // radians, full vertical field of view
     float znear = 0.05f;         // near plane (view depth)
     float lens_radius = 0.0f;    // thin-lens aperture radius, world units
     float focus_distance = 10.0f;// view depth that is in focus
 };
 
+// The most motion segments a scene may carry (--motion-segments K <= this;
+// `auto` clamps to it with a warning): each segment is one more copy of the
+// vertices and, on the CPU, of the moving triangles' setup.
+inline constexpr int max_motion_segments = 64;
+
 struct Scene {
     std::string name;
     // Per vertex; the two arrays have the same length.
     std::vector<glm::vec3> position_open;
     std::vector<glm::vec3> position_close;
+    // Motion segments (--motion-segments K > 1; docs/reference-renderer.md,
+    // "The motion model"): the world positions at the interior shutter times
+    // k / K, k = 1 .. K - 1, position_at[k - 1] per vertex like position_open.
+    // Empty (K = 1, every built-in scene): linear motion from open to close.
+    std::vector<std::vector<glm::vec3>> position_at;
     // Per triangle.
     std::vector<glm::uvec3> triangles;
     std::vector<std::uint32_t> triangle_material;
@@ -59,6 +73,11 @@ struct Scene {
     // What a ray that leaves the scene sees: BC_ENVIRONMENT_NONE (the
     // background colour) or BC_ENVIRONMENT_SKY (render/common/optics_shared.h).
     int environment = 0;
+    // Where the scene's animation clock ends (scene/load_scene.hpp,
+    // frame_shutter_interval): for glTF the last keyframe time, in seconds,
+    // of the animation used (0 without one); a built-in scene's linear
+    // motion never ends (infinity).
+    double animation_end = std::numeric_limits<double>::infinity();
 
     // True when the maker that returned this scene validated it, so the
     // backends need not check it again. Code that edits such a scene in a

@@ -29,6 +29,32 @@ glm::vec3 eye_position(const glm::mat4& view) {
     return glm::vec3(glm::inverse(view)[3]);
 }
 
+// Motion segments: one position per vertex at every interior time, finite,
+// and no more interior times than the cap; camera views, if any, at the same times.
+void check_interior_times(const Scene& scene) {
+    if (scene.position_at.size() + 1 > static_cast<std::size_t>(max_motion_segments)) {
+        fail(scene, std::to_string(scene.position_at.size() + 1) + " motion segments exceed the cap of " +
+                        std::to_string(max_motion_segments));
+    }
+    for (std::size_t k = 0; k < scene.position_at.size(); ++k) {
+        if (scene.position_at[k].size() != scene.position_open.size()) {
+            fail(scene, "interior time " + std::to_string(k + 1) + " has " +
+                            std::to_string(scene.position_at[k].size()) + " positions for " +
+                            std::to_string(scene.position_open.size()) + " vertices");
+        }
+        for (const glm::vec3& p : scene.position_at[k]) {
+            if (!is_finite(p)) fail(scene, "interior time " + std::to_string(k + 1) + " has a non-finite position");
+        }
+    }
+    if (!scene.camera.view_at.empty() && scene.camera.view_at.size() != scene.position_at.size()) {
+        fail(scene, std::to_string(scene.camera.view_at.size()) + " interior camera views for " +
+                        std::to_string(scene.position_at.size()) + " interior times");
+    }
+    for (const glm::mat4& view : scene.camera.view_at) {
+        if (!is_finite(view)) fail(scene, "an interior camera view matrix is not finite");
+    }
+}
+
 }  // namespace
 
 void validate_scene(const Scene& scene) {
@@ -46,6 +72,7 @@ void validate_scene(const Scene& scene) {
             fail(scene, "vertex " + std::to_string(i) + " has a non-finite position");
         }
     }
+    check_interior_times(scene);
     for (std::size_t t = 0; t < scene.triangles.size(); ++t) {
         const glm::uvec3& tri = scene.triangles[t];
         for (int corner = 0; corner < 3; ++corner) {

@@ -14,7 +14,9 @@ namespace blurcull::frontend {
 // the two per-triangle arrays have matching sizes, every vertex index and
 // material index is in range, every position and camera matrix is finite, and
 // the camera is usable (0 < yfov < pi, znear > 0, lens_radius >= 0,
-// focus_distance > 0). The scene makers call it on what they return.
+// focus_distance > 0), and the motion segments' interior positions and views
+// (position_at, view_at) have one entry per vertex (per interior time), are
+// finite and within max_motion_segments. The scene makers call it on what they return.
 void validate_scene(const Scene& scene);
 
 // What a backend calls before rendering: nothing for a scene its maker

@@ -246,6 +246,25 @@
 //   Pass k of the accumulation buffer: one lens position, time and sub-pixel
 //   offset for every pixel (rotated Halton points, different per seed).
 //
+// ---- Motion segments (detail/motion_segment_body.inl) -------------------------------
+// A non-linear motion split into K linear segments: segment k is a
+// MovingTriangle holding the vertices at the ends of its shutter window, so
+// every function above works on it in its local time t' in [0, 1]
+// (docs/kernel.md, "Motion segments").
+//
+// vec2 segment_window(int segment, int segments)
+//   The window [k / K, (k + 1) / K] of segment k of K >= 1; the last ends at 1.
+// bool segment_holds(vec2 window, real t)
+//   Whether shutter time t is in the window, [lo, hi) (and t = hi when hi >= 1):
+//   a sample outside its segment's window is not covered by that segment.
+// real segment_local_time(vec2 window, real t)
+//   (t - lo) / (hi - lo): the time to give the bounds and covers(); in [0, 1]
+//   for every t the window holds.
+// vec2 segment_shutter_range(vec2 window, vec2 local_range)
+//   Local times [lo, hi] (e.g. sample_time_range of a segment) back to shutter
+//   time, widened by the rounding and clipped to the window: conservative, every
+//   held t whose local time is in [lo, hi] lies inside. (1, 0) when empty.
+//
 // ---- Secondary rays (detail/{dodecahedron,clusters,virtual_view,layer_trace}_body.inl) ----
 //
 // Depth of field through mirrors and glass after Xie, Sun and Wang (JCST 2013);
@@ -355,6 +374,7 @@ struct kernel {
 #include "detail/clusters_body.inl"
 #include "detail/virtual_view_body.inl"
 #include "detail/layer_trace_body.inl"
+#include "detail/motion_segment_body.inl"
 };
 
 using kernelf = kernel<float>;

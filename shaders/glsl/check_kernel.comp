@@ -100,6 +100,9 @@ void main() {
     float key = bc_depth_key(near, hit_depth);
     bool wins = bc_depth_nearer(hit_depth, depth) || bc_depth_key_wins(key, px, depth, py);
     vec2 camera_ab = bc_camera_coc(values[37], values[38], values[39]);
+    vec2 window = bc_segment_window(int(values[47]), 4);
+    vec2 shutter_range = bc_segment_shutter_range(window, time_range);
+    float local_time = bc_segment_holds(window, t) ? bc_segment_local_time(window, t) : 0.0;
 
     float secondary = check_secondary_rays(vec3(values[45], values[46], values[47]), vec3(values[48], values[49], values[57]));
 
@@ -108,5 +111,5 @@ void main() {
                 tiled.time + from_setup.time + others[0].time + others[1].time + others[2].time + others[3].time + tuple.x +
                 float(tile) + jitter.x + accum.time + accum.offset.x + accum.lens.y + bc_rotate_unit(jitter.x, jitter.y) +
                 raster.x + sample_pos.y + float(rect.x) + rect_ndc.w + interleaved.x + float(test) + key + float(wins) +
-                camera_ab.y + secondary;
+                camera_ab.y + secondary + shutter_range.x + local_time;
 }

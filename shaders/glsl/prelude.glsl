@@ -60,6 +60,11 @@
 #define depth_key bc_depth_key
 #define depth_key_wins bc_depth_key_wins
 #define camera_coc bc_camera_coc
+// motion segments (motion_segment_body.inl)
+#define segment_window bc_segment_window
+#define segment_holds bc_segment_holds
+#define segment_local_time bc_segment_local_time
+#define segment_shutter_range bc_segment_shutter_range
 // the dodecahedron's facets (dodecahedron_body.inl)
 #define dodecahedron_normal bc_dodecahedron_normal
 #define dodecahedron_facet bc_dodecahedron_facet

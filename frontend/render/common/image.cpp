@@ -1,9 +1,13 @@
 #include "render/common/image.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <stdexcept>
@@ -108,6 +112,50 @@ Image read_png(const std::string& path) {
     }
     stbi_image_free(data);
     return image;
+}
+
+ImageFormat image_format_for_path(const std::string& path) {
+    const std::size_t slash = path.find_last_of('/');
+    const std::size_t dot = path.find_last_of('.');
+    std::string extension = dot == std::string::npos || (slash != std::string::npos && dot < slash)
+                                ? std::string()
+                                : path.substr(dot);
+    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (extension == ".png") return ImageFormat::png;
+    if (extension == ".exr") return ImageFormat::exr;
+    throw std::invalid_argument("'" + path + "': unknown image type " +
+                                (extension.empty() ? std::string("(no extension)") : "'" + extension + "'") +
+                                " (expected .png or .exr)");
+}
+
+std::string image_encoding(ImageFormat format, ExrPixelType exr_type) {
+    if (format == ImageFormat::png) return "sRGB 8-bit RGB";
+    return std::string("linear ") + (exr_type == ExrPixelType::half ? "half" : "float") + " RGBA, alpha = coverage";
+}
+
+void write_image(const std::string& path, const Image& image, ImageFormat format, ExrPixelType exr_type) {
+    // Same folder, so the rename cannot cross file systems; the pid keeps
+    // two renders of one path from sharing a temporary file.
+    const std::string partial = path + ".partial-" + std::to_string(static_cast<long>(getpid()));
+    try {
+        if (format == ImageFormat::png) {
+            write_png(partial, image);
+        } else {
+            write_exr(partial, image, exr_type);
+        }
+    } catch (const std::runtime_error& error) {
+        std::remove(partial.c_str());
+        // The reason without the temporary name: "cannot write 'x.partial-1': r" -> r.
+        const std::string message = error.what();
+        const std::size_t reason = message.find("': ");
+        throw std::runtime_error("cannot write '" + path +
+                                 "': " + (reason == std::string::npos ? message : message.substr(reason + 3)));
+    }
+    if (std::rename(partial.c_str(), path.c_str()) != 0) {
+        const std::string reason = std::strerror(errno);
+        std::remove(partial.c_str());
+        throw std::runtime_error("cannot write '" + path + "': " + reason);
+    }
 }
 
 double rmse(const Image& a, const Image& b) {

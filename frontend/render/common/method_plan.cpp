@@ -1,5 +1,6 @@
 #include "render/common/method_plan.hpp"
 
+#include "render/common/motion_segments.hpp"
 #include "render/common/moving_triangle.hpp"
 #include "render/common/shading.hpp"
 #include "scene/scene_checks.hpp"
@@ -116,6 +117,7 @@ MethodPlan make_method_plan(const Scene& scene, const RenderSettings& settings, 
     if (settings.method == RenderMethod::stochastic) {
         throw std::invalid_argument("method plan: 'stochastic' has no fixed passes");
     }
+    refuse_motion_segments(scene, std::string("method ") + to_string(settings.method));
     int side = 1;
     if (settings.method == RenderMethod::interleave) {
         side = exact_square_root(settings.spp);
@@ -195,16 +197,20 @@ InterleaveTupleCells interleave_tuple_cells(const MethodPlan& plan, int width, i
 Image resolve_method_samples(const Scene& scene, const MethodPlan& plan, const std::vector<std::uint32_t>& ids,
                              int width, int height) {
     Image image(width, height);
+    image.coverage.resize(image.pixels.size());
     const int per_pixel = plan.per_pixel;
     for (int py = 0; py < image.height; ++py) {
         for (int px = 0; px < image.width; ++px) {
             const std::size_t base = image.index(px, py) * static_cast<std::size_t>(per_pixel);
             glm::vec3 sum(0.0f);
+            std::uint32_t covered = 0;
             for (int j = 0; j < per_pixel; ++j) {
                 const std::uint32_t id = ids[base + static_cast<std::size_t>(j)];
                 sum += id == no_sample_hit ? scene.background : plan.colours[id];
+                covered += id != no_sample_hit;
             }
             image.at(px, py) = resolve_box(sum, per_pixel);
+            image.coverage[image.index(px, py)] = resolve_coverage(covered, per_pixel);
         }
     }
     return image;

@@ -3,6 +3,7 @@
 #include "render/common/camera_model.hpp"
 #include "render/cpu/coverage_test.hpp"
 #include "render/common/moving_triangle.hpp"
+#include "render/common/motion_segments.hpp"
 #include "render/common/progress.hpp"
 #include "render/common/shading.hpp"
 #include "render/cpu/parallel_items.hpp"
@@ -73,6 +74,9 @@ struct FrameSetup {
         std::size_t hull_offset = 0;
         int hull_count = 0;
     };
+    // The motion-segment piece of each entry below (one whole-shutter piece
+    // per scene triangle when K = 1): its source triangle and window.
+    std::vector<SegmentPiece> pieces;
     std::vector<typename K::MovingTriangle> triangles;
     std::vector<PixelRect> rects;
     std::vector<int> classes;
@@ -104,7 +108,8 @@ template <class Real>
 void set_up_triangles(const Scene& scene, const CameraModel& model, int method, int threads, FrameSetup<Real>& setup) {
     using K = blurcull::kernel<Real>;
     const Real near = static_cast<Real>(model.znear);
-    const std::size_t count = scene.triangles.size();
+    setup.pieces = plan_segment_pieces(scene, model);
+    const std::size_t count = setup.pieces.size();
     setup.triangles.resize(count);
     setup.rects.resize(count);
     setup.classes.resize(count);
@@ -116,7 +121,7 @@ void set_up_triangles(const Scene& scene, const CameraModel& model, int method, 
     auto set_up = [&](std::size_t chunk) {
         const std::size_t first = count * chunk / chunks, last = count * (chunk + 1) / chunks;
         for (std::size_t i = first; i < last; ++i) {
-            setup.triangles[i] = make_moving_triangle<Real>(scene, model, i);
+            setup.triangles[i] = make_segment_triangle<Real>(scene, model, setup.pieces[i]);
             setup.classes[i] = K::classify(setup.triangles[i]);
             setup.rects[i] = PixelRect{0, 0, -1, -1};
             if (setup.classes[i] == BC_INVALID) {
@@ -197,14 +202,20 @@ public:
         : frame_(frame),
           samples_(static_cast<std::size_t>(tile_size) * tile_size * frame.spp),
           by_time_(samples_.size()),
+          by_time_t_(samples_.size()),
           depth_(samples_.size()),
           hit_(samples_.size()),
           lanes_(samples_.size()),
-          time_lanes_(samples_.size()) {}
+          time_lanes_(samples_.size()),
+          shutter_time_(samples_.size()),
+          in_window_(samples_.size()) {}
 
     // Rasterizes work tile `tile` (row-major over the tiles) into its pixels of `image`.
     void render_tile(int tile, Image& image) {
         const int tx = tile % frame_.setup.tiles_x, ty = tile / frame_.setup.tiles_x;
+        window_segment_ = 0;
+        window_segments_ = 1;
+        window_ = glm::vec2(0.0f, 1.0f);
         x0_ = tx * tile_size;
         y0_ = ty * tile_size;
         x1_ = std::min(x0_ + tile_size, frame_.settings.width) - 1;
@@ -213,7 +224,11 @@ public:
         load_samples();
         footprints_x_ = (tw_ + frame_.footprint - 1) / frame_.footprint;
         if (frame_.time_sorted) sort_footprints_by_time();
-        for (std::uint32_t index : frame_.setup.bins[static_cast<std::size_t>(tile)]) rasterize_triangle(index);
+        for (std::uint32_t index : frame_.setup.bins[static_cast<std::size_t>(tile)]) {
+            const SegmentPiece& piece = frame_.setup.pieces[index];
+            if (piece.segment != window_segment_ || piece.segments != window_segments_) enter_window(piece);
+            rasterize_triangle(index);
+        }
         resolve(image);
     }
 
@@ -239,11 +254,32 @@ private:
                     const glm::vec2 ndc = frame_.model.sample_ndc(px, py, s.offset);
                     samples_[k] = Sample{typename K::vec2(ndc), typename K::vec2(s.lens), static_cast<Real>(s.time)};
                     lanes_.set(k, ndc.x, ndc.y, s.lens.x, s.lens.y, s.time);
+                    shutter_time_[k] = s.time;
+                    in_window_[k] = 1;
                     depth_[k] = std::numeric_limits<Real>::infinity();
                     hit_[k] = none;
                 }
             }
         }
+    }
+
+    // Motion segments: the tile's samples as seen by the pieces of one window,
+    // each at its local time (kernel::segment_local_time, in float like the
+    // samples, so the fast test sees the time covers() sees), and marked when
+    // the window does not hold it. The footprints' time order (by_time_t_)
+    // stays in shutter time: test_time_run maps a piece's bounds back to it.
+    void enter_window(const SegmentPiece& piece) {
+        window_segment_ = piece.segment;
+        window_segments_ = piece.segments;
+        window_ = kernelf::segment_window(piece.segment, piece.segments);
+        for (std::size_t k = 0; k < samples_.size(); ++k) {
+            const float local = kernelf::segment_local_time(window_, shutter_time_[k]);
+            in_window_[k] = kernelf::segment_holds(window_, shutter_time_[k]) ? 1 : 0;
+            samples_[k].time = static_cast<Real>(local);
+            lanes_.set_time(k, local);
+        }
+        if (frame_.time_sorted)
+            for (std::size_t q = 0; q < by_time_.size(); ++q) time_lanes_.set_time(q, lanes_.ft()[by_time_[q]]);
     }
 
     // Per footprint of the tile's grid, its samples sorted by time (copied
@@ -266,7 +302,10 @@ private:
                 std::sort(by_time_.begin() + static_cast<std::ptrdiff_t>(first),
                           by_time_.begin() + static_cast<std::ptrdiff_t>(next),
                           [&](std::uint32_t a, std::uint32_t b) { return samples_[a].time < samples_[b].time; });
-                for (std::size_t q = first; q < next; ++q) time_lanes_.copy(q, lanes_, by_time_[q]);
+                for (std::size_t q = first; q < next; ++q) {
+                    time_lanes_.copy(q, lanes_, by_time_[q]);
+                    by_time_t_[q] = shutter_time_[by_time_[q]];
+                }
             }
         }
         footprint_start_.back() = next;
@@ -410,7 +449,10 @@ private:
     // rectangle clips the cell, the screen test is kept on: the cell's
     // pixels outside the rectangle hold no sample inside the screen bound.
     bool test_time_run(Current& current, int px0, int py0, int px1, int py1, const typename K::SampleBounds& sb) {
-        const typename K::vec2 range = K::sample_time_range(sb);
+        typename K::vec2 range = K::sample_time_range(sb);
+        // A motion segment's bounds are in its local time: back to shutter
+        // time, inside its window (in float, the samples' precision).
+        if (window_segments_ > 1) range = typename K::vec2(kernelf::segment_shutter_range(window_, glm::vec2(range)));
         const int fp = frame_.footprint;
         const int fx = (px0 - x0_) / fp, fy = (py0 - y0_) / fp;
         const int cx0 = x0_ + fx * fp, cy0 = y0_ + fy * fp;
@@ -420,7 +462,7 @@ private:
         const double share = std::max(0.0, double(range.y) - double(range.x));
         if (!(share * cell_pixels < pixels)) return false;
         const std::size_t f = static_cast<std::size_t>(fy) * footprints_x_ + static_cast<std::size_t>(fx);
-        const double* times = time_lanes_.t();
+        const double* times = by_time_t_.data();
         const double* begin = times + footprint_start_[f];
         const double* end = times + footprint_start_[f + 1];
         const double* lo = std::lower_bound(begin, end, double(range.x));
@@ -442,7 +484,14 @@ private:
         for (std::size_t done = 0; done < count; done += 32) {
             const std::size_t at = first + done;
             const int n = static_cast<int>(std::min<std::size_t>(32, count - done));
-            const std::uint32_t passed = samples_passing<Real>(current.bound, current.check_screen, sb, lanes, at, n);
+            std::uint32_t passed = samples_passing<Real>(current.bound, current.check_screen, sb, lanes, at, n);
+            if (window_segments_ > 1) {
+                // Another motion segment's time: culled.
+                for (std::uint32_t bits = passed; bits != 0; bits &= bits - 1) {
+                    const std::uint32_t i = static_cast<std::uint32_t>(__builtin_ctz(bits));
+                    if (!in_window_[slot_of(at + i)]) passed &= ~(1u << i);
+                }
+            }
             if (passed == 0) continue;
             tested += static_cast<std::uint64_t>(__builtin_popcount(passed));
             const std::uint32_t kept = may_cover32(*current.fast, lanes.fsx() + at, lanes.fsy() + at, lanes.fu() + at,
@@ -459,9 +508,12 @@ private:
         Real z = Real(0);
         if (!K::covers(*current.tri, s.ndc, s.lens, s.time, frame_.near, z)) return;
         ++hits;
-        if (K::depth_nearer(z, depth_[k])) {
+        // The scene triangle wins, lowest index on equal depths also across
+        // the motion-segment groups (within one group the order does it).
+        const std::uint32_t source = frame_.setup.pieces[current.index].source;
+        if (K::depth_nearer(z, depth_[k]) || (z == depth_[k] && source < hit_[k])) {
             depth_[k] = z;
-            hit_[k] = current.index;
+            hit_[k] = source;
         }
     }
 
@@ -470,11 +522,14 @@ private:
         for (int py = y0_; py <= y1_; ++py) {
             for (int px = x0_; px <= x1_; ++px) {
                 glm::vec3 sum(0.0f);
+                std::uint32_t covered = 0;
                 for (std::uint32_t j = 0; j < frame_.spp; ++j) {
                     const std::uint32_t id = hit_[slot(px, py, j)];
                     sum += id == none ? frame_.scene.background : frame_.colours[id];
+                    covered += id != none;
                 }
                 image.at(px, py) = resolve_box(sum, frame_.settings.spp);
+                image.coverage[image.index(px, py)] = resolve_coverage(covered, frame_.settings.spp);
             }
         }
     }
@@ -482,12 +537,17 @@ private:
     const FrameContext<Real>& frame_;
     std::vector<Sample> samples_;
     std::vector<std::uint32_t> by_time_;  // slot of each time_lanes_ sample
+    std::vector<double> by_time_t_;       // its shutter time (the sort key)
     std::vector<std::size_t> footprint_start_;
     std::vector<Real> depth_;
     std::vector<std::uint32_t> hit_;
     SampleLanes lanes_;       // samples_ as arrays, in slot order
     SampleLanes time_lanes_;  // the same, per footprint sorted by time (time_sorted)
     AxisCache columns_, rows_;  // the current triangle's axis bounds (share_axes)
+    std::vector<float> shutter_time_;  // each sample's own time (samples_ hold the window's local time)
+    std::vector<char> in_window_;      // whether the current motion-segment window holds the sample
+    int window_segment_ = 0, window_segments_ = 1;  // the window samples_ are loaded for
+    glm::vec2 window_{0.0f, 1.0f};
     int x0_ = 0, y0_ = 0, x1_ = -1, y1_ = -1, tw_ = 0, footprints_x_ = 0;
 };
 
@@ -552,6 +612,7 @@ RenderResult render_cpu_in(const Scene& scene, const RenderSettings& settings, c
 
     phase = Clock::now();
     result.image = Image(settings.width, settings.height);
+    result.image.coverage.resize(result.image.pixels.size());
     const FrameContext<Real> frame{scene,
                                    settings,
                                    model,

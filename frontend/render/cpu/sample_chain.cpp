@@ -27,6 +27,12 @@ void SampleLanes::set(std::size_t k, float sx, float sy, float u, float v, float
     in_unit_range_ = in_unit_range_ && u >= -1.0f && u <= 1.0f && v >= -1.0f && v <= 1.0f && t >= 0.0f && t <= 1.0f;
 }
 
+void SampleLanes::set_time(std::size_t k, float t) {
+    dt_[k] = t;
+    ft_[k] = t;
+    in_unit_range_ = in_unit_range_ && t >= 0.0f && t <= 1.0f;
+}
+
 void SampleLanes::copy(std::size_t k, const SampleLanes& other, std::size_t from) {
     set(k, other.fsx_[from], other.fsy_[from], other.fu_[from], other.fv_[from], other.ft_[from]);
 }

@@ -20,6 +20,8 @@ class SampleLanes {
 public:
     explicit SampleLanes(std::size_t size);
     void set(std::size_t k, float sx, float sy, float u, float v, float t);
+    // Sets sample k's time (a motion segment's local time).
+    void set_time(std::size_t k, float t);
     // Copies sample `from` of `other` into slot k.
     void copy(std::size_t k, const SampleLanes& other, std::size_t from);
     const double* sx() const { return dsx_.data(); }

@@ -1,6 +1,7 @@
 #include "render/embree/embree_backend.hpp"
 
 #include "render/common/camera_model.hpp"
+#include "render/common/motion_segments.hpp"
 #include "render/common/progress.hpp"
 #include "render/common/shading.hpp"
 #include "render/embree/primary_rays.hpp"
@@ -93,9 +94,10 @@ private:
     RTCScene handle_;
 };
 
-// One triangle mesh with two time steps holding the VIEW-space vertex
-// positions at shutter open and close; Embree interpolates them linearly in
-// ray.time, which is exactly the shared motion model.
+// One triangle mesh with K + 1 time steps (K motion segments, 1 by default)
+// holding the VIEW-space vertex positions at the shutter times k / K; Embree
+// interpolates linearly between the two steps around ray.time, which is
+// exactly the shared motion model (render/common/motion_segments.hpp).
 void add_moving_mesh(Device& device, RTCScene rtc_scene, const Scene& scene, const CameraModel& model) {
     if (scene.triangles.empty()) return;
     constexpr std::size_t embree_limit = std::numeric_limits<std::uint32_t>::max();
@@ -104,9 +106,10 @@ void add_moving_mesh(Device& device, RTCScene rtc_scene, const Scene& scene, con
     }
     RTCGeometry geometry = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
     device.check("creating the triangle geometry");
-    rtcSetGeometryTimeStepCount(geometry, 2);
+    const int segments = scene_motion_segments(scene);
+    rtcSetGeometryTimeStepCount(geometry, static_cast<unsigned>(segments + 1));
     const std::size_t vertex_count = scene.position_open.size();
-    for (unsigned shutter_end = 0; shutter_end < 2; ++shutter_end) {
+    for (unsigned shutter_end = 0; shutter_end <= static_cast<unsigned>(segments); ++shutter_end) {
         auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
             geometry, RTC_BUFFER_TYPE_VERTEX, shutter_end, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vertex_count));
         if (vertices == nullptr) {
@@ -115,7 +118,8 @@ void add_moving_mesh(Device& device, RTCScene rtc_scene, const Scene& scene, con
             throw std::runtime_error("embree: cannot allocate the vertex buffer");
         }
         for (std::size_t v = 0; v < vertex_count; ++v) {
-            glm::vec3 view = model.view_position(scene, v, static_cast<int>(shutter_end));
+            const glm::vec3 view = segments == 1 ? model.view_position(scene, v, static_cast<int>(shutter_end))
+                                                 : step_view_position<float>(scene, model, v, static_cast<int>(shutter_end));
             vertices[3 * v + 0] = view.x;
             vertices[3 * v + 1] = view.y;
             vertices[3 * v + 2] = view.z;
@@ -228,6 +232,7 @@ private:
         const auto spp = static_cast<std::uint32_t>(settings_.spp);
         std::uint64_t hits = 0;
         for (int px = 0; px < settings_.width; ++px) {
+            const std::uint64_t hits_before = hits;
             glm::vec3 sum(0.0f);
             for (std::uint32_t j = 0; j < spp; ++j) {
                 const std::uint32_t id = prim_ids[static_cast<std::size_t>(px) * spp + j];
@@ -239,6 +244,8 @@ private:
                 }
             }
             image_.at(px, py) = sum;
+            image_.coverage[image_.index(px, py)] =
+                resolve_coverage(static_cast<std::uint32_t>(hits - hits_before), settings_.spp);
         }
         return hits;
     }
@@ -305,6 +312,7 @@ RenderResult render_embree(const Scene& scene, const RenderSettings& settings, c
 
     phase_start = Clock::now();
     result.image = Image(settings.width, settings.height);
+    result.image.coverage.resize(result.image.pixels.size());
     RowTracer tracer(rtc_scene.get(), scene, model, colours, settings, options, result.image, start);
     trace_on_threads(tracer, thread_count, settings.height, settings.progress);
     device.check("tracing");

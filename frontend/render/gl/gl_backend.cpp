@@ -1,5 +1,6 @@
 #include "render/gl/gl_backend.hpp"
 
+#include "render/common/motion_segments.hpp"
 #include "render/common/camera_model.hpp"
 #include "render/common/cull_method.hpp"
 #include "render/common/moving_triangle.hpp"
@@ -476,7 +477,12 @@ Image StochasticFrame::read_back(std::vector<std::uint32_t>* sample_ids) const {
     std::vector<glm::vec4> sums(pixels_);
     sum_buffer_.read(sums.data(), pixels_ * sizeof(glm::vec4));
     Image image(settings_.width, settings_.height);
-    for (std::size_t i = 0; i < pixels_; ++i) image.pixels[i] = resolve_box(glm::vec3(sums[i]), settings_.spp);
+    image.coverage.resize(pixels_);
+    for (std::size_t i = 0; i < pixels_; ++i) {
+        image.pixels[i] = resolve_box(glm::vec3(sums[i]), settings_.spp);
+        // .w counts the samples that hit (render_resolve.comp): exact in float up to 2^24.
+        image.coverage[i] = resolve_coverage(static_cast<std::uint32_t>(sums[i].w), settings_.spp);
+    }
     if (keep_ids_) {
         sample_ids->assign(pixels_ * spp_, no_triangle);
         id_buffer_.read(sample_ids->data(), sample_ids->size() * sizeof(std::uint32_t));
@@ -546,6 +552,7 @@ RenderResult render_gl(const Scene& scene, const RenderSettings& settings, const
     const Clock::time_point start = Clock::now();
     validate_settings(settings);
     require_valid_scene(scene);
+    refuse_motion_segments(scene, "gl");
     GlRenderer renderer;
     // llvmpipe compiles a program's code on its first draw: one 1x1 frame
     // makes that happen here, so "raster+resolve" is the frame alone.

@@ -146,6 +146,15 @@ std::vector<float> evaluate(const Sampler& sampler, float t, bool rotation) {
     return a;
 }
 
+float animation_end_time(const AnimationSamplers& samplers, int animation_index) {
+    if (animation_index < 0 || static_cast<std::size_t>(animation_index) >= samplers.size()) return 0.0f;
+    float end = 0.0f;
+    for (const Sampler& sampler : samplers[static_cast<std::size_t>(animation_index)]) {
+        if (!sampler.times.empty()) end = std::max(end, sampler.times.back());
+    }
+    return end;
+}
+
 void apply_animation(const tg::Model& model, const AnimationSamplers& samplers, int animation_index, float t,
                      std::vector<NodeTransform>& transforms, Diagnostics& diagnostics) {
     if (animation_index < 0 || model.animations.empty()) return;

@@ -31,6 +31,10 @@ AnimationSamplers read_animations(const tinygltf::Model& model, const Diagnostic
 // the earlier key; LINEAR lerps (or slerps when `rotation` and 4 components).
 std::vector<float> evaluate(const Sampler& sampler, float t, bool rotation);
 
+// The last keyframe time of animation `animation_index` (seconds): where
+// its clock ends. 0 for index -1, one the file does not have, or no keys.
+float animation_end_time(const AnimationSamplers& samplers, int animation_index);
+
 // Sets the animated parts of `transforms` to animation `animation_index` at
 // time t. Nothing for index -1 or a file without animations; fails for an
 // index the file does not have. Ignored channels warn once per kind.

@@ -95,8 +95,8 @@ void automatic_camera(const glm::vec3& center, float radius, float aspect, Camer
 }  // namespace
 
 void setup_camera(const tg::Model& model, const std::vector<int>& rendered, const NodePoses& poses,
-                  const GltfOptions& options, Scene& scene, Diagnostics& diagnostics) {
-    const SceneStats stats = describe(scene);
+                  const GltfOptions& options, Scene& scene, Diagnostics& diagnostics, const SceneStats* framing) {
+    const SceneStats stats = framing != nullptr ? *framing : describe(scene);
     const glm::vec3 center = 0.5f * (stats.bounds_min + stats.bounds_max);
     const float radius = std::max(0.5f * glm::length(stats.bounds_max - stats.bounds_min), 1e-3f);
     const int camera_node = choose_camera_node(model, rendered, options.camera_index, diagnostics);

@@ -7,6 +7,7 @@
 #include "scene/gltf/gltf_loader.hpp"
 #include "scene/gltf/nodes.hpp"
 #include "scene/scene.hpp"
+#include "scene/scene_checks.hpp"
 
 #include <tiny_gltf.h>
 
@@ -18,8 +19,10 @@ namespace blurcull::frontend::gltf {
 // perspective camera in `rendered` order) or automatically, with
 // options.aspect, options.lens_radius and options.focus_distance. Fails for
 // a camera index the file does not have, an orthographic or unattached
-// chosen camera, and a zero-scale camera node.
+// chosen camera, and a zero-scale camera node. `framing`: the bounds to
+// frame (and focus on the centre of) instead of the scene's own.
 void setup_camera(const tinygltf::Model& model, const std::vector<int>& rendered, const NodePoses& poses,
-                  const GltfOptions& options, Scene& scene, Diagnostics& diagnostics);
+                  const GltfOptions& options, Scene& scene, Diagnostics& diagnostics,
+                  const SceneStats* framing = nullptr);
 
 }  // namespace blurcull::frontend::gltf

@@ -49,7 +49,7 @@ void check_declared_version(const tg::Model& model, const Diagnostics& diagnosti
     if (version.empty()) return;
     long major = 0, minor = 0;
     if (!parse_version(version, major, minor)) {
-        diagnostics.fail("asset.version '" + version + "' is not a glTF version (MAJOR.MINOR; blurcull reads 2.x)");
+        diagnostics.fail("asset.version '" + Diagnostics::quoted(version) + "' is not a glTF version (MAJOR.MINOR; blurcull reads 2.x)");
     }
     if (major != 2) {
         diagnostics.fail("glTF version " + version + " is not supported (blurcull reads glTF 2.x)");
@@ -58,12 +58,12 @@ void check_declared_version(const tg::Model& model, const Diagnostics& diagnosti
     if (!min_version.empty()) {
         long min_major = 0, min_minor = 0;
         if (!parse_version(min_version, min_major, min_minor) || min_major != 2 || min_minor > 0) {
-            diagnostics.fail("asset.minVersion " + min_version + " is not supported (blurcull reads glTF 2.0)");
+            diagnostics.fail("asset.minVersion " + Diagnostics::quoted(min_version) + " is not supported (blurcull reads glTF 2.0)");
         }
     }
     for (const std::string& name : model.extensionsRequired) {
         if (!implemented(name)) {
-            diagnostics.fail("required extension " + name + " is not supported (blurcull implements " +
+            diagnostics.fail("required extension " + Diagnostics::quoted(name) + " is not supported (blurcull implements " +
                              implemented_list() + ")");
         }
     }
@@ -73,7 +73,9 @@ void check_conformance(const tg::Model& model, Diagnostics& diagnostics) {
     if (model.asset.version.empty()) diagnostics.fail("asset.version is missing (a glTF 2.0 file must have one)");
     check_declared_version(model, diagnostics);
     for (const std::string& name : model.extensionsUsed) {
-        if (!implemented(name)) diagnostics.warn_once("extension " + name, "extension " + name + " is not read; ignored");
+        if (!implemented(name)) {
+            diagnostics.warn_once("extension " + name, "extension " + Diagnostics::quoted(name) + " is not read; ignored");
+        }
     }
 }
 

@@ -31,6 +31,17 @@ struct GltfOptions {
     // distance means "the view depth of the scene's bounding-box centre".
     float lens_radius = 0.0f;
     float focus_distance = -1.0f;
+    // Linear motion segments over the shutter (docs/reference-renderer.md,
+    // "The motion model"): K >= 1 samples the animation at K + 1 times;
+    // 0 = auto, K from the largest rotation so the chord stays within a
+    // quarter pixel at an image image_height pixels high.
+    int motion_segments = 1;
+    int image_height = 480;
+    // A frame of a sequence: the automatic camera (and a file camera's
+    // automatic focus) frames the scene over its whole animation, sampled at
+    // fixed times, instead of over this shutter, so that every frame has the
+    // same camera whatever frame range is rendered.
+    bool frame_whole_animation = false;
 };
 
 // Loads and validates (validate_scene) the file. Throws SceneError

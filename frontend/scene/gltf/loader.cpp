@@ -5,6 +5,7 @@
 #include "scene/gltf/diagnostics.hpp"
 #include "scene/gltf/meshes.hpp"
 #include "scene/gltf/morph.hpp"
+#include "scene/gltf/motion_times.hpp"
 #include "scene/gltf/nodes.hpp"
 #include "scene/gltf/parse.hpp"
 #include "scene/gltf/validate.hpp"
@@ -31,6 +32,10 @@ void check_options(const GltfOptions& o, const Diagnostics& diagnostics) {
         diagnostics.fail("lens radius " + std::to_string(o.lens_radius) + " must be finite and non-negative");
     }
     if (!std::isfinite(o.focus_distance)) diagnostics.fail("focus distance is not finite");
+    if (o.motion_segments < 0 || o.motion_segments > max_motion_segments) {
+        diagnostics.fail("motion segments " + std::to_string(o.motion_segments) + " must be 0 (auto) or 1 to " +
+                         std::to_string(max_motion_segments));
+    }
 }
 
 // World matrices of every node at animation time t.
@@ -39,6 +44,29 @@ std::vector<glm::mat4> pose_at(const tg::Model& model, const NodeTree& tree, con
     std::vector<NodeTransform> transforms = file_transforms(model);
     apply_animation(model, samplers, options.animation_index, t, transforms, diagnostics);
     return world_matrices(tree, std::move(transforms));
+}
+
+// The bounds of the scene posed at `framing_samples` + 1 evenly spaced times
+// over [0, the animation's end]: the same for every frame of a sequence.
+SceneStats animation_framing(const tg::Model& model, const NodeTree& tree, const AnimationSamplers& samplers,
+                             const GltfOptions& options, const std::vector<int>& rendered, Diagnostics& diagnostics) {
+    constexpr int framing_samples = 16;
+    const float end = animation_end_time(samplers, options.animation_index);
+    SceneStats framing;
+    for (int k = 0; k <= framing_samples; ++k) {
+        const float t = end * static_cast<float>(k) / static_cast<float>(framing_samples);
+        NodePoses poses;
+        poses.open = pose_at(model, tree, samplers, options, t, diagnostics);
+        poses.close = poses.open;
+        poses.weights_open = morph_weights(model, samplers, options.animation_index, t, diagnostics);
+        poses.weights_close = poses.weights_open;
+        Scene probe;
+        add_mesh_instances(model, rendered, poses, probe, diagnostics);
+        const SceneStats stats = describe(probe);
+        framing.bounds_min = k == 0 ? stats.bounds_min : glm::min(framing.bounds_min, stats.bounds_min);
+        framing.bounds_max = k == 0 ? stats.bounds_max : glm::max(framing.bounds_max, stats.bounds_max);
+    }
+    return framing;
 }
 
 }  // namespace
@@ -61,9 +89,29 @@ Scene build_scene(const std::string& path, const GltfOptions& options, const War
 
     Scene scene;
     scene.name = stem(path);
+    scene.animation_end = animation_end_time(samplers, options.animation_index);
     add_mesh_instances(model, rendered, poses, scene, diagnostics);
     if (scene.triangles.empty()) diagnostics.fail("no triangles to render");
-    setup_camera(model, rendered, poses, options, scene, diagnostics);
+    if (options.frame_whole_animation) {
+        const SceneStats framing = animation_framing(model, tree, samplers, options, rendered, diagnostics);
+        setup_camera(model, rendered, poses, options, scene, diagnostics, &framing);
+    } else {
+        setup_camera(model, rendered, poses, options, scene, diagnostics);
+    }
+
+    // Motion segments: the same steps at the interior times.
+    const PosesAt poses_at = [&](float t) {
+        NodePoses at;
+        at.open = pose_at(model, tree, samplers, options, t, diagnostics);
+        at.close = at.open;
+        at.weights_open = morph_weights(model, samplers, options.animation_index, t, diagnostics);
+        at.weights_close = at.weights_open;
+        return at;
+    };
+    const int segments = options.motion_segments == 0
+                             ? auto_motion_segments(model, rendered, poses_at, options, t_open, t_close, scene, diagnostics)
+                             : options.motion_segments;
+    add_interior_times(model, rendered, poses_at, options, t_open, t_close, segments, scene, diagnostics);
     return scene;
 }
 

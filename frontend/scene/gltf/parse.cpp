@@ -88,7 +88,7 @@ void image_warnings(const tg::Model& model, Diagnostics& diagnostics) {
         const tg::Image& image = model.images[i];
         if (!image.image.empty()) continue;
         const std::string source = image.uri.empty() ? "buffer view " + std::to_string(image.bufferView)
-                                                     : "'" + image.uri + "'";
+                                                     : "'" + Diagnostics::quoted(image.uri) + "'";
         diagnostics.warn_once("image " + std::to_string(i), "image " + std::to_string(i) + " (" + source +
                                                                ") cannot be read; its textures fall back to "
                                                                "their factors");

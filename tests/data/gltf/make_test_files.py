@@ -257,6 +257,14 @@ def conformance_files():
     model = triangle_model()
     model["extensionsUsed"] = ["EXT_blurcull_unknown"]
     write("unknown_extension_used.gltf", model)
+    # Names from the file stay on one line: a newline shows as '?', a long
+    # name is cut.
+    model = triangle_model()
+    model["extensionsUsed"] = ["EXT_line\nbreak", "EXT_" + "x" * 300]
+    write("extension_names_odd.gltf", model)
+    model = triangle_model()
+    model["extensionsRequired"] = ["EXT_line\nbreak"]
+    write("bad_required_newline.gltf", model)
 
     write("quantized.gltf", quantized_model())
 

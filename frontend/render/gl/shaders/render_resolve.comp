@@ -1,5 +1,6 @@
 // After each pass: add the pass's samples (in sample order) to each pixel's
-// running sum of colours, as the CPU backend sums them; optionally keep every
+// running sum of colours, as the CPU backend sums them, and in .w the count
+// of samples that hit a triangle (the coverage); optionally keep every
 // sample's triangle id.
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -17,13 +18,15 @@ void main() {
     if (pixel.x >= width || pixel.y >= height) return;
     uint index = pixel.y * width + pixel.x;
     vec3 sum = pass_base == 0u ? vec3(0.0) : sums[index].xyz;
+    float covered = pass_base == 0u ? 0.0 : sums[index].w;
     for (int k = 0; k < 4; ++k) {
         uint j = pass_base + uint(k);
         if (j >= spp) break;
         uint id = texelFetch(pass_ids, ivec2(pixel.x, height - 1u - pixel.y), k).r;
         precise vec3 next = sum + colours[id == 0xffffffffu ? background : id].xyz;
         sum = next;
+        if (id != 0xffffffffu) covered += 1.0;
         if (keep_ids != 0) sample_ids[index * spp + j] = id;
     }
-    sums[index] = vec4(sum, 0.0);
+    sums[index] = vec4(sum, covered);
 }

@@ -1,0 +1,243 @@
+// Motion segments (--motion-segments): a cube turning 75 degrees during the
+// shutter, written as a small glTF here, renders closer to a many-segment
+// reference as K grows; cpu and embree agree with K > 1 on the same samples;
+// `auto` picks the K of the chord formula; segments of a linear motion are
+// the same image; bad input is one line.
+#include "render/common/camera_model.hpp"
+#include "render/common/image.hpp"
+#include "render/common/method_plan.hpp"
+#include "render/common/motion_segments.hpp"
+#include "render/cpu/cpu_backend.hpp"
+#include "render/cpu/methods.hpp"
+#include "render/embree/embree_backend.hpp"
+#include "render/gl/gl_backend.hpp"
+#include "scene/gltf/gltf_loader.hpp"
+#include "scene/motion_segments.hpp"
+#include "frontend_test_helpers.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+using namespace blurcull::frontend;
+using namespace blurcull::frontend::test;
+
+namespace {
+
+constexpr double turn_degrees = 75.0;
+constexpr int width = 160, height = 120;
+
+// A unit cube turning by turn_degrees about a tilted axis over the animation
+// second [0, 1] (one LINEAR rotation channel: glTF slerps it), no camera (the
+// loader frames it). Returns the .gltf path.
+std::string write_turning_cube() {
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "blurcull_test_segments";
+    std::filesystem::create_directories(dir);
+    std::vector<float> positions;
+    for (int i = 0; i < 8; ++i) {
+        positions.push_back((i & 1) ? 0.5f : -0.5f);
+        positions.push_back((i & 2) ? 0.5f : -0.5f);
+        positions.push_back((i & 4) ? 0.5f : -0.5f);
+    }
+    const std::uint16_t indices[36] = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4,
+                                       2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
+    const double half = 0.5 * turn_degrees * M_PI / 180.0;
+    const glm::dvec3 axis = glm::normalize(glm::dvec3(0.2, 0.3, 1.0));
+    const float times[2] = {0.0f, 1.0f};
+    const float rotations[8] = {0.0f, 0.0f, 0.0f, 1.0f,
+                                float(axis.x * std::sin(half)), float(axis.y * std::sin(half)),
+                                float(axis.z * std::sin(half)), float(std::cos(half))};
+    std::vector<char> bytes(96 + 72 + 8 + 32);
+    std::memcpy(bytes.data(), positions.data(), 96);
+    std::memcpy(bytes.data() + 96, indices, 72);
+    std::memcpy(bytes.data() + 168, times, 8);
+    std::memcpy(bytes.data() + 176, rotations, 32);
+    std::ofstream((dir / "cube.bin").string(), std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
+    const std::string json = R"({
+  "asset": {"version": "2.0"},
+  "scene": 0, "scenes": [{"nodes": [0]}],
+  "nodes": [{"mesh": 0}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": 0}]}],
+  "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.5, 0.2, 1.0]}}],
+  "animations": [{"channels": [{"sampler": 0, "target": {"node": 0, "path": "rotation"}}],
+                  "samplers": [{"input": 2, "output": 3, "interpolation": "LINEAR"}]}],
+  "buffers": [{"uri": "cube.bin", "byteLength": 208}],
+  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 96},
+                  {"buffer": 0, "byteOffset": 96, "byteLength": 72},
+                  {"buffer": 0, "byteOffset": 168, "byteLength": 8},
+                  {"buffer": 0, "byteOffset": 176, "byteLength": 32}],
+  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 8, "type": "VEC3",
+                 "min": [-0.5, -0.5, -0.5], "max": [0.5, 0.5, 0.5]},
+                {"bufferView": 1, "componentType": 5123, "count": 36, "type": "SCALAR"},
+                {"bufferView": 2, "componentType": 5126, "count": 2, "type": "SCALAR", "min": [0.0], "max": [1.0]},
+                {"bufferView": 3, "componentType": 5126, "count": 2, "type": "VEC4"}]
+})";
+    const std::string path = (dir / "cube.gltf").string();
+    std::ofstream(path) << json;
+    return path;
+}
+
+GltfOptions cube_options(int segments) {
+    GltfOptions options;
+    options.shutter_open = 0.0f;
+    options.shutter_close = 1.0f;
+    options.aspect = float(width) / float(height);
+    options.image_height = height;
+    options.motion_segments = segments;
+    return options;
+}
+
+// Fraction of pixels whose channels all agree within 1/255.
+double close_fraction(const Image& a, const Image& b) {
+    std::size_t close = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+        const glm::vec3 d = glm::abs(a.pixels[i] - b.pixels[i]);
+        if (d.x <= 1.0f / 255.0f && d.y <= 1.0f / 255.0f && d.z <= 1.0f / 255.0f) ++close;
+    }
+    return double(close) / double(a.pixels.size());
+}
+
+}  // namespace
+
+TEST_CASE("the chord formula: K = ceil(A / (2 acos(1 - e / r)))") {
+    // 90 degrees at r = 100 px, e = 1/4 px: a segment may turn 2 acos(0.9975) = 0.14144 rad: 11.1 -> 12.
+    CHECK(motion_segments_for_turn(M_PI / 2.0, 100.0, 0.25) == 12);
+    CHECK(motion_segments_for_turn(M_PI / 2.0, 0.2, 0.25) == 1);  // the sagitta never exceeds r
+    CHECK(motion_segments_for_turn(0.0, 100.0, 0.25) == 1);
+    // The K it gives keeps the sagitta within the tolerance; one fewer does not.
+    for (double r : {3.0, 40.0, 500.0}) {
+        for (double angle : {0.3, 1.0, 3.0}) {
+            const int k = motion_segments_for_turn(angle, r, 0.25);
+            CHECK(r * (1.0 - std::cos(angle / k / 2.0)) <= 0.25 + 1e-12);
+            if (k > 1) CHECK(r * (1.0 - std::cos(angle / (k - 1) / 2.0)) > 0.25);
+        }
+    }
+}
+
+TEST_CASE("a turning cube: the error against 64 segments falls as K grows; cpu = embree with segments") {
+    const std::string path = write_turning_cube();
+    RenderSettings settings = quiet_settings(width, height, 16);
+    const Scene reference_scene = load_gltf_scene(path, cube_options(64));
+    CHECK(scene_motion_segments(reference_scene) == 64);
+    const Image reference = render_cpu(reference_scene, settings).image;
+    double previous = 1e9;
+    for (int k : {1, 2, 4, 8}) {
+        const Scene scene = load_gltf_scene(path, cube_options(k));
+        REQUIRE(scene_motion_segments(scene) == k);
+        const RenderResult cpu = render_cpu(scene, settings);
+        const double error = rmse(cpu.image, reference);
+        std::printf("turning cube %g deg, K = %d: RMSE against K = 64 %.4f\n", turn_degrees, k, error);
+        INFO("K ", k);
+        CHECK(error < previous);
+        previous = error;
+        if (k > 1) {
+            const RenderResult ray = render_embree(scene, settings);
+            const double apart = rmse(cpu.image, ray.image);
+            const double fraction = close_fraction(cpu.image, ray.image);
+            std::printf("  cpu vs embree, K = %d: RMSE %.2e, %.2f%% of pixels within 1/255\n", k, apart,
+                        100.0 * fraction);
+            CHECK(apart < 0.002);
+            CHECK(fraction >= 0.995);
+        }
+    }
+    // The float kernel takes the same windows and local times.
+    CpuOptions float_kernel;
+    float_kernel.precision = KernelPrecision::float32;
+    const Scene four = load_gltf_scene(path, cube_options(4));
+    CHECK(rmse(render_cpu(four, settings, float_kernel).image, render_cpu(four, settings).image) < 0.002);
+}
+
+TEST_CASE("auto picks the K of the chord formula for the cube's turn and projected size") {
+    const std::string path = write_turning_cube();
+    const Scene one = load_gltf_scene(path, cube_options(1));
+    // The cube's projected radius, from the renderer's own camera model: half
+    // the diagonal of its pixel box at open and at close, the larger.
+    const CameraModel model(one.camera, width, height);
+    double radius = 0.0;
+    for (int end = 0; end < 2; ++end) {
+        glm::dvec2 lo(1e300), hi(-1e300);
+        for (std::size_t v = 0; v < one.position_open.size(); ++v) {
+            const glm::vec3 clip = model.clip_xyw(model.view_position(one, v, end));
+            const glm::dvec2 pixel(double(clip.x) / clip.z * width / 2.0, double(clip.y) / clip.z * height / 2.0);
+            lo = glm::min(lo, pixel);
+            hi = glm::max(hi, pixel);
+        }
+        radius = std::max(radius, 0.5 * glm::length(hi - lo));
+    }
+    const int expected = motion_segments_for_turn(turn_degrees * M_PI / 180.0, radius, motion_chord_tolerance_px);
+    std::printf("auto: cube radius %.1f px, 75 degrees: K = %d\n", radius, expected);
+    CHECK(expected > 2);
+    const Scene automatic = load_gltf_scene(path, cube_options(0));
+    // The loader sums the turn over 32 steps in float: the same K, or one
+    // more where the ceiling sits on the edge.
+    CHECK(scene_motion_segments(automatic) >= expected);
+    CHECK(scene_motion_segments(automatic) <= expected + 1);
+    // A static file needs one segment.
+    GltfOptions still = cube_options(0);
+    still.animation_index = -1;
+    CHECK(scene_motion_segments(load_gltf_scene(path, still)) == 1);
+}
+
+TEST_CASE("segments of a linear motion are the same motion: the same image") {
+    Scene scene;
+    scene.name = "linear";
+    scene.materials.push_back(Material{});
+    add_quad(scene, {-1.0f, -1.0f, -5.0f}, {1.0f, -1.0f, -5.5f}, {1.0f, 1.0f, -5.0f}, {-1.0f, 1.0f, -4.5f},
+             {0.6f, 0.2f, -0.5f}, 0);
+    scene.camera.lens_radius = 0.05f;
+    scene.camera.focus_distance = 4.0f;
+    const RenderSettings settings = quiet_settings(64, 48, 16);
+    const RenderResult one = render_cpu(scene, settings);
+    const int segments = 5;
+    for (int k = 1; k < segments; ++k) {
+        std::vector<glm::vec3> at;
+        for (std::size_t v = 0; v < scene.position_open.size(); ++v)
+            at.push_back(glm::mix(scene.position_open[v], scene.position_close[v], float(k) / segments));
+        scene.position_at.push_back(at);
+    }
+    const RenderResult split = render_cpu(scene, settings);
+    const double error = rmse(one.image, split.image);
+    std::printf("linear motion, 1 vs %d segments: RMSE %.2e, hits %llu vs %llu\n", segments, error,
+                static_cast<unsigned long long>(one.stats.samples_hit),
+                static_cast<unsigned long long>(split.stats.samples_hit));
+    CHECK(error < 0.002);
+    CHECK(close_fraction(one.image, split.image) >= 0.995);
+    CHECK(split.stats.samples_hit > 0);
+}
+
+TEST_CASE("bad motion-segment input is one line") {
+    for (const char* text : {"0", "-2", "65", "2.5", "four", "", "1e3", "1000000000000"}) {
+        try {
+            parse_motion_segments(text);
+            FAIL("accepted '", text, "'");
+        } catch (const std::invalid_argument& error) {
+            const std::string message = error.what();
+            CHECK(message.find("--motion-segments") == 0);
+            CHECK(message.find('\n') == std::string::npos);
+        }
+    }
+    CHECK(parse_motion_segments("auto") == 0);
+    CHECK(parse_motion_segments("64") == max_motion_segments);
+    const std::string path = write_turning_cube();
+    for (int k : {-1, max_motion_segments + 1}) {
+        try {
+            load_gltf_scene(path, cube_options(k));
+            FAIL("loaded K ", k);
+        } catch (const SceneError& error) {
+            CHECK(std::string(error.what()).find("motion segments") != std::string::npos);
+        }
+    }
+    // The renderers that model one linear motion per triangle refuse K > 1.
+    const Scene four = load_gltf_scene(path, cube_options(4));
+    RenderSettings settings = quiet_settings(32, 24, 4);
+    CHECK_THROWS_WITH_AS(render_gl(four, settings), doctest::Contains("gl: 4 motion segments"), std::invalid_argument);
+    settings.method = RenderMethod::interval;
+    CHECK_THROWS_WITH_AS(render_with_method(four, settings), doctest::Contains("4 motion segments"),
+                         std::invalid_argument);
+}
