@@ -36,6 +36,9 @@ Scene make_mostly_static(const Scene& source, int moving_every) {
     Scene scene = source;  // keeps source.validated: the result is valid when the source is
     scene.position_open.clear();
     scene.position_close.clear();
+    scene.texcoord.clear();
+    scene.vertex_color.clear();
+    scene.normal.clear();
     scene.camera.lens_radius = 0.0f;
     scene.camera.view_close = scene.camera.view_open;
     // The world point the still camera sees where the moving one saw p at
@@ -52,6 +55,10 @@ Scene make_mostly_static(const Scene& source, int moving_every) {
             const glm::vec3 close = camera_moves ? glm::vec3(close_motion * glm::vec4(source.position_close[v], 1.0f))
                                                  : source.position_close[v];
             scene.position_close.push_back(moves ? close : source.position_open[v]);
+            // The surface attributes follow their vertex.
+            if (!source.texcoord.empty()) scene.texcoord.push_back(source.texcoord[v]);
+            if (!source.vertex_color.empty()) scene.vertex_color.push_back(source.vertex_color[v]);
+            if (!source.normal.empty()) scene.normal.push_back(source.normal[v]);
             scene.triangles[t][i] = static_cast<std::uint32_t>(3 * t + static_cast<std::size_t>(i));
         }
     }

@@ -25,11 +25,45 @@ namespace blurcull::frontend {
 // direction (docs/reference-renderer.md, "Materials and environment").
 enum class MaterialKind : std::uint8_t { diffuse, mirror, dielectric };
 
+// How a texture coordinate outside [0, 1] is folded back (glTF sampler wrapS/wrapT).
+enum class TextureWrap : std::uint8_t { repeat, clamp, mirror };
+
+// A decoded texture: texels RGBA8 as stored in the file (colour channels
+// sRGB-encoded, alpha linear), packed R | G << 8 | B << 16 | A << 24, row 0
+// first (texture coordinate v = 0 is the top of the image, glTF's convention).
+struct Texture {
+    int width = 0;
+    int height = 0;
+    std::vector<std::uint32_t> texels;  // width * height
+    TextureWrap wrap_s = TextureWrap::repeat;
+    TextureWrap wrap_t = TextureWrap::repeat;
+    std::string name;
+};
+
+// A material's use of a texture: Scene::textures[texture] (-1: none) at
+// texture coordinates transform * (u, v, 1) (KHR_texture_transform; identity without it).
+struct TextureRef {
+    int texture = -1;
+    glm::mat3 transform{1.0f};
+};
+
+// glTF alphaMode: BLEND is rendered opaque (with a warning from the loader).
+enum class AlphaMode : std::uint8_t { opaque, mask };
+
 struct Material {
     glm::vec3 base_color{0.8f, 0.8f, 0.8f};
     std::string name;
     MaterialKind kind = MaterialKind::diffuse;
     float ior = 1.5f;  // index of refraction of a dielectric (> 0); air is 1
+    // The surface attributes of render/common/surface_shading.hpp (the
+    // contract in docs/reference-renderer.md, "Shading"); the defaults shade
+    // as the flat colour of shading.hpp.
+    float base_alpha = 1.0f;            // baseColorFactor's alpha
+    TextureRef base_color_texture{};    // times base_color (and base_alpha)
+    AlphaMode alpha_mode = AlphaMode::opaque;
+    float alpha_cutoff = 0.5f;          // mask: a sample is covered only where alpha >= cutoff
+    glm::vec3 emissive{0.0f};           // added to the shaded colour
+    TextureRef emissive_texture{};      // times emissive
 };
 
 // Right-handed view space, camera at the origin looking down -z (OpenGL).
@@ -62,6 +96,14 @@ struct Scene {
     // k / K, k = 1 .. K - 1, position_at[k - 1] per vertex like position_open.
     // Empty (K = 1, every built-in scene): linear motion from open to close.
     std::vector<std::vector<glm::vec3>> position_at;
+    // Optional per-vertex surface attributes: each empty, or one per vertex.
+    // texcoord: TEXCOORD_0; vertex_color: COLOR_0 (linear RGBA; (1, 1, 1, 1)
+    // where a mesh has none); normal: world-space shading normal at shutter
+    // open ((0, 0, 0) where a mesh has none: such triangles shade flat).
+    std::vector<glm::vec2> texcoord;
+    std::vector<glm::vec4> vertex_color;
+    std::vector<glm::vec3> normal;
+    std::vector<Texture> textures;
     // Per triangle.
     std::vector<glm::uvec3> triangles;
     std::vector<std::uint32_t> triangle_material;
@@ -69,6 +111,7 @@ struct Scene {
 
     Camera camera;
     glm::vec3 light_direction{0.3f, 0.8f, 0.5f};  // towards the light, world space
+    glm::vec3 light_color{1.0f, 1.0f, 1.0f};      // scales the diffuse term (KHR_lights_punctual colour x intensity)
     glm::vec3 background{0.02f, 0.02f, 0.03f};
     // What a ray that leaves the scene sees: BC_ENVIRONMENT_NONE (the
     // background colour) or BC_ENVIRONMENT_SKY (render/common/optics_shared.h).

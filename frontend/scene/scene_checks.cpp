@@ -55,6 +55,52 @@ void check_interior_times(const Scene& scene) {
     }
 }
 
+// The optional per-vertex attributes, textures and materials' texture
+// references of surface_shading.hpp: sizes and indices that the shading
+// trusts, and finite values (the loader replaces non-finite ones).
+void validate_surface_attributes(const Scene& scene) {
+    const std::size_t vertex_count = scene.position_open.size();
+    const auto check_size = [&](std::size_t size, const char* what) {
+        if (size != 0 && size != vertex_count) {
+            fail(scene, std::to_string(size) + " " + what + " for " + std::to_string(vertex_count) + " vertices");
+        }
+    };
+    check_size(scene.texcoord.size(), "texture coordinates");
+    check_size(scene.vertex_color.size(), "vertex colours");
+    check_size(scene.normal.size(), "normals");
+    for (const glm::vec2& uv : scene.texcoord) {
+        if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) fail(scene, "a texture coordinate is not finite");
+    }
+    for (const glm::vec4& c : scene.vertex_color) {
+        if (!is_finite(glm::vec3(c)) || !std::isfinite(c.w)) fail(scene, "a vertex colour is not finite");
+    }
+    for (const glm::vec3& n : scene.normal) {
+        if (!is_finite(n)) fail(scene, "a normal is not finite");
+    }
+    for (std::size_t k = 0; k < scene.textures.size(); ++k) {
+        const Texture& texture = scene.textures[k];
+        if (texture.width < 1 || texture.height < 1 ||
+            texture.texels.size() != static_cast<std::size_t>(texture.width) * static_cast<std::size_t>(texture.height)) {
+            fail(scene, "texture " + std::to_string(k) + " has " + std::to_string(texture.texels.size()) +
+                            " texels for " + std::to_string(texture.width) + "x" + std::to_string(texture.height));
+        }
+    }
+    for (std::size_t m = 0; m < scene.materials.size(); ++m) {
+        const Material& material = scene.materials[m];
+        for (const TextureRef* ref : {&material.base_color_texture, &material.emissive_texture}) {
+            if (ref->texture >= static_cast<int>(scene.textures.size())) {
+                fail(scene, "material " + std::to_string(m) + " uses texture " + std::to_string(ref->texture) +
+                                " but there are only " + std::to_string(scene.textures.size()) + " textures");
+            }
+        }
+        if (!is_finite(material.emissive) || !std::isfinite(material.base_alpha) ||
+            !std::isfinite(material.alpha_cutoff)) {
+            fail(scene, "material " + std::to_string(m) + " has a non-finite emissive, alpha or cutoff");
+        }
+    }
+    if (!is_finite(scene.light_color)) fail(scene, "light colour is not finite");
+}
+
 }  // namespace
 
 void validate_scene(const Scene& scene) {
@@ -108,6 +154,7 @@ void validate_scene(const Scene& scene) {
     if (!is_finite(scene.light_direction) || !is_finite(scene.background)) {
         fail(scene, "light direction or background colour is not finite");
     }
+    validate_surface_attributes(scene);
 }
 
 void require_valid_scene(const Scene& scene) {

@@ -93,6 +93,15 @@
 //   the hit is nearer than near. Zero area seen edge-on covers nothing. NaN
 //   anywhere in the computation gives false; classify() flags such input.
 //
+// bool covers_hit(MovingTriangle tri, vec2 s, vec2 uv, real t, real near, out real depth, out vec3 barycentric)
+//   covers, and where the sample is covered (true, or false only for the near
+//   plane) the hit's barycentric coordinates (b0, b1, b2), b_i >= 0, summing to
+//   1 up to rounding: the hit point is b0 P0 + b1 P1 + b2 P2 of the triangle's
+//   vertices at time t, in clip space and equally in world space (the map
+//   between them and the lens shear are affine), so a renderer interpolates
+//   vertex attributes at the sample's own lens position and time with them.
+//   (0, 0, 0) when the ray misses. Same verdict and depth as covers, bit for bit.
+//
 // ---- The per-triangle screen bound (detail/screen_bound_body.inl) ----------------------
 //
 // ScreenBound screen_bound(MovingTriangle tri, real near, int cull)

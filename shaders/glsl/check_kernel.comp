@@ -61,6 +61,8 @@ void main() {
     int needs = bc_classify(tri);
     float depth;
     bool covered = bc_covers(tri, s, uv, t, near, depth);
+    vec3 barycentric;
+    covered = bc_covers_hit(tri, s, uv, t, near, depth, barycentric) || covered;
     ScreenBound screen = bc_screen_bound(tri, near, cull);
     bool on_screen = bc_screen_contains(screen, s);
     int footprint_state = bc_screen_footprint(screen, s - vec2(0.01), s + vec2(0.01));
@@ -106,7 +108,7 @@ void main() {
 
     float secondary = check_secondary_rays(vec3(values[45], values[46], values[47]), vec3(values[48], values[49], values[57]));
 
-    values[0] = coc + vertex.x + float(finite) + float(needs) + float(covered) + depth + float(on_screen) + float(footprint_state) +
+    values[0] = coc + vertex.x + float(finite) + float(needs) + float(covered) + depth + barycentric.y + float(on_screen) + float(footprint_state) +
                 float(passes) + time_range.x + sample_at.offset.x + sample_at.lens.y + sample_at.time + patterned.time +
                 tiled.time + from_setup.time + others[0].time + others[1].time + others[2].time + others[3].time + tuple.x +
                 float(tile) + jitter.x + accum.time + accum.offset.x + accum.lens.y + bc_rotate_unit(jitter.x, jitter.y) +

@@ -35,6 +35,7 @@
 #define classify bc_classify
 // the exact coverage test (oracle_body.inl)
 #define covers bc_covers
+#define covers_hit bc_covers_hit
 // the screen bound (screen_bound_body.inl)
 #define screen_bound bc_screen_bound
 #define screen_footprint bc_screen_footprint

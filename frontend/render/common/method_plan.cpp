@@ -2,7 +2,9 @@
 
 #include "render/common/motion_segments.hpp"
 #include "render/common/moving_triangle.hpp"
+#include "render/common/render_method.hpp"
 #include "render/common/shading.hpp"
+#include "render/common/surface_shading.hpp"
 #include "scene/scene_checks.hpp"
 
 #include <algorithm>
@@ -68,6 +70,18 @@ void stratum_interval(int j, int strata, double& t0, double& t1) {
 void plan_triangles(const Scene& scene, MethodPlan& plan) {
     plan.colours = shade_all(scene);
     const std::size_t count = scene.triangles.size();
+    // These methods resolve ids only, without each sample's position: the
+    // per-hit part of the shading contract is the stochastic renderers'.
+    std::size_t per_hit = 0, masked = 0;
+    for (std::size_t i = 0; i < count; ++i) {
+        per_hit += shades_per_hit(scene, i) ? 1 : 0;
+        masked += scene.materials[scene.triangle_material[i]].alpha_mode == AlphaMode::mask ? 1 : 0;
+    }
+    if (per_hit + masked > 0) {
+        plan.warnings.push_back(std::string(render_method_info(plan.method).name) + ": " + std::to_string(per_hit) +
+                                " textured or smooth triangles shaded flat and " + std::to_string(masked) +
+                                " alpha-masked triangles drawn opaque (per-sample shading is the default method's)");
+    }
     plan.triangles.resize(count);
     plan.visible.resize(count);
     std::size_t invalid = 0;

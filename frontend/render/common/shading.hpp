@@ -1,15 +1,19 @@
 // Deterministic flat shading, identical in every backend so their images
 // can be compared pixel by pixel.
 //
-// colour(triangle) = base colour of its material * (0.2 + 0.8 |n . l|), where
-// n is the unit geometric normal of the triangle's WORLD positions at shutter
-// OPEN (two-sided, hence |.|) and l the unit light direction. The colour is
-// constant over the shutter and the triangle. A sample that hits nothing gets
+// colour(triangle) = base colour of its material * (0.2 + 0.8 |n . l| light
+// colour) + emissive, where n is the unit geometric normal of the triangle's
+// WORLD positions at shutter OPEN (two-sided, hence |.|) and l the unit light
+// direction. The colour is constant over the shutter and the triangle. A
+// triangle with surface attributes (textures, vertex colours, normals, an
+// alpha mask) is shaded per sample instead: surface_shading.hpp, the
+// contract in docs/reference-renderer.md, "Shading". A sample that hits nothing gets
 // scene.background; a pixel is the mean of its samples (box filter): the
 // sample colours summed in float in sample order j = 0 .. spp-1, then divided
 // by spp (resolve_box), so backends that agree on every sample agree bit for bit.
 #pragma once
 
+#include "render/common/surface_shared.h"
 #include "scene/scene.hpp"
 
 #include <glm/glm.hpp>
@@ -30,15 +34,10 @@ inline glm::vec3 shade(const Scene& scene, std::size_t triangle) {
     const glm::uvec3& tri = scene.triangles[triangle];
     glm::vec3 p0 = scene.position_open[tri.x];
     glm::vec3 normal = glm::cross(scene.position_open[tri.y] - p0, scene.position_open[tri.z] - p0);
-    float normal_length = glm::length(normal);
-    float light_length = glm::length(scene.light_direction);
-    float lambert = 0.0f;
-    if (normal_length > 0.0f && light_length > 0.0f && std::isfinite(normal_length * light_length)) {
-        lambert = glm::abs(glm::dot(normal, scene.light_direction)) / (normal_length * light_length);
-        lambert = glm::min(lambert, 1.0f);  // rounding can step past 1
-    }
+    const float lambert = surface::bc_lambert(normal, scene.light_direction);
     const Material& material = scene.materials[scene.triangle_material[triangle]];
-    return material.base_color * (shading_ambient + shading_diffuse * lambert);
+    return surface::bc_lit_colour(material.base_color, lambert, scene.light_color, material.emissive, shading_ambient,
+                                  shading_diffuse);
 }
 
 // shade() for every triangle, computed once per render.

@@ -6,6 +6,7 @@
 #include "render/common/motion_segments.hpp"
 #include "render/common/progress.hpp"
 #include "render/common/shading.hpp"
+#include "render/common/surface_shading.hpp"
 #include "render/cpu/parallel_items.hpp"
 #include "render/cpu/sample_chain.hpp"
 #include "scene/scene_checks.hpp"
@@ -178,7 +179,7 @@ struct FrameContext {
     const RenderSettings& settings;
     const CameraModel& model;
     const FrameSetup<Real>& setup;
-    const std::vector<glm::vec3>& colours;
+    const SurfaceShader& shader;  // the alpha test of the raster decision and the resolve
     int method;
     Real near;
     std::uint32_t spp;
@@ -507,10 +508,15 @@ private:
         const Sample& s = samples_[k];
         Real z = Real(0);
         if (!K::covers(*current.tri, s.ndc, s.lens, s.time, frame_.near, z)) return;
-        ++hits;
         // The scene triangle wins, lowest index on equal depths also across
         // the motion-segment groups (within one group the order does it).
         const std::uint32_t source = frame_.setup.pieces[current.index].source;
+        // alphaMode MASK: a masked-out sample is not covered (before the
+        // depth test); the shader takes the sample's shutter time.
+        if (frame_.shader.masked(source) &&
+            !frame_.shader.sample_kept(source, glm::vec2(s.ndc), glm::vec2(s.lens), shutter_time_[k]))
+            return;
+        ++hits;
         if (K::depth_nearer(z, depth_[k]) || (z == depth_[k] && source < hit_[k])) {
             depth_[k] = z;
             hit_[k] = source;
@@ -524,9 +530,10 @@ private:
                 glm::vec3 sum(0.0f);
                 std::uint32_t covered = 0;
                 for (std::uint32_t j = 0; j < frame_.spp; ++j) {
-                    const std::uint32_t id = hit_[slot(px, py, j)];
-                    sum += id == none ? frame_.scene.background : frame_.colours[id];
-                    covered += id != none;
+                    const std::size_t k = slot(px, py, j);
+                    const Sample& s = samples_[k];
+                    sum += frame_.shader.sample_colour(hit_[k], glm::vec2(s.ndc), glm::vec2(s.lens), shutter_time_[k]);
+                    covered += hit_[k] != none;
                 }
                 image.at(px, py) = resolve_box(sum, frame_.settings.spp);
                 image.coverage[image.index(px, py)] = resolve_coverage(covered, frame_.settings.spp);
@@ -600,7 +607,7 @@ RenderResult render_cpu_in(const Scene& scene, const RenderSettings& settings, c
 
     // Setup: clip-space triangles, their screen rectangles, binned into tiles.
     Clock::time_point phase = Clock::now();
-    const std::vector<glm::vec3> colours = shade_all(scene);
+    const SurfaceShader shader(scene, model);
     FrameSetup<Real> setup;
     set_up_triangles(scene, model, cull.kernel_method, threads, setup);
     bin_triangles(settings.width, settings.height, setup);
@@ -617,7 +624,7 @@ RenderResult render_cpu_in(const Scene& scene, const RenderSettings& settings, c
                                    settings,
                                    model,
                                    setup,
-                                   colours,
+                                   shader,
                                    cull.kernel_method,
                                    static_cast<Real>(model.znear),
                                    static_cast<std::uint32_t>(settings.spp),

@@ -4,6 +4,7 @@
 #include "render/common/motion_segments.hpp"
 #include "render/common/progress.hpp"
 #include "render/common/shading.hpp"
+#include "render/common/surface_shading.hpp"
 #include "render/embree/primary_rays.hpp"
 #include "scene/scene_checks.hpp"
 
@@ -94,11 +95,35 @@ private:
     RTCScene handle_;
 };
 
+// A sample as the resolve and the alpha test see it (the ray's own inputs).
+struct RowSample {
+    glm::vec2 ndc, lens;
+    float time;
+};
+
+// The alpha mask in Embree's nearest-hit search, so a masked-out sample never
+// wins: a candidate hit on a MASK triangle is refused unless
+// SurfaceShader::sample_kept keeps it (the CPU backend's same call). The
+// geometry's user data is the shader; the context's, the traced row's samples
+// (ray id = index in the row).
+void alpha_mask_filter(const RTCFilterFunctionNArguments* args) {
+    const auto* shader = static_cast<const SurfaceShader*>(args->geometryUserPtr);
+    const auto* samples = static_cast<const RowSample*>(reinterpret_cast<const TraceContext*>(args->context)->user);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] != -1) continue;
+        const unsigned triangle = RTCHitN_primID(args->hit, args->N, i);
+        const RowSample& s = samples[RTCRayN_id(args->ray, args->N, i)];
+        if (!shader->sample_kept(triangle, s.ndc, s.lens, s.time)) args->valid[i] = 0;
+    }
+}
+
 // One triangle mesh with K + 1 time steps (K motion segments, 1 by default)
 // holding the VIEW-space vertex positions at the shutter times k / K; Embree
 // interpolates linearly between the two steps around ray.time, which is
 // exactly the shared motion model (render/common/motion_segments.hpp).
-void add_moving_mesh(Device& device, RTCScene rtc_scene, const Scene& scene, const CameraModel& model) {
+// Masked materials get alpha_mask_filter.
+void add_moving_mesh(Device& device, RTCScene rtc_scene, const Scene& scene, const CameraModel& model,
+                     const SurfaceShader& shader) {
     if (scene.triangles.empty()) return;
     constexpr std::size_t embree_limit = std::numeric_limits<std::uint32_t>::max();
     if (scene.position_open.size() > embree_limit || scene.triangles.size() > embree_limit) {
@@ -137,6 +162,10 @@ void add_moving_mesh(Device& device, RTCScene rtc_scene, const Scene& scene, con
         indices[3 * t + 1] = scene.triangles[t].y;
         indices[3 * t + 2] = scene.triangles[t].z;
     }
+    if (shader.any_masked()) {
+        rtcSetGeometryUserData(geometry, const_cast<SurfaceShader*>(&shader));
+        rtcSetGeometryIntersectFilterFunction(geometry, &alpha_mask_filter);
+    }
     rtcCommitGeometry(geometry);
     rtcAttachGeometry(rtc_scene, geometry);
     rtcReleaseGeometry(geometry);  // the scene holds its own reference
@@ -160,10 +189,10 @@ unsigned resolve_thread_count(int requested) {
 // Fills the BVH of `rtc_scene` with the scene's moving triangles, with the
 // options' scene flags and build quality.
 void build_scene(Device& device, const SceneHandle& rtc_scene, const Scene& scene, const CameraModel& model,
-                 const EmbreeOptions& options) {
+                 const SurfaceShader& shader, const EmbreeOptions& options) {
     rtcSetSceneFlags(rtc_scene.get(), options.robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
     rtcSetSceneBuildQuality(rtc_scene.get(), rtc_build_quality(options.build_quality));
-    add_moving_mesh(device, rtc_scene.get(), scene, model);
+    add_moving_mesh(device, rtc_scene.get(), scene, model, shader);
     rtcCommitScene(rtc_scene.get());
     device.check("building the BVH");
 }
@@ -173,10 +202,10 @@ void build_scene(Device& device, const SceneHandle& rtc_scene, const Scene& scen
 // thread, so the image does not depend on the schedule.
 class RowTracer {
 public:
-    RowTracer(RTCScene rtc_scene, const Scene& scene, const CameraModel& model, const std::vector<glm::vec3>& colours,
+    RowTracer(RTCScene rtc_scene, const CameraModel& model, const SurfaceShader& shader,
               const RenderSettings& settings, const EmbreeOptions& options, Image& image,
               RenderClock::time_point start)
-        : rtc_scene_(rtc_scene), scene_(scene), model_(model), colours_(colours), settings_(settings),
+        : rtc_scene_(rtc_scene), model_(model), shader_(shader), settings_(settings),
           options_(options), image_(image), start_(start) {}
 
     // Traces rows until none is left; one caller reports progress.
@@ -185,13 +214,15 @@ public:
         const auto spp = static_cast<std::uint32_t>(settings_.spp);
         PrimaryRayTracer tracer(rtc_scene_, options_.tracing);
         std::vector<PrimaryRay> rays(static_cast<std::size_t>(width) * spp);
+        std::vector<RowSample> samples(rays.size());
         std::vector<std::uint32_t> prim_ids(rays.size());
+        tracer.set_filter_data(samples.data());
         std::uint64_t hits = 0;
         int last_percent = -1;
         for (int py = next_row_.fetch_add(1); py < settings_.height; py = next_row_.fetch_add(1)) {
-            make_row_rays(py, rays);
+            make_row_rays(py, rays, samples);
             tracer.trace(rays.data(), rays.size(), prim_ids.data());
-            hits += sum_row(py, prim_ids);
+            hits += sum_row(py, prim_ids, samples);
             const int done = rows_done_.fetch_add(1) + 1;
             if (reports_progress && ms_since(start_) > 1000.0) {
                 const int percent = static_cast<int>(100LL * done / settings_.height);
@@ -212,14 +243,16 @@ public:
     std::uint64_t hits() const { return hits_.load(); }
 
 private:
-    // Row py's rays, pixel by pixel in sample order.
-    void make_row_rays(int py, std::vector<PrimaryRay>& rays) const {
+    // Row py's rays and their samples, pixel by pixel in sample order.
+    void make_row_rays(int py, std::vector<PrimaryRay>& rays, std::vector<RowSample>& samples) const {
         const auto spp = static_cast<std::uint32_t>(settings_.spp);
         for (int px = 0; px < settings_.width; ++px) {
             for (std::uint32_t j = 0; j < spp; ++j) {
                 const kernelf::PixelSample sample = kernelf::pixel_sample(
                     static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py), j, spp, settings_.seed);
-                const Ray ray = model_.lens_ray(model_.sample_ndc(px, py, sample.offset), sample.lens);
+                const glm::vec2 ndc = model_.sample_ndc(px, py, sample.offset);
+                const Ray ray = model_.lens_ray(ndc, sample.lens);
+                samples[static_cast<std::size_t>(px) * spp + j] = RowSample{ndc, sample.lens, sample.time};
                 rays[static_cast<std::size_t>(px) * spp + j] =
                     PrimaryRay{ray.origin.x,    ray.origin.y,    ray.origin.z,    ray.t_near,
                                ray.direction.x, ray.direction.y, ray.direction.z, sample.time};
@@ -228,20 +261,18 @@ private:
     }
 
     // Row py's pixels: the sum of their samples' colours; returns the hits.
-    std::uint64_t sum_row(int py, const std::vector<std::uint32_t>& prim_ids) {
+    std::uint64_t sum_row(int py, const std::vector<std::uint32_t>& prim_ids, const std::vector<RowSample>& samples) {
         const auto spp = static_cast<std::uint32_t>(settings_.spp);
         std::uint64_t hits = 0;
         for (int px = 0; px < settings_.width; ++px) {
             const std::uint64_t hits_before = hits;
             glm::vec3 sum(0.0f);
             for (std::uint32_t j = 0; j < spp; ++j) {
-                const std::uint32_t id = prim_ids[static_cast<std::size_t>(px) * spp + j];
-                if (id != no_primitive) {
-                    sum += colours_[id];
-                    ++hits;
-                } else {
-                    sum += scene_.background;
-                }
+                const std::size_t k = static_cast<std::size_t>(px) * spp + j;
+                const std::uint32_t id = prim_ids[k];
+                static_assert(no_primitive == SurfaceShader::no_hit, "one id for no hit");
+                sum += shader_.sample_colour(id, samples[k].ndc, samples[k].lens, samples[k].time);
+                if (id != no_primitive) ++hits;
             }
             image_.at(px, py) = sum;
             image_.coverage[image_.index(px, py)] =
@@ -251,9 +282,8 @@ private:
     }
 
     RTCScene rtc_scene_;
-    const Scene& scene_;
     const CameraModel& model_;
-    const std::vector<glm::vec3>& colours_;
+    const SurfaceShader& shader_;
     const RenderSettings& settings_;
     const EmbreeOptions& options_;
     Image& image_;
@@ -300,20 +330,20 @@ RenderResult render_embree(const Scene& scene, const RenderSettings& settings, c
     stats.triangles = scene.triangles.size();
 
     Clock::time_point phase_start = Clock::now();
-    const std::vector<glm::vec3> colours = shade_all(scene);
+    const SurfaceShader shader(scene, model);
     stats.ms_per_phase.emplace_back("shade", ms_since(phase_start));
 
     phase_start = Clock::now();
     Device device(thread_count);
     SceneHandle rtc_scene(rtcNewScene(device.get()));
     device.check("creating the scene");
-    build_scene(device, rtc_scene, scene, model, options);
+    build_scene(device, rtc_scene, scene, model, shader, options);
     stats.ms_per_phase.emplace_back("build BVH", ms_since(phase_start));
 
     phase_start = Clock::now();
     result.image = Image(settings.width, settings.height);
     result.image.coverage.resize(result.image.pixels.size());
-    RowTracer tracer(rtc_scene.get(), scene, model, colours, settings, options, result.image, start);
+    RowTracer tracer(rtc_scene.get(), model, shader, settings, options, result.image, start);
     trace_on_threads(tracer, thread_count, settings.height, settings.progress);
     device.check("tracing");
     stats.ms_per_phase.emplace_back("trace", ms_since(phase_start));

@@ -17,7 +17,7 @@ void intersect_n(const int* valid, RTCScene scene, RTCIntersectContext* context,
     rtcIntersect16(valid, scene, context, packet);
 }
 
-void fill_ray(RTCRayHit& query, const PrimaryRay& ray) {
+void fill_ray(RTCRayHit& query, const PrimaryRay& ray, unsigned id) {
     query.ray.org_x = ray.org_x;
     query.ray.org_y = ray.org_y;
     query.ray.org_z = ray.org_z;
@@ -28,7 +28,7 @@ void fill_ray(RTCRayHit& query, const PrimaryRay& ray) {
     query.ray.time = ray.time;
     query.ray.tfar = std::numeric_limits<float>::infinity();
     query.ray.mask = 0xFFFFFFFFu;
-    query.ray.id = 0;
+    query.ray.id = id;
     query.ray.flags = 0;
     query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     query.hit.primID = RTC_INVALID_GEOMETRY_ID;
@@ -70,10 +70,10 @@ EmbreeTracing parse_embree_tracing(const std::string& name) {
 }
 
 PrimaryRayTracer::PrimaryRayTracer(RTCScene scene, EmbreeTracing tracing) : scene_(scene), tracing_(tracing) {
-    rtcInitIntersectContext(&context_);
+    rtcInitIntersectContext(&context_.embree);
     // Primary rays of neighbouring samples are coherent; the flag lets the
     // stream shape gather them into packets (the other shapes ignore it).
-    if (tracing_ == EmbreeTracing::stream) context_.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    if (tracing_ == EmbreeTracing::stream) context_.embree.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
 }
 
 void PrimaryRayTracer::trace(const PrimaryRay* rays, std::size_t count, std::uint32_t* prim_ids) {
@@ -89,19 +89,19 @@ void PrimaryRayTracer::trace(const PrimaryRay* rays, std::size_t count, std::uin
 void PrimaryRayTracer::trace_single(const PrimaryRay* rays, std::size_t count, std::uint32_t* prim_ids) {
     for (std::size_t i = 0; i < count; ++i) {
         RTCRayHit query;
-        fill_ray(query, rays[i]);
-        rtcIntersect1(scene_, &context_, &query);
+        fill_ray(query, rays[i], static_cast<unsigned>(i));
+        rtcIntersect1(scene_, &context_.embree, &query);
         prim_ids[i] = hit_primitive(query.hit.geomID, query.hit.primID);
     }
 }
 
 void PrimaryRayTracer::trace_stream(const PrimaryRay* rays, std::size_t count, std::uint32_t* prim_ids) {
     stream_.resize(count);
-    for (std::size_t i = 0; i < count; ++i) fill_ray(stream_[i], rays[i]);
+    for (std::size_t i = 0; i < count; ++i) fill_ray(stream_[i], rays[i], static_cast<unsigned>(i));
     constexpr std::size_t max_call = std::numeric_limits<unsigned>::max();
     for (std::size_t first = 0; first < count; first += max_call) {
         const auto m = static_cast<unsigned>(std::min(max_call, count - first));
-        rtcIntersect1M(scene_, &context_, stream_.data() + first, m, sizeof(RTCRayHit));
+        rtcIntersect1M(scene_, &context_.embree, stream_.data() + first, m, sizeof(RTCRayHit));
     }
     for (std::size_t i = 0; i < count; ++i) prim_ids[i] = hit_primitive(stream_[i].hit.geomID, stream_[i].hit.primID);
 }
@@ -126,13 +126,13 @@ void PrimaryRayTracer::trace_packets(const PrimaryRay* rays, std::size_t count, 
             packet.ray.time[lane] = ray.time;
             packet.ray.tfar[lane] = std::numeric_limits<float>::infinity();
             packet.ray.mask[lane] = 0xFFFFFFFFu;
-            packet.ray.id[lane] = 0;
+            packet.ray.id[lane] = static_cast<unsigned>(first + static_cast<std::size_t>(std::min(lane, lanes - 1)));
             packet.ray.flags[lane] = 0;
             packet.hit.geomID[lane] = RTC_INVALID_GEOMETRY_ID;
             packet.hit.primID[lane] = RTC_INVALID_GEOMETRY_ID;
             packet.hit.instID[0][lane] = RTC_INVALID_GEOMETRY_ID;
         }
-        intersect_n(valid, scene_, &context_, &packet);
+        intersect_n(valid, scene_, &context_.embree, &packet);
         for (int lane = 0; lane < lanes; ++lane) {
             prim_ids[first + static_cast<std::size_t>(lane)] = hit_primitive(packet.hit.geomID[lane], packet.hit.primID[lane]);
         }

@@ -24,6 +24,14 @@ struct PrimaryRay {
 // The primitive id that a ray which hits nothing gets from trace_primary_rays.
 constexpr std::uint32_t no_primitive = RTC_INVALID_GEOMETRY_ID;
 
+// The intersect context the tracer passes to Embree: Embree's own, then a
+// pointer a geometry's filter function reads (the Embree backend's alpha
+// mask: the row's samples). Each ray's id is its index in the trace call.
+struct TraceContext {
+    RTCIntersectContext embree;
+    const void* user = nullptr;
+};
+
 // Traces rays[0 .. count) in `scene` (one geometry) in the given shape and
 // writes each ray's nearest primitive id, or no_primitive, to prim_ids.
 // Packets take consecutive rays, so rays of one pixel share a packet. Not
@@ -35,6 +43,9 @@ public:
     // Traces `count` rays; prim_ids must hold count entries.
     void trace(const PrimaryRay* rays, std::size_t count, std::uint32_t* prim_ids);
 
+    // What a filter function finds in TraceContext::user during trace().
+    void set_filter_data(const void* user) { context_.user = user; }
+
 private:
     template <class RayHitN, int N>
     void trace_packets(const PrimaryRay* rays, std::size_t count, std::uint32_t* prim_ids);
@@ -43,7 +54,7 @@ private:
 
     RTCScene scene_;
     EmbreeTracing tracing_;
-    RTCIntersectContext context_;
+    TraceContext context_;
     std::vector<RTCRayHit> stream_;  // the stream shape's ray/hit records
 };
 

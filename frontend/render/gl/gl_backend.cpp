@@ -6,6 +6,7 @@
 #include "render/common/moving_triangle.hpp"
 #include "render/common/progress.hpp"
 #include "render/common/shading.hpp"
+#include "render/common/surface_shading.hpp"
 #include "render/gl/gl_context.hpp"
 #include "render/gl/gl_render_targets.hpp"
 #include "render/gl/gl_sampling_methods.hpp"
@@ -531,7 +532,20 @@ RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settin
     RenderStats& stats = result.stats;
     stats.triangles = scene.triangles.size();
     Clock::time_point phase = Clock::now();
-    StochasticFrame frame(*state_, scene, settings, options, options.keep_sample_ids && sample_ids != nullptr);
+    // Per-hit shading (textures, vertex colours, normals) is resolved on the
+    // host from the winners the GPU read back, with the CPU backend's
+    // function: the shading contract's resolve step (docs/gl-backend.md).
+    const SurfaceShader shader(scene, CameraModel(scene.camera, settings.width, settings.height));
+    std::vector<std::uint32_t> winners;
+    std::vector<std::uint32_t>* kept_ids = shader.any_per_hit() && sample_ids == nullptr ? &winners : sample_ids;
+    const bool keep_ids = (options.keep_sample_ids && sample_ids != nullptr) || shader.any_per_hit();
+    if (shader.any_masked()) {
+        std::size_t masked = 0;
+        for (std::uint32_t t = 0; t < scene.triangles.size(); ++t) masked += shader.masked(t) ? 1 : 0;
+        result.warnings.push_back("gl: " + std::to_string(masked) +
+                                  " alpha-masked triangles are drawn opaque (the mask test is the cpu and embree backends')");
+    }
+    StochasticFrame frame(*state_, scene, settings, options, keep_ids);
     frame.run_setup();
     stats.ms_per_phase.emplace_back("setup", ms_since(phase));
 
@@ -542,7 +556,11 @@ RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settin
     timer.add_to(stats);
 
     phase = Clock::now();
-    result.image = frame.read_back(sample_ids);
+    result.image = frame.read_back(keep_ids ? kept_ids : nullptr);
+    if (shader.any_per_hit()) {
+        result.image = resolve_sample_ids(shader, CameraModel(scene.camera, settings.width, settings.height), settings,
+                                          *kept_ids);
+    }
     stats.ms_per_phase.emplace_back("readback", ms_since(phase));
     stats.ms_total = ms_since(start);
     return result;

@@ -40,7 +40,10 @@ std::string implemented_list() {
 const std::vector<std::string>& implemented_extensions() {
     // KHR_mesh_quantization: integer positions and morph targets, decoded
     // by accessors.cpp; the node transform dequantises them.
-    static const std::vector<std::string> names = {"KHR_mesh_quantization"};
+    // KHR_lights_punctual: the first directional light (lights.cpp);
+    // KHR_texture_transform: offset, rotation, scale (surface.cpp).
+    static const std::vector<std::string> names = {"KHR_mesh_quantization", "KHR_lights_punctual",
+                                                   "KHR_texture_transform"};
     return names;
 }
 

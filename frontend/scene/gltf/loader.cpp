@@ -2,6 +2,7 @@
 
 #include "scene/gltf/animation.hpp"
 #include "scene/gltf/camera.hpp"
+#include "scene/gltf/lights.hpp"
 #include "scene/gltf/diagnostics.hpp"
 #include "scene/gltf/meshes.hpp"
 #include "scene/gltf/morph.hpp"
@@ -98,6 +99,7 @@ Scene build_scene(const std::string& path, const GltfOptions& options, const War
     } else {
         setup_camera(model, rendered, poses, options, scene, diagnostics);
     }
+    setup_light(model, rendered, poses, scene, diagnostics);
 
     // Motion segments: the same steps at the interior times.
     const PosesAt poses_at = [&](float t) {

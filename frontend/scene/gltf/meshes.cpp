@@ -3,6 +3,8 @@
 #include "scene/gltf/accessors.hpp"
 #include "scene/gltf/morph.hpp"
 #include "scene/gltf/skin.hpp"
+#include "scene/gltf/surface.hpp"
+#include "scene/gltf/textures.hpp"
 #include "scene/scene_builder.hpp"
 
 #include <glm/glm.hpp>
@@ -145,7 +147,7 @@ private:
         if (triangles.empty()) return;
 
         std::vector<glm::vec3> open(vertex_count), close(vertex_count);
-        world_positions(node_index, primitive, raw, name, open, close);
+        const bool skinned = world_positions(node_index, primitive, raw, name, open, close);
         if (!all_finite(open, close)) {
             diagnostics_.warn_once("nonfinite " + name, name + " has non-finite transformed positions; skipped");
             return;
@@ -153,12 +155,16 @@ private:
         if (scene_.position_open.size() + vertex_count > std::numeric_limits<std::uint32_t>::max()) {
             diagnostics_.fail("scene has too many vertices");
         }
+        const std::size_t first_vertex = scene_.position_open.size();
         append_mesh(scene_, open, close, triangles, material_for(primitive.material));
+        append_surface_attributes(model_, primitive, poses_.open[static_cast<std::size_t>(node_index)], skinned,
+                                  first_vertex, vertex_count, name, scene_, diagnostics_);
     }
 
     // glTF's order: morph targets (morph.hpp), then skinning when the node
-    // has a skin and the primitive has joints, else the node's world matrix.
-    void world_positions(int node_index, const tg::Primitive& primitive, const std::vector<double>& raw,
+    // has a skin and the primitive has joints (returns true), else the node's
+    // world matrix.
+    bool world_positions(int node_index, const tg::Primitive& primitive, const std::vector<double>& raw,
                          const std::string& name, std::vector<glm::vec3>& open, std::vector<glm::vec3>& close) {
         const auto node_slot = static_cast<std::size_t>(node_index);
         const tg::Node& node = model_.nodes[node_slot];
@@ -167,10 +173,11 @@ private:
         if (node.skin >= 0 && primitive.attributes.count("JOINTS_0") && primitive.attributes.count("WEIGHTS_0") &&
             skin_vertices(model_, poses_, morphed.open, morphed.close, node, primitive, name, open, close,
                           diagnostics_)) {
-            return;
+            return true;
         }
         transform_positions(poses_.open[node_slot], morphed.open, open);
         transform_positions(poses_.close[node_slot], morphed.close, close);
+        return false;
     }
 
     // The scene material of a glTF material index (-1: the grey "default"),
@@ -189,6 +196,7 @@ private:
                                                            static_cast<float>(factor[2])),
                                                  0.0f, 1.0f);
             }
+            read_surface_material(source, textures_, material, diagnostics_);
         } else {
             material.name = "default";
         }
@@ -202,6 +210,7 @@ private:
     Scene& scene_;
     Diagnostics& diagnostics_;
     std::map<int, std::uint32_t> material_map_;
+    TextureLoader textures_{model_, scene_, diagnostics_};
 };
 
 }  // namespace

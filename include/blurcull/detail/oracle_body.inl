@@ -7,10 +7,15 @@
 // Homogeneous 2D rasterization (Olano and Greer 1997): with the sheared
 // vertices V_i as columns of M, the ray through (s, 1) meets the triangle in
 // front of the eye iff all components of adj(M) (s, 1) share the sign of
-// det(M). The hit depth is det / sum(adj(M) (s, 1)). Correct for vertices
-// behind the eye; samples whose hit lies closer than `near` are not covered.
-BC_FN bool covers(BC_IN(MovingTriangle) tri, vec2 s, vec2 uv, real t, real near, BC_OUT(real) depth) {
+// det(M). The hit depth is det / sum(adj(M) (s, 1)), and the hit point is
+// sum_i b_i V_i with b = adj(M) (s, 1) / sum: its barycentric coordinates,
+// which the affine map from the sheared triangle back to the world-space
+// triangle at time t keeps. Correct for vertices behind the eye; samples whose
+// hit lies closer than `near` are not covered.
+BC_FN bool covers_hit(BC_IN(MovingTriangle) tri, vec2 s, vec2 uv, real t, real near, BC_OUT(real) depth,
+                      BC_OUT(vec3) barycentric) {
     depth = real(0);
+    barycentric = vec3(real(0));
     vec3 v0 = vertex_at(tri, 0, t, uv);
     vec3 v1 = vertex_at(tri, 1, t, uv);
     vec3 v2 = vertex_at(tri, 2, t, uv);
@@ -31,7 +36,15 @@ BC_FN bool covers(BC_IN(MovingTriangle) tri, vec2 s, vec2 uv, real t, real near,
     real sum = e0 + e1 + e2;
     if (!(sum > real(0))) return false;
     depth = det / sum;
+    barycentric = vec3(e0 / sum, e1 / sum, e2 / sum);
     return depth >= near;
+}
+
+// covers_hit without the barycentric coordinates: the same arithmetic, so the
+// same verdict and depth bit for bit.
+BC_FN bool covers(BC_IN(MovingTriangle) tri, vec2 s, vec2 uv, real t, real near, BC_OUT(real) depth) {
+    vec3 barycentric;
+    return covers_hit(tri, s, uv, t, near, depth, barycentric);
 }
 
 // The exact test sees a sheared vertex (x + u c, y + v c, w). Where the
