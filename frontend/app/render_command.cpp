@@ -457,6 +457,7 @@ void print_json_summary(const RenderCommand& command, const RenderJob& job, cons
     summary["samples_tested"] = stats.samples_tested;
     summary["samples_hit"] = stats.samples_hit;
     if (stats.secondary_rays > 0) summary["secondary_rays"] = stats.secondary_rays;
+    if (stats.samples_visited > 0) summary["samples_visited"] = stats.samples_visited;
     summary["ste"] = stats.ste();
     summary["bounds_computed"] = stats.bounds_computed;
     summary["bounds_empty"] = stats.bounds_empty;

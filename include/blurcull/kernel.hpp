@@ -150,6 +150,15 @@
 //   (their setup paid once per tile); otherwise sample_bounds of the
 //   footprint. Empty when tile is.
 //
+// SampleAxisBounds sample_axis_bounds(MovingTriangle tri, int axis, real s0, real s1, int cull)
+// SampleBounds combine_axis_bounds(SampleAxisBounds x, SampleAxisBounds y)
+//   sample_bounds's two halves: the lens range and time lines along one
+//   axis (0: x and u, 1: y and v) depend only on the footprint's extent
+//   [s0, s1] along it, so a renderer can share them between the footprints
+//   of one column (row); combine_axis_bounds(x, y) is then sample_bounds for
+//   BC_CULL_DUALSPACE and BC_CULL_TWO_STAGE on a bc_triangle_boundable
+//   triangle (not BC_CULL_EDGES, whose planes need the whole box).
+//
 // SampleBounds no_sample_bounds()
 //   Bounds that keep every sample: lens [-1, 1]^2, time [0, 1], empty = false.
 //

@@ -70,8 +70,12 @@ void main() {
     SampleBounds bounds = bc_sample_bounds(tri, s - vec2(0.01), s + vec2(0.01), cull);
     SampleBounds edge_bounds = bc_sample_bounds(tri, s - vec2(0.01), s + vec2(0.01), BC_CULL_EDGES);
     SampleBounds in_tile = bc_sample_bounds_in_tile(tri, s - vec2(0.005), s + vec2(0.005), cull, edge_bounds);
+    SampleAxisBounds axis_x = bc_sample_axis_bounds(tri, 0, s.x - 0.01, s.x + 0.01, cull);
+    SampleAxisBounds axis_y = bc_sample_axis_bounds(tri, 1, s.y - 0.01, s.y + 0.01, cull);
+    SampleBounds combined = bc_combine_axis_bounds(axis_x, axis_y);
     bool passes = bc_sample_passes(bounds, uv, t) || bc_sample_passes(none, uv, t) || bc_sample_passes(edge_bounds, uv, t) ||
-                  bc_sample_passes_at(edge_bounds, s, uv, t) || bc_sample_passes_at(in_tile, s, uv, t);
+                  bc_sample_passes_at(edge_bounds, s, uv, t) || bc_sample_passes_at(in_tile, s, uv, t) ||
+                  bc_sample_passes(combined, uv, t);
     vec2 time_range = bc_sample_time_range(bounds);
     uint px = uint(values[43]);
     uint py = uint(values[44]);

@@ -43,6 +43,8 @@
 // the per-footprint sample bounds (sample_bounds_body.inl)
 #define no_sample_bounds bc_no_sample_bounds
 #define sample_bounds bc_sample_bounds
+#define sample_axis_bounds bc_sample_axis_bounds
+#define combine_axis_bounds bc_combine_axis_bounds
 #define sample_time_range bc_sample_time_range
 #define sample_passes bc_sample_passes
 #define sample_passes_at bc_sample_passes_at

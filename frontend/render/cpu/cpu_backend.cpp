@@ -9,6 +9,7 @@
 #include "render/common/shading.hpp"
 #include "render/common/surface_shading.hpp"
 #include "render/cpu/parallel_items.hpp"
+#include "render/cpu/sample_chain.hpp"
 #include "scene/scene_checks.hpp"
 
 #include <blurcull/kernel.hpp>
@@ -54,31 +55,6 @@ SampleBox sample_box(const CameraModel& model, const PixelRect& r) {
     const glm::vec4 bottom_right = model.pixel_ndc_bounds(r.x1, r.y1);
     return SampleBox{top_left.x, bottom_right.y, bottom_right.z, top_left.w};
 }
-
-// A tile's samples in float, one array per coordinate: the fast coverage
-// test's input (exact: the samples are floats).
-class FloatSamples {
-public:
-    explicit FloatSamples(std::size_t size) : sx_(size), sy_(size), u_(size), v_(size), t_(size) {}
-    void set(std::size_t k, glm::vec2 ndc, glm::vec2 lens, float time) {
-        sx_[k] = ndc.x;
-        sy_[k] = ndc.y;
-        u_[k] = lens.x;
-        v_[k] = lens.y;
-        t_[k] = time;
-    }
-    void set_time(std::size_t k, float time) { t_[k] = time; }
-    bool may_cover(const CoverageSetup& setup, std::size_t k) const {
-        return frontend::may_cover(setup, sx_[k], sy_[k], u_[k], v_[k], t_[k]);
-    }
-    // Samples first .. first + 31, those in `wanted` (the arrays are padded by 32).
-    std::uint32_t may_cover32(const CoverageSetup& setup, std::size_t first, std::uint32_t wanted) const {
-        return frontend::may_cover32(setup, &sx_[first], &sy_[first], &u_[first], &v_[first], &t_[first], wanted);
-    }
-
-private:
-    std::vector<float> sx_, sy_, u_, v_, t_;
-};
 
 template <class K>
 struct TileSample {
@@ -234,7 +210,8 @@ public:
           by_time_t_(samples_.size()),
           depth_(samples_.size()),
           hit_(samples_.size()),
-          lanes_(samples_.size() + 32),
+          lanes_(samples_.size()),
+          time_lanes_(samples_.size()),
           shutter_time_(samples_.size()),
           in_window_(samples_.size()) {}
 
@@ -281,7 +258,7 @@ private:
                     const std::size_t k = slot(px, py, j);
                     const glm::vec2 ndc = frame_.model.sample_ndc(px, py, s.offset);
                     samples_[k] = Sample{typename K::vec2(ndc), typename K::vec2(s.lens), static_cast<Real>(s.time)};
-                    lanes_.set(k, ndc, s.lens, s.time);
+                    lanes_.set(k, ndc.x, ndc.y, s.lens.x, s.lens.y, s.time);
                     shutter_time_[k] = s.time;
                     in_window_[k] = 1;
                     depth_[k] = std::numeric_limits<Real>::infinity();
@@ -295,7 +272,7 @@ private:
     // each at its local time (kernel::segment_local_time, in float like the
     // samples, so the fast test sees the time covers() sees), and marked when
     // the window does not hold it. The footprints' time order (by_time_t_)
-    // stays in shutter time: test_samples maps a piece's bounds back to it.
+    // stays in shutter time: test_time_run maps a piece's bounds back to it.
     void enter_window(const SegmentPiece& piece) {
         window_segment_ = piece.segment;
         window_segments_ = piece.segments;
@@ -306,10 +283,13 @@ private:
             samples_[k].time = static_cast<Real>(local);
             lanes_.set_time(k, local);
         }
+        if (frame_.time_sorted)
+            for (std::size_t q = 0; q < by_time_.size(); ++q) time_lanes_.set_time(q, lanes_.ft()[by_time_[q]]);
     }
 
-    // Per footprint of the tile's grid, its sample slots sorted by time, so
-    // that a footprint's bounds visit only their shutter interval.
+    // Per footprint of the tile's grid, its samples sorted by time (copied
+    // into time_lanes_, slots in by_time_), so that a footprint's bounds
+    // visit only the contiguous run of their shutter interval.
     void sort_footprints_by_time() {
         const int footprint = frame_.footprint;
         const int th = y1_ - y0_ + 1;
@@ -327,7 +307,10 @@ private:
                 std::sort(by_time_.begin() + static_cast<std::ptrdiff_t>(first),
                           by_time_.begin() + static_cast<std::ptrdiff_t>(next),
                           [&](std::uint32_t a, std::uint32_t b) { return samples_[a].time < samples_[b].time; });
-                for (std::size_t q = first; q < next; ++q) by_time_t_[q] = samples_[by_time_[q]].time;
+                for (std::size_t q = first; q < next; ++q) {
+                    time_lanes_.copy(q, lanes_, by_time_[q]);
+                    by_time_t_[q] = shutter_time_[by_time_[q]];
+                }
             }
         }
         footprint_start_.back() = next;
@@ -341,6 +324,30 @@ private:
         typename K::ScreenBound bound;
         bool needs_bounds;  // the method bounds lens and time, and the triangle moves or is defocused
         bool check_screen;  // false while the footprint is inside the screen bound
+        bool share_axes;    // footprint bounds from per-column and per-row axis bounds
+    };
+
+    // One axis's bounds per footprint column (row) of the triangle's
+    // rectangle, computed when first needed.
+    struct AxisCache {
+        std::vector<typename K::SampleAxisBounds> bounds;
+        std::vector<char> ready;
+        int origin = 0;  // first pixel of column (row) 0
+
+        void reset(int first, int last, int footprint) {
+            origin = first - first % footprint;
+            ready.assign(static_cast<std::size_t>((last - origin) / footprint + 1), 0);
+            bounds.resize(ready.size());
+        }
+        template <class Compute>
+        const typename K::SampleAxisBounds& get(int pixel, int footprint, Compute compute) {
+            const std::size_t i = static_cast<std::size_t>((pixel - origin) / footprint);
+            if (!ready[i]) {
+                bounds[i] = compute();
+                ready[i] = 1;
+            }
+            return bounds[i];
+        }
     };
 
     // NDC box (lo.xy, hi.xy) of the pixels [px0, px1] x [py0, py1] (rows grow downwards).
@@ -361,6 +368,26 @@ private:
         return sb;
     }
 
+    // The sample bounds of a footprint, counted: with share_axes from its
+    // column's and its row's axis bounds (the kernel's sample_bounds split
+    // in two: the same bounds, each axis computed once per column or row).
+    typename K::SampleBounds footprint_bounds(const Current& current, int px0, int py0, int px1, int py1) {
+        if (!current.share_axes) return bounds_of(current, px0, py0, px1, py1);
+        const typename K::vec4 box = footprint(px0, py0, px1, py1);
+        const int fp = frame_.footprint, method = frame_.method;
+        const typename K::MovingTriangle& tri = *current.tri;
+        ++bounded;
+        const auto& x = columns_.get(px0, fp, [&] { return K::sample_axis_bounds(tri, 0, box.x, box.z, method); });
+        typename K::SampleBounds sb = K::no_sample_bounds();
+        sb.empty = true;
+        if (!x.empty) {
+            const auto& y = rows_.get(py0, fp, [&] { return K::sample_axis_bounds(tri, 1, box.y, box.w, method); });
+            sb = K::combine_axis_bounds(x, y);
+        }
+        if (sb.empty) ++bounded_empty;
+        return sb;
+    }
+
     // Blocks of the image grid clipped to the triangle's rectangle; the
     // bounds hold for any footprint. A block whose bounds hold nothing is
     // skipped whole; the others are bounded again per footprint when
@@ -370,9 +397,16 @@ private:
         const PixelRect& r = frame_.setup.rects[index];
         Current current{index, &frame_.setup.triangles[index], &frame_.setup.fast_tests[index],
                         frame_.setup.screen_bound(index),
-                        frame_.cull_bounds && frame_.setup.classes[index] != 0, true};
+                        frame_.cull_bounds && frame_.setup.classes[index] != 0, true, false};
         const int rx0 = std::max(r.x0, x0_), rx1 = std::min(r.x1, x1_);
         const int ry0 = std::max(r.y0, y0_), ry1 = std::min(r.y1, y1_);
+        current.share_axes = current.needs_bounds &&
+                             (frame_.method == BC_CULL_DUALSPACE || frame_.method == BC_CULL_TWO_STAGE) &&
+                             K::bc_triangle_boundable(*current.tri);
+        if (current.share_axes) {
+            columns_.reset(rx0, rx1, frame_.footprint);
+            rows_.reset(ry0, ry1, frame_.footprint);
+        }
         const int block = frame_.block, footprint = frame_.footprint;
         for (int by = ry0 - (ry0 % block); by <= ry1; by += block) {
             for (int bx = rx0 - (rx0 % block); bx <= rx1; bx += block) {
@@ -382,8 +416,15 @@ private:
                     test_samples(current, bx0, by0, bx1, by1, K::no_sample_bounds());
                     continue;
                 }
+                // The block's own bound pays only where it can spare several
+                // footprint bounds (on one footprint it is the same bound);
+                // for edges it also carries the planes its footprints share
+                // (sample_bounds_in_tile: their setup once per block).
+                const int spanned = (bx1 / footprint - bx0 / footprint + 1) + (by1 / footprint - by0 / footprint + 1);
+                const bool edges = frame_.method == BC_CULL_EDGES;
                 typename K::SampleBounds block_bounds = K::no_sample_bounds();
-                if (block > footprint) {
+                const bool block_bounded = block > footprint && (spanned > 4 || edges);
+                if (block_bounded) {
                     block_bounds = bounds_of(current, bx0, by0, bx1, by1);
                     if (block_bounds.empty) continue;
                 }
@@ -392,7 +433,8 @@ private:
                         const int px0 = std::max(fx, bx0), px1 = std::min(fx + footprint - 1, bx1);
                         const int py0 = std::max(fy, by0), py1 = std::min(fy + footprint - 1, by1);
                         const typename K::SampleBounds sb =
-                            bounds_of(current, px0, py0, px1, py1, block > footprint ? &block_bounds : nullptr);
+                            edges && block_bounded ? bounds_of(current, px0, py0, px1, py1, &block_bounds)
+                                                   : footprint_bounds(current, px0, py0, px1, py1);
                         if (!sb.empty) test_samples(current, px0, py0, px1, py1, sb);
                     }
                 }
@@ -409,62 +451,71 @@ private:
             K::screen_footprint(current.bound, typename K::vec2(box.x, box.y), typename K::vec2(box.z, box.w));
         if (state == BC_FOOTPRINT_OUTSIDE) return;
         current.check_screen = state != BC_FOOTPRINT_INSIDE;
-        typename K::vec2 range = frame_.time_sorted && current.needs_bounds ? K::sample_time_range(sb)
-                                                                            : typename K::vec2(Real(0), Real(1));
+        if (frame_.time_sorted && current.needs_bounds && test_time_run(current, px0, py0, px1, py1, sb)) return;
+        for (int py = py0; py <= py1; ++py) {
+            const std::size_t first = slot(px0, py, 0);
+            test_run(current, sb, lanes_, first, static_cast<std::size_t>(px1 - px0 + 1) * frame_.spp,
+                     [](std::size_t k) { return k; });
+        }
+    }
+
+    // The footprint's samples inside the bounds' shutter interval, one
+    // contiguous run of its time-sorted copy, when that visits fewer samples
+    // than the footprint's rows (false: not worth it, nothing done). The run
+    // spans the whole footprint cell of the tile's grid; where the triangle's
+    // rectangle clips the cell, the screen test is kept on: the cell's
+    // pixels outside the rectangle hold no sample inside the screen bound.
+    bool test_time_run(Current& current, int px0, int py0, int px1, int py1, const typename K::SampleBounds& sb) {
+        typename K::vec2 range = K::sample_time_range(sb);
         // A motion segment's bounds are in its local time: back to shutter
         // time, inside its window (in float, the samples' precision).
-        if (frame_.time_sorted && window_segments_ > 1)
-            range = typename K::vec2(kernelf::segment_shutter_range(window_, glm::vec2(range)));
-        // Only the footprint's samples inside the bounds' shutter interval, when
-        // that skips enough of them to pay for visiting them out of memory order.
-        if (range.y - range.x < Real(0.5)) {
-            const std::size_t f = static_cast<std::size_t>((py0 - y0_) / frame_.footprint) * footprints_x_ +
-                                  static_cast<std::size_t>((px0 - x0_) / frame_.footprint);
-            const auto begin = by_time_t_.begin() + static_cast<std::ptrdiff_t>(footprint_start_[f]);
-            const auto end = by_time_t_.begin() + static_cast<std::ptrdiff_t>(footprint_start_[f + 1]);
-            for (auto it = std::lower_bound(begin, end, range.x); it != end && *it <= range.y; ++it) {
-                const std::uint32_t k = by_time_[static_cast<std::size_t>(it - by_time_t_.begin())];
-                const int local = static_cast<int>(k / frame_.spp);
-                const int px = x0_ + local % tw_, py = y0_ + local / tw_;
-                if (px < px0 || px > px1 || py < py0 || py > py1) continue;
-                ++visited;
-                if (sample_culled(current, k, sb)) continue;
-                ++tested;
-                if (lanes_.may_cover(*current.fast, k)) test_exactly(current, k);
-            }
-            return;
-        }
-        for (int py = py0; py <= py1; ++py)
-            for (int px = px0; px <= px1; ++px) test_pixel(current, slot(px, py, 0), sb);
+        if (window_segments_ > 1) range = typename K::vec2(kernelf::segment_shutter_range(window_, glm::vec2(range)));
+        const int fp = frame_.footprint;
+        const int fx = (px0 - x0_) / fp, fy = (py0 - y0_) / fp;
+        const int cx0 = x0_ + fx * fp, cy0 = y0_ + fy * fp;
+        const int cx1 = std::min(x1_, cx0 + fp - 1), cy1 = std::min(y1_, cy0 + fp - 1);
+        const double cell_pixels = double((cx1 - cx0 + 1) * (cy1 - cy0 + 1));
+        const double pixels = double((px1 - px0 + 1) * (py1 - py0 + 1));
+        const double share = std::max(0.0, double(range.y) - double(range.x));
+        if (!(share * cell_pixels < pixels)) return false;
+        const std::size_t f = static_cast<std::size_t>(fy) * footprints_x_ + static_cast<std::size_t>(fx);
+        const double* times = by_time_t_.data();
+        const double* begin = times + footprint_start_[f];
+        const double* end = times + footprint_start_[f + 1];
+        const double* lo = std::lower_bound(begin, end, double(range.x));
+        const double* hi = std::upper_bound(lo, end, double(range.y));
+        current.check_screen = current.check_screen || cx0 != px0 || cy0 != py0 || cx1 != px1 || cy1 != py1;
+        const std::size_t first = static_cast<std::size_t>(lo - times);
+        test_run(current, sb, time_lanes_, first, static_cast<std::size_t>(hi - lo),
+                 [this](std::size_t i) { return static_cast<std::size_t>(by_time_[i]); });
+        return true;
     }
 
-    // A pixel's samples from slot `first` on, up to 32 at a time: the culls,
-    // then the fast test on those that passed, then covers on what it kept.
-    void test_pixel(const Current& current, std::size_t first, const typename K::SampleBounds& sb) {
-        const std::uint32_t spp = frame_.spp;
-        visited += spp;
-        for (std::uint32_t j0 = 0; j0 < spp; j0 += 32) {
-            std::uint32_t passed = 0;
-            for (std::uint32_t j = j0; j < std::min(spp, j0 + 32); ++j) {
-                if (sample_culled(current, first + j, sb)) continue;
-                passed |= 1u << (j - j0);
-                ++tested;
+    // Samples first .. first + count - 1 of `lanes` (slot_of(i) the slot of
+    // its sample i), 32 at a time: the culls (samples_passing, the kernel's
+    // chain), the fast test on those that passed, covers on what it kept.
+    template <class SlotOf>
+    void test_run(const Current& current, const typename K::SampleBounds& sb, const SampleLanes& lanes,
+                  std::size_t first, std::size_t count, SlotOf slot_of) {
+        visited += count;
+        for (std::size_t done = 0; done < count; done += 32) {
+            const std::size_t at = first + done;
+            const int n = static_cast<int>(std::min<std::size_t>(32, count - done));
+            std::uint32_t passed = samples_passing<Real>(current.bound, current.check_screen, sb, lanes, at, n);
+            if (window_segments_ > 1) {
+                // Another motion segment's time: culled.
+                for (std::uint32_t bits = passed; bits != 0; bits &= bits - 1) {
+                    const std::uint32_t i = static_cast<std::uint32_t>(__builtin_ctz(bits));
+                    if (!in_window_[slot_of(at + i)]) passed &= ~(1u << i);
+                }
             }
             if (passed == 0) continue;
-            for (std::uint32_t maybe = passed & lanes_.may_cover32(*current.fast, first + j0, passed); maybe != 0;
-                 maybe &= maybe - 1)
-                test_exactly(current, first + j0 + static_cast<std::uint32_t>(__builtin_ctz(maybe)));
+            tested += static_cast<std::uint64_t>(__builtin_popcount(passed));
+            const std::uint32_t kept = may_cover32(*current.fast, lanes.fsx() + at, lanes.fsy() + at, lanes.fu() + at,
+                                                   lanes.fv() + at, lanes.ft() + at, passed);
+            for (std::uint32_t maybe = passed & kept; maybe != 0; maybe &= maybe - 1)
+                test_exactly(current, slot_of(at + static_cast<std::size_t>(__builtin_ctz(maybe))));
         }
-    }
-
-    // The culls before the exact test: bounds, then screen bound.
-    bool sample_culled(const Current& current, std::size_t k, const typename K::SampleBounds& sb) const {
-        if (!in_window_[k]) return true;  // another motion segment's time
-        const Sample& s = samples_[k];
-        // kernel::sample_test's chain up to the exact test (the lens/time
-        // bounds first: cheaper than a hull and they cull more); the fast
-        // test and covers follow in test_pixel and test_exactly.
-        return K::sample_culled(current.bound, current.check_screen, sb, s.ndc, s.lens, s.time);
     }
 
     // The exact test of a sample the fast test kept (sample_test's last
@@ -512,12 +563,14 @@ private:
 
     const FrameContext<Real>& frame_;
     std::vector<Sample> samples_;
-    std::vector<std::uint32_t> by_time_;
-    std::vector<Real> by_time_t_;
+    std::vector<std::uint32_t> by_time_;  // slot of each time_lanes_ sample
+    std::vector<double> by_time_t_;       // its shutter time (the sort key)
     std::vector<std::size_t> footprint_start_;
     std::vector<Real> depth_;
     std::vector<std::uint32_t> hit_;
-    FloatSamples lanes_;  // samples_ in float, for the fast coverage test
+    SampleLanes lanes_;       // samples_ as arrays, in slot order
+    SampleLanes time_lanes_;  // the same, per footprint sorted by time (time_sorted)
+    AxisCache columns_, rows_;  // the current triangle's axis bounds (share_axes)
     std::vector<float> shutter_time_;  // each sample's own time (samples_ hold the window's local time)
     std::vector<char> in_window_;      // whether the current motion-segment window holds the sample
     int window_segment_ = 0, window_segments_ = 1;  // the window samples_ are loaded for
@@ -530,7 +583,8 @@ private:
 // does not depend on the schedule.
 template <class Real>
 void rasterize_tiles(const FrameContext<Real>& frame, int threads, Clock::time_point start, RenderResult& result) {
-    std::atomic<std::uint64_t> total_tested{0}, total_hit{0}, total_bounded{0}, total_bounded_empty{0}, total_visited{0};
+    std::atomic<std::uint64_t> total_tested{0}, total_hit{0}, total_bounded{0}, total_bounded_empty{0},
+        total_visited{0};
     const int tile_count = frame.setup.tiles_x * frame.setup.tiles_y;
     Progress progress(frame.settings.progress, start, tile_count);
     cpu_methods::run_parallel_items(
@@ -541,18 +595,18 @@ void rasterize_tiles(const FrameContext<Real>& frame, int threads, Clock::time_p
         },
         [&](const TileRasterizer<Real>& rasterizer) {
             total_tested.fetch_add(rasterizer.tested);
-            total_visited.fetch_add(rasterizer.visited);
             total_hit.fetch_add(rasterizer.hits);
             total_bounded.fetch_add(rasterizer.bounded);
             total_bounded_empty.fetch_add(rasterizer.bounded_empty);
+            total_visited.fetch_add(rasterizer.visited);
         });
     progress.finish();
     RenderStats& stats = result.stats;
     stats.samples_tested = total_tested.load();
-    stats.samples_visited = total_visited.load();
     stats.samples_hit = total_hit.load();
     stats.bounds_computed = total_bounded.load();
     stats.bounds_empty = total_bounded_empty.load();
+    stats.samples_visited = total_visited.load();
 }
 
 template <class Real>

@@ -58,6 +58,74 @@ BC_FN vec2 sample_time_range(BC_IN(SampleBounds) b) {
     return vec2(max(lo - pad, real(0)), min(hi + pad, real(1)));
 }
 
+// One axis of the bounds: the lens range and the time lines along `axis`
+// (0 = x with u, 1 = y with v). empty: no sample of the footprint can be covered.
+struct SampleAxisBounds {
+    bool empty;
+    vec2 lens;
+    vec4 lines_a;
+    vec4 lines_b;
+};
+
+// The dual-space and two-stage bounds along one axis depend on the
+// footprint's extent [s0, s1] along that axis alone (a renderer may share
+// them between footprints in one row or column). For BC_CULL_DUALSPACE and
+// BC_CULL_TWO_STAGE (the two-stage part of BC_CULL_EDGES); the triangle must
+// be bc_triangle_boundable.
+BC_FN SampleAxisBounds sample_axis_bounds(BC_IN(MovingTriangle) tri, int axis, real s0, real s1, int cull) {
+    SampleAxisBounds r;
+    r.empty = false;
+    r.lines_a = vec4(real(0), real(0), real(1), real(0));
+    r.lines_b = r.lines_a;
+    // The caller's sample positions were rounded too.
+    real pad = bc_err(max(real(1), max(abs(s0), abs(s1))));
+    s0 = s0 - pad;
+    s1 = s1 + pad;
+    if (cull == BC_CULL_DUALSPACE) {
+        vec2 tr;
+        if (!bc_dual_time_bounds(tri, axis, s0, s1, tr)) {
+            r.empty = true;
+            return r;
+        }
+        r.lines_a = vec4(tr.x, real(0), tr.y, real(0));
+        r.lens = bc_dual_lens_bounds(tri, axis, s0, s1);
+    } else {
+        BcEdgeCrossings crossings = bc_edge_crossings(tri, axis, s0, s1);
+        r.lens = bc_two_stage_lens_bounds(tri, axis, crossings);
+        if (r.lens.x > r.lens.y) {
+            r.empty = true;
+            return r;
+        }
+        // Without motion along this axis, and on one side of the focal
+        // plane, the lens bounds are already where A and B both hold: the
+        // time bounds would find the same range and times [0, 1].
+        if (bc_axis_moves(tri, axis) || !bc_one_coc_sign(tri, axis)) {
+            if (!bc_two_stage_time_bounds(tri, axis, s0, s1, crossings, r.lens, r.lines_a, r.lines_b)) {
+                r.empty = true;
+                return r;
+            }
+        }
+    }
+    if (r.lens.x > r.lens.y) r.empty = true;
+    return r;
+}
+
+// The bounds of a footprint from its two axes' (empty when either is).
+BC_FN SampleBounds combine_axis_bounds(BC_IN(SampleAxisBounds) x, BC_IN(SampleAxisBounds) y) {
+    SampleBounds r = no_sample_bounds();
+    if (x.empty || y.empty) {
+        r.empty = true;
+        return r;
+    }
+    r.u_range = x.lens;
+    r.u_time_a = x.lines_a;
+    r.u_time_b = x.lines_b;
+    r.v_range = y.lens;
+    r.v_time_a = y.lines_a;
+    r.v_time_b = y.lines_b;
+    return r;
+}
+
 // Bounds on the lens and time of every sample in the screen footprint
 // [s_lo, s_hi] (a pixel or a tile) that the triangle can cover.
 // BC_CULL_BBOX and BC_CULL_HULL bound only the screen (see screen_bound).
@@ -65,64 +133,24 @@ BC_FN SampleBounds sample_bounds(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi
     SampleBounds r = no_sample_bounds();
     if (cull != BC_CULL_DUALSPACE && cull != BC_CULL_TWO_STAGE && cull != BC_CULL_EDGES) return r;
     if (!bc_triangle_boundable(tri)) return r;
-    // The caller's sample positions were rounded too.
+    SampleAxisBounds x = sample_axis_bounds(tri, 0, s_lo.x, s_hi.x, cull);
+    if (x.empty) {
+        r.empty = true;
+        return r;
+    }
+    SampleAxisBounds y = sample_axis_bounds(tri, 1, s_lo.y, s_hi.y, cull);
+    r = combine_axis_bounds(x, y);
+    if (r.empty || cull != BC_CULL_EDGES) return r;
+    // The edge planes over the box the two-stage bounds leave (on the padded footprint).
     vec2 pad = vec2(bc_err(max(real(1), max(abs(s_lo.x), abs(s_hi.x)))),
                     bc_err(max(real(1), max(abs(s_lo.y), abs(s_hi.y)))));
-    s_lo = s_lo - pad;
-    s_hi = s_hi + pad;
-    for (int axis = 0; axis < 2; ++axis) {
-        vec2 lens;
-        vec4 lines_a = vec4(real(0), real(0), real(1), real(0));
-        vec4 lines_b = lines_a;
-        if (cull == BC_CULL_DUALSPACE) {
-            vec2 tr;
-            if (!bc_dual_time_bounds(tri, axis, s_lo[axis], s_hi[axis], tr)) {
-                r.empty = true;
-                return r;
-            }
-            lines_a = vec4(tr.x, real(0), tr.y, real(0));
-            lens = bc_dual_lens_bounds(tri, axis, s_lo[axis], s_hi[axis]);
-        } else {
-            BcEdgeCrossings crossings = bc_edge_crossings(tri, axis, s_lo[axis], s_hi[axis]);
-            lens = bc_two_stage_lens_bounds(tri, axis, crossings);
-            if (lens.x > lens.y) {
-                r.empty = true;
-                return r;
-            }
-            // Without motion along this axis, and on one side of the focal
-            // plane, the lens bounds are already where A and B both hold: the
-            // time bounds would find the same range and times [0, 1].
-            if (bc_axis_moves(tri, axis) || !bc_one_coc_sign(tri, axis)) {
-                if (!bc_two_stage_time_bounds(tri, axis, s_lo[axis], s_hi[axis], crossings, lens, lines_a, lines_b)) {
-                    r.empty = true;
-                    return r;
-                }
-            }
-        }
-        if (lens.x > lens.y) {
-            r.empty = true;
-            return r;
-        }
-        if (axis == 0) {
-            r.u_range = lens;
-            r.u_time_a = lines_a;
-            r.u_time_b = lines_b;
-        } else {
-            r.v_range = lens;
-            r.v_time_a = lines_a;
-            r.v_time_b = lines_b;
-        }
+    vec2 times = sample_time_range(r);
+    if (times.x > times.y) {
+        r.empty = true;
+        return r;
     }
-    if (cull == BC_CULL_EDGES) {
-        // The edge planes over the box the two-stage bounds leave.
-        vec2 times = sample_time_range(r);
-        if (times.x > times.y) {
-            r.empty = true;
-            return r;
-        }
-        r.edges = bc_edge_bounds(tri, s_lo, s_hi, r.u_range, r.v_range, times);
-        r.centre = vec2(bc_box_axis(s_lo.x, s_hi.x).x, bc_box_axis(s_lo.y, s_hi.y).x);
-    }
+    r.edges = bc_edge_bounds(tri, s_lo - pad, s_hi + pad, r.u_range, r.v_range, times);
+    r.centre = vec2(bc_box_axis(s_lo.x - pad.x, s_hi.x + pad.x).x, bc_box_axis(s_lo.y - pad.y, s_hi.y + pad.y).x);
     return r;
 }
 
