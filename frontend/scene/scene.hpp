@@ -16,6 +16,11 @@
 #include <string>
 #include <vector>
 
+// Scene::environment's values (plain macros: render/common/optics_shared.h,
+// which GLSL shares, names them too).
+#define BC_ENVIRONMENT_NONE 0  // rays that leave the scene get the background colour
+#define BC_ENVIRONMENT_SKY 1   // the procedural sky of render/common/optics_shared.h
+
 namespace blurcull::frontend {
 
 // How light leaves a surface. Diffuse is the flat shading of shading.hpp; a

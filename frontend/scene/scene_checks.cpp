@@ -1,7 +1,5 @@
 #include "scene/scene_checks.hpp"
 
-#include "render/common/optics_shared.h"
-
 #include <algorithm>
 #include <cmath>
 #include <string>

@@ -76,9 +76,8 @@ BC_OPTICS_FN float bc_dielectric_reflectance(vec3 incident, vec3 normal, float i
     return bc_fresnel_dielectric(min(1.0f, abs(dot(normal, incident))), eta);
 }
 
-// Environment kinds (Scene::environment).
-#define BC_ENVIRONMENT_NONE 0  // rays that leave the scene get the background colour
-#define BC_ENVIRONMENT_SKY 1   // the procedural sky below
+// Environment kinds: BC_ENVIRONMENT_NONE / BC_ENVIRONMENT_SKY, defined with
+// Scene::environment in scene/scene.hpp (the scene layer owns them).
 
 // The procedural sky: radiance seen along a unit direction (y up). A smooth
 // gradient from the horizon to the zenith above, a darker ground below, and

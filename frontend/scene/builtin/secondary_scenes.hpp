@@ -3,7 +3,6 @@
 // the framing. docs/secondary-rays.md, "Scenes".
 #pragma once
 
-#include "render/common/optics_shared.h"
 #include "scene/scene.hpp"
 
 #include <cstdint>
