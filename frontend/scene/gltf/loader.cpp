@@ -47,6 +47,18 @@ std::vector<glm::mat4> pose_at(const tg::Model& model, const NodeTree& tree, con
     return world_matrices(tree, std::move(transforms));
 }
 
+// The poses of every node at one instant t (open = close): the framing's
+// probes and the motion segments' interior times.
+NodePoses poses_at_instant(const tg::Model& model, const NodeTree& tree, const AnimationSamplers& samplers,
+                           const GltfOptions& options, float t, Diagnostics& diagnostics) {
+    NodePoses poses;
+    poses.open = pose_at(model, tree, samplers, options, t, diagnostics);
+    poses.close = poses.open;
+    poses.weights_open = morph_weights(model, samplers, options.animation_index, t, diagnostics);
+    poses.weights_close = poses.weights_open;
+    return poses;
+}
+
 // The bounds of the scene posed at `framing_samples` + 1 evenly spaced times
 // over [0, the animation's end]: the same for every frame of a sequence.
 SceneStats animation_framing(const tg::Model& model, const NodeTree& tree, const AnimationSamplers& samplers,
@@ -56,13 +68,9 @@ SceneStats animation_framing(const tg::Model& model, const NodeTree& tree, const
     SceneStats framing;
     for (int k = 0; k <= framing_samples; ++k) {
         const float t = end * static_cast<float>(k) / static_cast<float>(framing_samples);
-        NodePoses poses;
-        poses.open = pose_at(model, tree, samplers, options, t, diagnostics);
-        poses.close = poses.open;
-        poses.weights_open = morph_weights(model, samplers, options.animation_index, t, diagnostics);
-        poses.weights_close = poses.weights_open;
         Scene probe;
-        add_mesh_instances(model, rendered, poses, probe, diagnostics);
+        add_mesh_instances(model, rendered, poses_at_instant(model, tree, samplers, options, t, diagnostics), probe,
+                           diagnostics);
         const SceneStats stats = describe(probe);
         framing.bounds_min = k == 0 ? stats.bounds_min : glm::min(framing.bounds_min, stats.bounds_min);
         framing.bounds_max = k == 0 ? stats.bounds_max : glm::max(framing.bounds_max, stats.bounds_max);
@@ -102,14 +110,7 @@ Scene build_scene(const std::string& path, const GltfOptions& options, const War
     setup_light(model, rendered, poses, scene, diagnostics);
 
     // Motion segments: the same steps at the interior times.
-    const PosesAt poses_at = [&](float t) {
-        NodePoses at;
-        at.open = pose_at(model, tree, samplers, options, t, diagnostics);
-        at.close = at.open;
-        at.weights_open = morph_weights(model, samplers, options.animation_index, t, diagnostics);
-        at.weights_close = at.weights_open;
-        return at;
-    };
+    const PosesAt poses_at = [&](float t) { return poses_at_instant(model, tree, samplers, options, t, diagnostics); };
     const int segments = options.motion_segments == 0
                              ? auto_motion_segments(model, rendered, poses_at, options, t_open, t_close, scene, diagnostics)
                              : options.motion_segments;
