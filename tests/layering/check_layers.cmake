@@ -17,6 +17,7 @@ get_filename_component(SOURCE_DIR "${SOURCE_DIR}" ABSOLUTE)
 set(units
   "kernel|include/blurcull|kernel (header-only, C++/GLSL dialect)"
   "glsl|shaders|kernel GLSL library (emitted, validated, embedded)"
+  "third_party|frontend/third_party|third_party: PNG/JPEG codecs (stb, compiled once)"
   "scene|frontend/scene|scenes: built-in, glTF"
   "common|frontend/render/common|render/common: settings, registries, camera, image"
   "cpu|frontend/render/cpu|render/cpu: stochastic rasterizer, interleave, interval, accum"
@@ -28,8 +29,9 @@ set(units
 set(allowed
   "kernel|none"
   "glsl|kernel"
-  "scene|kernel"
-  "common|kernel,scene"
+  "third_party|none"
+  "scene|kernel,third_party"
+  "common|kernel,scene,third_party"
   "cpu|kernel,scene,common"
   "secondary|kernel,scene,common,cpu"
   "embree|kernel,scene,common"

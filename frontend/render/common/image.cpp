@@ -10,27 +10,11 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <stdexcept>
+#include <vector>
 
-// stb's own code is not held to the project's warning flags.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wconversion"
-#pragma GCC diagnostic ignored "-Wsign-conversion"
-#pragma GCC diagnostic ignored "-Wshadow"
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#pragma GCC diagnostic ignored "-Wunused-function"
-#pragma GCC diagnostic ignored "-Wunused-parameter"
-#pragma GCC diagnostic ignored "-Wpedantic"
-#pragma GCC diagnostic ignored "-Wimplicit-fallthrough"
-#pragma GCC diagnostic ignored "-Wdouble-promotion"
-#define STB_IMAGE_WRITE_IMPLEMENTATION
-#define STB_IMAGE_WRITE_STATIC
-#include <stb_image_write.h>
-#define STB_IMAGE_IMPLEMENTATION
-#define STB_IMAGE_STATIC
-#define STBI_ONLY_PNG
-#include <stb_image.h>
-#pragma GCC diagnostic pop
+#include "third_party/stb_codecs.hpp"
 
 namespace blurcull::frontend {
 
@@ -55,11 +39,6 @@ float srgb_to_linear(float encoded) {
 }
 
 namespace {
-
-void write_bytes(void* context, void* data, int size) {
-    auto* out = static_cast<std::ofstream*>(context);
-    out->write(static_cast<const char*>(data), static_cast<std::streamsize>(size));
-}
 
 void require_same_size(const Image& a, const Image& b, const char* what) {
     if (a.width != b.width || a.height != b.height || a.pixels.size() != b.pixels.size()) {
@@ -86,31 +65,32 @@ void write_png(const std::string& path, const Image& image) {
             bytes[3 * i + static_cast<std::size_t>(channel)] = static_cast<std::uint8_t>(std::lround(encoded * 255.0f));
         }
     }
-    // An ofstream instead of stbi_write_png so the failure reason (errno) is ours to report.
+    const std::vector<std::uint8_t> png = codecs::encode_png(image.width, image.height, 3, bytes.data());
+    if (png.empty()) throw fail("PNG encoding failed");
+    // An ofstream of our own so the failure reason (errno) is ours to report.
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
     if (!out) throw fail(std::strerror(errno));
-    int ok = stbi_write_png_to_func(write_bytes, &out, image.width, image.height, 3, bytes.data(), image.width * 3);
+    out.write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
     out.flush();
-    if (!ok) throw fail("PNG encoding failed");
     if (!out) throw fail(std::strerror(errno));
 }
 
 Image read_png(const std::string& path) {
-    int width = 0;
-    int height = 0;
-    int channels_in_file = 0;
-    stbi_uc* data = stbi_load(path.c_str(), &width, &height, &channels_in_file, 3);
-    if (data == nullptr) {
-        throw std::runtime_error("cannot read '" + path + "': " + stbi_failure_reason());
-    }
-    Image image(width, height);
+    const auto fail = [&](const std::string& reason) { return std::runtime_error("cannot read '" + path + "': " + reason); };
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw fail(std::strerror(errno));
+    const std::vector<std::uint8_t> file((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in.bad()) throw fail(std::strerror(errno));
+    codecs::DecodedImage decoded;
+    std::string error;
+    if (!codecs::decode_image(file.data(), file.size(), 3, decoded, error)) throw fail(error);
+    Image image(decoded.width, decoded.height);
     for (std::size_t i = 0; i < image.pixels.size(); ++i) {
         for (int channel = 0; channel < 3; ++channel) {
-            float encoded = static_cast<float>(data[3 * i + static_cast<std::size_t>(channel)]) / 255.0f;
+            float encoded = static_cast<float>(decoded.bytes[3 * i + static_cast<std::size_t>(channel)]) / 255.0f;
             image.pixels[i][channel] = srgb_to_linear(encoded);
         }
     }
-    stbi_image_free(data);
     return image;
 }
 

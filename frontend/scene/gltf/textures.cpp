@@ -4,23 +4,7 @@
 #include <cstdint>
 #include <string>
 
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wconversion"
-#pragma GCC diagnostic ignored "-Wsign-conversion"
-#pragma GCC diagnostic ignored "-Wshadow"
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#pragma GCC diagnostic ignored "-Wunused-function"
-#pragma GCC diagnostic ignored "-Wunused-parameter"
-#pragma GCC diagnostic ignored "-Wpedantic"
-#pragma GCC diagnostic ignored "-Wimplicit-fallthrough"
-#pragma GCC diagnostic ignored "-Wdouble-promotion"
-#define STB_IMAGE_IMPLEMENTATION
-#define STB_IMAGE_STATIC
-#define STBI_ONLY_PNG
-#define STBI_ONLY_JPEG
-#define STBI_NO_STDIO
-#include <stb_image.h>
-#pragma GCC diagnostic pop
+#include "third_party/stb_codecs.hpp"
 
 namespace blurcull::frontend::gltf {
 
@@ -62,32 +46,33 @@ int TextureLoader::decode(int gltf_texture) {
     // empty file) it has already warned of, once per image.
     const tg::Image& image = model_.images[static_cast<std::size_t>(source.source)];
     if (image.image.empty()) return -1;
-    if (image.image.size() > static_cast<std::size_t>(INT_MAX)) return unusable("image is larger than 2 GiB");
-    const auto* bytes = image.image.data();
-    const int length = static_cast<int>(image.image.size());
-    int width = 0, height = 0, channels = 0;
-    if (!stbi_info_from_memory(bytes, length, &width, &height, &channels)) {
-        return unusable(std::string("cannot decode its image (") + stbi_failure_reason() + "; PNG and JPEG are read)");
+    const std::uint8_t* bytes = image.image.data();
+    const std::size_t length = image.image.size();
+    codecs::ImageHeader header;
+    std::string error;
+    if (!codecs::read_image_header(bytes, length, header, error)) {
+        return unusable("cannot decode its image (" + error + "; PNG and JPEG are read)");
     }
+    const int width = header.width, height = header.height;
     const std::size_t texels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
     if (texels > kMaxTextureTexels || texels_ + texels > kMaxSceneTexels) {
         return unusable("image of " + std::to_string(width) + "x" + std::to_string(height) +
                         " texels is over the texture budget (" + std::to_string(kMaxTextureTexels) +
                         " texels each, " + std::to_string(kMaxSceneTexels) + " in all)");
     }
-    stbi_uc* pixels = stbi_load_from_memory(bytes, length, &width, &height, &channels, 4);
-    if (pixels == nullptr) return unusable(std::string("cannot decode its image (") + stbi_failure_reason() + ")");
+    codecs::DecodedImage decoded;
+    if (!codecs::decode_image(bytes, length, 4, decoded, error)) return unusable("cannot decode its image (" + error + ")");
+    if (decoded.width != width || decoded.height != height) return unusable("image size differs from its header");
     Texture texture;
-    texture.width = width;
-    texture.height = height;
+    texture.width = decoded.width;
+    texture.height = decoded.height;
     texture.name = image.name.empty() ? image.uri : image.name;
     texture.texels.resize(texels);
     for (std::size_t i = 0; i < texels; ++i) {
-        const stbi_uc* p = pixels + 4 * i;
+        const std::uint8_t* p = decoded.bytes.data() + 4 * i;
         texture.texels[i] = std::uint32_t{p[0]} | std::uint32_t{p[1]} << 8 | std::uint32_t{p[2]} << 16 |
                             std::uint32_t{p[3]} << 24;
     }
-    stbi_image_free(pixels);
     if (source.sampler >= 0 && static_cast<std::size_t>(source.sampler) < model_.samplers.size()) {
         const tg::Sampler& sampler = model_.samplers[static_cast<std::size_t>(source.sampler)];
         texture.wrap_s = wrap_of(sampler.wrapS);
