@@ -13,7 +13,6 @@
 #include "scene/builtin/scenes.hpp"
 #include "scene/builtin/secondary_scenes.hpp"
 
-#include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
 
@@ -77,18 +76,14 @@ Scene make_curved_mirror(float blur, float aspect) {
     mesh.chessboard({10.0f, -3.0f, 9.5f}, {-20.0f, 0.0f, 0.0f}, {0.0f, 20.0f, 0.0f}, 40, 1, chart_light, chart_dark);
     mesh.torus(frame_along({0.0f, 1.6f, 8.5f}, {0.0f, 0.0f, 1.0f}), 0.8f, 0.25f, 64, 24, yellow);
 
-    const glm::vec3 eye(0.0f, 1.7f, 7.0f);
-    const glm::vec3 target(0.0f, 1.1f, kMirrorZ);
-    Camera& camera = scene.camera;
-    camera.view_open = glm::lookAt(eye, target, kUp);
-    camera.view_close = camera.view_open;
-    camera.yfov = secondary_scene_yfov(0.72f, aspect);
-    camera.znear = 0.1f;
-    camera.focus_distance = glm::length(target - eye);  // the mirrors' surface
-    camera.lens_radius = 0.2f * blur;
-    scene.light_direction = glm::normalize(glm::vec3(-0.3f, 0.9f, 0.6f));
-    scene.background = kSecondarySceneBackground;
-    scene.environment = BC_ENVIRONMENT_SKY;
+    SecondarySceneView view;
+    view.eye = glm::vec3(0.0f, 1.7f, 7.0f);
+    view.target = glm::vec3(0.0f, 1.1f, kMirrorZ);
+    view.yfov_at_4_3 = 0.72f;
+    view.focus_distance = glm::length(view.target - view.eye);  // the mirrors' surface
+    view.lens_radius = 0.2f;
+    view.light_direction = glm::vec3(-0.3f, 0.9f, 0.6f);
+    set_secondary_scene_view(scene, view, blur, aspect);
     return scene;
 }
 

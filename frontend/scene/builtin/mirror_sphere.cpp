@@ -7,7 +7,6 @@
 #include "scene/builtin/scenes.hpp"
 #include "scene/builtin/secondary_scenes.hpp"
 
-#include <glm/gtc/matrix_transform.hpp>
 
 namespace blurcull::frontend::builtin {
 
@@ -42,18 +41,14 @@ Scene make_mirror_sphere(float blur, float aspect) {
     mesh.box({2.3f, 1.0f, 6.4f}, {1.0f, 1.0f, 1.0f}, 0.3f, 2, orange);
     mesh.torus(frame_along({0.0f, 1.9f, 7.2f}, {0.0f, 0.0f, 1.0f}), 1.1f, 0.35f, 64, 24, cyan);
 
-    const glm::vec3 eye(0.0f, 1.7f, 4.8f);
-    const glm::vec3 target(0.0f, 0.9f, 0.0f);
-    Camera& camera = scene.camera;
-    camera.view_open = glm::lookAt(eye, target, kUp);
-    camera.view_close = camera.view_open;
-    camera.yfov = secondary_scene_yfov(0.9f, aspect);
-    camera.znear = 0.1f;
-    camera.focus_distance = glm::length(glm::vec3(0.0f, 1.1f, 1.1f) - eye);  // the sphere's front
-    camera.lens_radius = 0.12f * blur;
-    scene.light_direction = glm::normalize(glm::vec3(-0.4f, 0.9f, 0.5f));
-    scene.background = kSecondarySceneBackground;
-    scene.environment = BC_ENVIRONMENT_SKY;
+    SecondarySceneView view;
+    view.eye = glm::vec3(0.0f, 1.7f, 4.8f);
+    view.target = glm::vec3(0.0f, 0.9f, 0.0f);
+    view.yfov_at_4_3 = 0.9f;
+    view.focus_distance = glm::length(glm::vec3(0.0f, 1.1f, 1.1f) - view.eye);  // the sphere's front
+    view.lens_radius = 0.12f;
+    view.light_direction = glm::vec3(-0.4f, 0.9f, 0.5f);
+    set_secondary_scene_view(scene, view, blur, aspect);
     return scene;
 }
 

@@ -23,6 +23,20 @@ std::uint32_t add_specular_material(Scene& scene, const std::string& name, Mater
 // shown never shrinks.
 float secondary_scene_yfov(float yfov_at_4_3, float aspect);
 
+// How a secondary-ray scene is seen: a still camera (no motion), the thin
+// lens focused at `focus_distance`, one light, the sky as environment.
+struct SecondarySceneView {
+    glm::vec3 eye{0.0f};
+    glm::vec3 target{0.0f, 0.0f, -1.0f};
+    float yfov_at_4_3 = 0.8f;     ///< radians, for a 4:3 image (secondary_scene_yfov)
+    float focus_distance = 1.0f;  ///< scene units from the eye
+    float lens_radius = 0.1f;     ///< at blur 1; scaled by the scene's blur
+    glm::vec3 light_direction{0.0f, 1.0f, 0.0f};  ///< towards the light, normalised here
+};
+
+// Sets the camera, light, background and environment of a secondary-ray scene.
+void set_secondary_scene_view(Scene& scene, const SecondarySceneView& view, float blur, float aspect);
+
 // ~30k triangles, static, defocus: a mirror sphere on a chessboard with
 // objects behind the camera.
 Scene make_mirror_sphere(float blur, float aspect);

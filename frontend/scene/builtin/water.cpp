@@ -10,7 +10,6 @@
 #include "scene/builtin/scenes.hpp"
 #include "scene/builtin/secondary_scenes.hpp"
 
-#include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
 
@@ -62,18 +61,14 @@ Scene make_water(float blur, float aspect) {
     mesh.torus(upright({1.8f, 0.02f, 0.4f}), 0.35f, 0.12f, 48, 16, buoy);
     mesh.ellipsoid(upright({0.6f, 1.0f, -2.8f}), glm::vec3(0.45f), 48, 24, ball);
 
-    const glm::vec3 eye(0.0f, 2.2f, 7.0f);
-    const glm::vec3 target(0.0f, -0.6f, -0.8f);
-    Camera& camera = scene.camera;
-    camera.view_open = glm::lookAt(eye, target, kUp);
-    camera.view_close = camera.view_open;
-    camera.yfov = secondary_scene_yfov(0.8f, aspect);
-    camera.znear = 0.1f;
-    camera.focus_distance = glm::length(glm::vec3(0.4f, -0.63f, 0.6f) - eye);  // the nearest fish
-    camera.lens_radius = 0.10f * blur;
-    scene.light_direction = glm::normalize(glm::vec3(0.3f, 0.9f, 0.3f));
-    scene.background = kSecondarySceneBackground;
-    scene.environment = BC_ENVIRONMENT_SKY;
+    SecondarySceneView view;
+    view.eye = glm::vec3(0.0f, 2.2f, 7.0f);
+    view.target = glm::vec3(0.0f, -0.6f, -0.8f);
+    view.yfov_at_4_3 = 0.8f;
+    view.focus_distance = glm::length(glm::vec3(0.4f, -0.63f, 0.6f) - view.eye);  // the nearest fish
+    view.lens_radius = 0.10f;
+    view.light_direction = glm::vec3(0.3f, 0.9f, 0.3f);
+    set_secondary_scene_view(scene, view, blur, aspect);
     return scene;
 }
 
