@@ -13,8 +13,7 @@
 #include "render/embree/embree_backend.hpp"
 #include "render/gl/gl_backend.hpp"
 #if BLURCULL_HAVE_GL
-#include "render/gl/gl_context.hpp"
-#include "render/gl/gl_layer_trace.hpp"
+#include "app/gl_dof_secondary.hpp"
 #endif
 #include "render/secondary/dof_secondary.hpp"
 #include "scene/builtin_scenes.hpp"
@@ -81,6 +80,7 @@ struct RenderJob {
     GlOptions gl;
     EmbreeOptions embree;
     SecondaryOptions secondary;
+    LayerImagesOn layer_images = LayerImagesOn::gl;  // dof-secondary on gl: where the layers are built
     OutputPattern output;
     ImageFormat format = ImageFormat::png;
     ExrPixelType exr_type = ExrPixelType::half;
@@ -239,6 +239,7 @@ void refuse_unhonoured_options(const RenderCommand& command, Backend backend) {
         {"--precision", command.precision_option, backend_bit(Backend::cpu)},
         {"--gl-cell", command.gl_cell_option, backend_bit(Backend::gl)},
         {"--secondary", command.secondary_option, backend_bit(Backend::embree)},
+        {"--layer-images", command.layer_images_option, backend_bit(Backend::gl)},
     };
     if (method.method != RenderMethod::dof_secondary) {
         for (const CLI::Option* option : command.dof_secondary_options) {
@@ -325,6 +326,7 @@ RenderJob set_up(const RenderCommand& command) {
     job.secondary.bounces = command.secondary_bounces == "exact"         ? SecondaryBounces::exact
                             : command.secondary_bounces == "environment" ? SecondaryBounces::environment_only
                                                                          : SecondaryBounces::image_space;
+    job.layer_images = command.layer_images == "host" ? LayerImagesOn::host : LayerImagesOn::gl;
     try {
         validate_secondary_options(job.secondary);
     } catch (const std::invalid_argument& error) {
@@ -333,27 +335,13 @@ RenderJob set_up(const RenderCommand& command) {
     return job;
 }
 
-// dof-secondary: on gl its image-space traces run in a compute pass of a
-// headless context (the rest of the method on the host, for now).
+// dof-secondary: on gl the primary samples, the layers (unless --layer-images
+// host) and the image-space traces run on GL (app/gl_dof_secondary.hpp).
 RenderResult render_secondary(const RenderJob& job) {
 #if BLURCULL_HAVE_GL
     if (job.backend == Backend::gl) {
-        // The GL rasterizer's per-sample winners (its own context), then the
-        // trace pass on a second context: each made current before its use.
-        GlRenderer rasterizer;
-        const PrimaryPass primary = [&](const RenderSettings& settings, std::vector<std::uint32_t>& ids) {
-            GlOptions options = job.gl;
-            options.keep_sample_ids = true;
-            return rasterizer.render(job.scene, settings, options, &ids);
-        };
-        const gl::HeadlessContext context = gl::HeadlessContext::create();
-        const GlLayerTracer gl_tracer(context);
-        const LayerTracer tracer = [&](const kernelf::LayerView& view, const std::vector<float>& depth, int layers,
-                                       float thickness, const std::vector<kernelf::LayerSegment>& segments) {
-            context.make_current();
-            return gl_tracer.trace(view, depth, layers, thickness, segments);
-        };
-        return render_dof_secondary(job.scene, job.settings, job.secondary, nullptr, &tracer, &primary);
+        GlDofSecondary passes;
+        return passes.render(job.scene, job.settings, job.secondary, job.gl, job.layer_images);
     }
 #endif
     return render_dof_secondary(job.scene, job.settings, job.secondary);
@@ -606,6 +594,10 @@ void RenderCommand::add_options(CLI::App& app) {
                        "dof-secondary: image-space (the method), exact (every bounce against every triangle: the "
                        "reference) or environment (the primary-only image)")
             ->check(CLI::IsMember({"image-space", "exact", "environment"}))->capture_default_str(),
+        layer_images_option = app.add_option("--layer-images", layer_images,
+                       "dof-secondary on gl: build the clusters' layered images and depth pyramids with the GL "
+                       "rasterizer and a compute pass (gl), or on the host with the cpu backend's code (host)")
+            ->check(CLI::IsMember({"gl", "host"}))->capture_default_str(),
     };
     app.add_flag("-q,--quiet", quiet, "no progress on stderr");
     app.add_option("--motion-segments", motion_segments,

@@ -37,6 +37,7 @@ struct RenderCommand : SceneFlags {
     // dof-secondary (render/secondary/secondary_options.hpp).
     SecondaryOptions dof_secondary;
     std::string secondary_bounces = "image-space";
+    std::string layer_images = "gl";  // dof-secondary on gl: gl or host
 
     // The backend-specific options, to tell whether they were given
     // (count() > 0) when the backend in use cannot honour them.
@@ -45,6 +46,7 @@ struct RenderCommand : SceneFlags {
     CLI::Option* precision_option = nullptr;
     CLI::Option* gl_cell_option = nullptr;
     CLI::Option* secondary_option = nullptr;
+    CLI::Option* layer_images_option = nullptr;  // --layer-images, gl only
     // The sequence's and the EXR's options, refused without --frames or an .exr output.
     CLI::Option* frames_option = nullptr;
     CLI::Option* fps_option = nullptr;

@@ -1,0 +1,212 @@
+#include "render/gl/gl_layer_images.hpp"
+
+#include "render/gl/gl_layer_shared.h"
+#include "render/gl/render_glsl.hpp"
+
+#include <blurcull/glsl/kernel_glsl.hpp>
+
+#include <algorithm>
+#include <cstring>
+#include <string>
+
+namespace blurcull::frontend {
+namespace {
+
+std::string_view embedded(std::string_view name) {
+    std::string_view text = glsl::render_shader_source(name);
+    if (text.empty()) throw gl::GlError("gl: shader '" + std::string(name) + "' was not embedded at build time");
+    return text;
+}
+
+// The kernel's GLSL, the rasterizing arithmetic shared with the host, the
+// passes' std430 structs, then the main.
+gl::ShaderStage layer_stage(GLenum type, std::string_view main_name) {
+    return gl::ShaderStage{type, {glsl::kernel_source(), embedded("layer_raster_shared.h"),
+                                  embedded("gl_layer_shared.h"), embedded(main_name)}};
+}
+
+// SSBO bindings of the passes (the `binding =` of shaders/render_layers_*).
+enum Binding : GLuint {
+    triangles_binding = 0, pass_binding, own_binding, fans_binding, counts_binding,
+    layer_depth_binding, layer_triangle_binding, cluster_depth_binding, origins_binding, pyramid_binding
+};
+
+// A shader-storage buffer of at least 16 bytes (a zero-sized one cannot be bound usefully).
+gl::Buffer storage(const gl::Functions& f, std::size_t bytes, const void* data = nullptr) {
+    return gl::Buffer(f, GL_SHADER_STORAGE_BUFFER, std::max<std::size_t>(bytes, 16), bytes > 0 ? data : nullptr);
+}
+
+void fill_words(const gl::Functions& f, const gl::Buffer& buffer, std::uint32_t value) {
+    f.BindBuffer(GL_SHADER_STORAGE_BUFFER, buffer.id());
+    f.ClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &value);
+    f.BindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+}
+
+GLuint groups_of(std::size_t items, std::size_t group) { return static_cast<GLuint>((items + group - 1) / group); }
+
+gpu::LayerPass pass_of(const kernelf::LayerView& view, int layers, std::size_t triangles, std::size_t origins,
+                       float normal_threshold) {
+    gpu::LayerPass pass;
+    pass.eye = glm::vec4(view.eye, 0.0f);
+    pass.forward = glm::vec4(view.forward, 0.0f);
+    pass.right = glm::vec4(view.right, 0.0f);
+    pass.up = glm::vec4(view.up, 0.0f);
+    pass.frustum = glm::vec4(view.tan_half_fov, view.near, view.far, normal_threshold);
+    pass.sizes = glm::ivec4(view.size, layers, static_cast<int>(triangles), static_cast<int>(origins));
+    return pass;
+}
+
+// The pyramid's level sizes, base first, down to 1.
+std::vector<int> level_sizes(int size) {
+    std::vector<int> sizes{size};
+    while (sizes.back() > 1) sizes.push_back((sizes.back() + 1) / 2);
+    return sizes;
+}
+
+}  // namespace
+
+struct GlLayerBuilder::Passes {
+    gl::Program setup, draw, cluster_depth, pyramid;
+    GLuint vertex_array = 0;
+};
+
+GlLayerBuilder::GlLayerBuilder(const gl::HeadlessContext& context)
+    : gl_(&context.gl()),
+      passes_(std::make_unique<Passes>(Passes{
+          gl::Program(context.gl(), {layer_stage(GL_COMPUTE_SHADER, "render_layers_setup.comp")}),
+          gl::Program(context.gl(), {layer_stage(GL_VERTEX_SHADER, "render_layers.vert"),
+                                     layer_stage(GL_FRAGMENT_SHADER, "render_layers.frag")}),
+          gl::Program(context.gl(), {layer_stage(GL_COMPUTE_SHADER, "render_layers_cluster_depth.comp")}),
+          gl::Program(context.gl(), {layer_stage(GL_COMPUTE_SHADER, "render_layers_pyramid.comp")}), 0})) {
+    gl_->GenVertexArrays(1, &passes_->vertex_array);
+}
+
+GlLayerBuilder::~GlLayerBuilder() { gl_->DeleteVertexArrays(1, &passes_->vertex_array); }
+
+GlClusterLayers GlLayerBuilder::build(const kernelf::LayerView& view, int layers, const GlLayerInput& input) const {
+    const gl::Functions& f = *gl_;
+    const int size = view.size;
+    GLint max_texture = 0, max_viewport[2] = {0, 0};
+    f.GetIntegerv(GL_MAX_TEXTURE_SIZE, &max_texture);
+    f.GetIntegerv(GL_MAX_VIEWPORT_DIMS, max_viewport);
+    if (size < 1 || size > std::min({max_texture, max_viewport[0], max_viewport[1]}))
+        throw gl::GlError("gl: layer size " + std::to_string(size) + " exceeds the context's limits");
+    const std::vector<std::array<glm::vec3, 3>>& vertices = *input.vertices;
+    const std::size_t triangles = vertices.size();
+    const std::size_t origins = input.origins != nullptr ? input.origins->size() : 0;
+    const std::size_t plane = static_cast<std::size_t>(size) * static_cast<std::size_t>(size);
+    const std::size_t texels = plane * static_cast<std::size_t>(layers);
+
+    std::vector<gpu::LayerTriangle> packed(triangles);
+    std::vector<std::uint32_t> own_bits((triangles + 31) / 32, 0u);
+    for (std::size_t t = 0; t < triangles; ++t) {
+        packed[t] = gpu::LayerTriangle{glm::vec4(vertices[t][0], 0.0f), glm::vec4(vertices[t][1], 0.0f),
+                                       glm::vec4(vertices[t][2], 0.0f), glm::vec4((*input.normals)[t], 0.0f)};
+        if ((*input.own)[t] != 0) own_bits[t / 32] |= 1u << (t % 32);
+    }
+    std::vector<glm::vec4> origin_points(origins);
+    for (std::size_t i = 0; i < origins; ++i) origin_points[i] = glm::vec4((*input.origins)[i], 0.0f);
+    const gpu::LayerPass pass = pass_of(view, layers, triangles, origins, input.normal_threshold);
+    const std::vector<int> sizes = level_sizes(size);
+    std::size_t pyramid_floats = 0;
+    for (int s : sizes) pyramid_floats += 2 * static_cast<std::size_t>(s) * static_cast<std::size_t>(s);
+
+    const std::uint32_t zero_counts[BC_LAYER_COUNTS] = {};
+    const gl::Buffer triangle_buffer = storage(f, packed.size() * sizeof(gpu::LayerTriangle), packed.data());
+    const gl::Buffer pass_buffer = storage(f, sizeof pass, &pass);
+    const gl::Buffer own_buffer = storage(f, own_bits.size() * sizeof(std::uint32_t), own_bits.data());
+    const gl::Buffer fan_buffer = storage(f, 2 * triangles * sizeof(gpu::LayerFan));
+    const gl::Buffer count_buffer = storage(f, sizeof zero_counts, zero_counts);
+    const gl::Buffer depth_buffer = storage(f, texels * sizeof(std::uint32_t));
+    const gl::Buffer id_buffer = storage(f, texels * sizeof(std::uint32_t));
+    const gl::Buffer cluster_buffer = storage(f, plane * sizeof(std::uint32_t));
+    const gl::Buffer origin_buffer = storage(f, origin_points.size() * sizeof(glm::vec4), origin_points.data());
+    const gl::Buffer pyramid_buffer = storage(f, pyramid_floats * sizeof(float));
+    fill_words(f, depth_buffer, BC_LAYER_EMPTY);
+    fill_words(f, id_buffer, 0xFFFFFFFFu);
+    fill_words(f, cluster_buffer, BC_LAYER_EMPTY);
+    triangle_buffer.bind_base(triangles_binding);
+    pass_buffer.bind_base(pass_binding);
+    own_buffer.bind_base(own_binding);
+    fan_buffer.bind_base(fans_binding);
+    count_buffer.bind_base(counts_binding);
+    depth_buffer.bind_base(layer_depth_binding);
+    id_buffer.bind_base(layer_triangle_binding);
+    cluster_buffer.bind_base(cluster_depth_binding);
+    origin_buffer.bind_base(origins_binding);
+    pyramid_buffer.bind_base(pyramid_binding);
+
+    // The cluster's depth map and the fans.
+    if (origins > 0) {
+        f.UseProgram(passes_->cluster_depth.id());
+        f.DispatchCompute(groups_of(origins, 64), 1, 1);
+    }
+    if (triangles > 0) {
+        f.UseProgram(passes_->setup.id());
+        f.DispatchCompute(groups_of(triangles, 64), 1, 1);
+    }
+    f.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+
+    // The two draws: depths into the k-buffer, then their triangles.
+    const gl::Texture target(f, GL_TEXTURE_2D, GL_R8, size, size);
+    const gl::Framebuffer framebuffer(f);
+    f.BindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
+    f.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, target.id(), 0);
+    if (f.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        throw gl::GlError("gl: the layer pass's framebuffer is incomplete");
+    f.Viewport(0, 0, size, size);
+    f.Disable(GL_DEPTH_TEST);
+    f.Disable(GL_CULL_FACE);
+    f.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    f.UseProgram(passes_->draw.id());
+    f.BindVertexArray(passes_->vertex_array);
+    const GLint peel_pass = f.GetUniformLocation(passes_->draw.id(), "peel_pass");
+    for (int peel = 0; peel < 2 && triangles > 0; ++peel) {
+        f.Uniform1i(peel_pass, peel);
+        f.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(6 * triangles));
+        f.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    f.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    f.BindVertexArray(0);
+    f.BindFramebuffer(GL_FRAMEBUFFER, 0);
+
+    // The pyramid, level by level.
+    const GLuint pyramid = passes_->pyramid.id();
+    f.UseProgram(pyramid);
+    std::size_t offset = 0, fine_offset = 0;
+    for (std::size_t level = 0; level < sizes.size(); ++level) {
+        f.Uniform1i(f.GetUniformLocation(pyramid, "level"), static_cast<GLint>(level));
+        f.Uniform1i(f.GetUniformLocation(pyramid, "size"), sizes[level]);
+        f.Uniform1i(f.GetUniformLocation(pyramid, "offset"), static_cast<GLint>(offset));
+        f.Uniform1i(f.GetUniformLocation(pyramid, "fine_size"), level > 0 ? sizes[level - 1] : 0);
+        f.Uniform1i(f.GetUniformLocation(pyramid, "fine_offset"), static_cast<GLint>(fine_offset));
+        const GLuint groups = groups_of(static_cast<std::size_t>(sizes[level]), 8);
+        f.DispatchCompute(groups, groups, 1);
+        f.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        fine_offset = offset;
+        offset += 2 * static_cast<std::size_t>(sizes[level]) * static_cast<std::size_t>(sizes[level]);
+    }
+    f.UseProgram(0);
+    f.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    gl::check_gl(f, "dof-secondary: the layer passes");
+
+    GlClusterLayers out;
+    out.size = size;
+    out.layers = layers;
+    out.depth.resize(texels);
+    depth_buffer.read(out.depth.data(), texels * sizeof(float));  // the bits are the floats
+    out.triangle.resize(texels);
+    id_buffer.read(out.triangle.data(), texels * sizeof(std::uint32_t));
+    for (std::uint32_t& id : out.triangle)
+        if (id == 0xFFFFFFFFu) id = 0;  // no surface: the host's default
+    out.pyramid.resize(pyramid_floats);
+    pyramid_buffer.read(out.pyramid.data(), pyramid_floats * sizeof(float));
+    std::uint32_t counts[BC_LAYER_COUNTS];
+    count_buffer.read(counts, sizeof counts);
+    out.counts = GlLayerCounts{counts[BC_LAYER_COUNT_FRAGMENTS], counts[BC_LAYER_COUNT_CULLED_NEAR],
+                               counts[BC_LAYER_COUNT_CULLED_IN_FRONT], counts[BC_LAYER_COUNT_CULLED_NORMAL],
+                               counts[BC_LAYER_COUNT_DROPPED]};
+    return out;
+}
+
+}  // namespace blurcull::frontend
