@@ -6,6 +6,8 @@
 #include <blurcull/glsl/kernel_glsl.hpp>
 
 #include <algorithm>
+#include <array>
+#include <optional>
 #include <cstring>
 #include <string>
 
@@ -28,12 +30,25 @@ gl::ShaderStage layer_stage(GLenum type, std::string_view main_name) {
 // SSBO bindings of the passes (the `binding =` of shaders/render_layers_*).
 enum Binding : GLuint {
     triangles_binding = 0, pass_binding, own_binding, fans_binding, counts_binding,
-    layer_depth_binding, layer_triangle_binding, cluster_depth_binding, origins_binding, pyramid_binding
+    layer_depth_binding, layer_triangle_binding, cluster_depth_binding, origins_binding, pyramid_binding,
+    texel_count_binding
 };
 
-// A shader-storage buffer of at least 16 bytes (a zero-sized one cannot be bound usefully).
-gl::Buffer storage(const gl::Functions& f, std::size_t bytes, const void* data = nullptr) {
-    return gl::Buffer(f, GL_SHADER_STORAGE_BUFFER, std::max<std::size_t>(bytes, 16), bytes > 0 ? data : nullptr);
+// The shader-storage buffer in `slot`, made anew when it holds fewer than
+// `bytes` bytes (at least 16: a zero-sized one cannot be bound usefully),
+// else kept: the clusters of a render reuse their buffers. `data`: copied in.
+const gl::Buffer& reserve(const gl::Functions& f, std::optional<gl::Buffer>& slot, std::size_t bytes,
+                          const void* data = nullptr) {
+    if (!slot || slot->size() < bytes) {
+        slot.reset();
+        slot.emplace(f, GL_SHADER_STORAGE_BUFFER, std::max<std::size_t>(bytes, 16));
+    }
+    if (data != nullptr && bytes > 0) {
+        f.BindBuffer(GL_SHADER_STORAGE_BUFFER, slot->id());
+        f.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(bytes), data);
+        f.BindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    }
+    return *slot;
 }
 
 void fill_words(const gl::Functions& f, const gl::Buffer& buffer, std::uint32_t value) {
@@ -68,6 +83,8 @@ std::vector<int> level_sizes(int size) {
 struct GlLayerBuilder::Passes {
     gl::Program setup, draw, cluster_depth, pyramid;
     GLuint vertex_array = 0;
+    // The buffers, by binding (Binding), kept from one cluster to the next.
+    std::array<std::optional<gl::Buffer>, texel_count_binding + 1> buffers;
 };
 
 GlLayerBuilder::GlLayerBuilder(const gl::HeadlessContext& context)
@@ -77,7 +94,7 @@ GlLayerBuilder::GlLayerBuilder(const gl::HeadlessContext& context)
           gl::Program(context.gl(), {layer_stage(GL_VERTEX_SHADER, "render_layers.vert"),
                                      layer_stage(GL_FRAGMENT_SHADER, "render_layers.frag")}),
           gl::Program(context.gl(), {layer_stage(GL_COMPUTE_SHADER, "render_layers_cluster_depth.comp")}),
-          gl::Program(context.gl(), {layer_stage(GL_COMPUTE_SHADER, "render_layers_pyramid.comp")}), 0})) {
+          gl::Program(context.gl(), {layer_stage(GL_COMPUTE_SHADER, "render_layers_pyramid.comp")}), 0, {}})) {
     gl_->GenVertexArrays(1, &passes_->vertex_array);
 }
 
@@ -89,8 +106,9 @@ GlClusterLayers GlLayerBuilder::build(const kernelf::LayerView& view, int layers
     GLint max_texture = 0, max_viewport[2] = {0, 0};
     f.GetIntegerv(GL_MAX_TEXTURE_SIZE, &max_texture);
     f.GetIntegerv(GL_MAX_VIEWPORT_DIMS, max_viewport);
-    if (size < 1 || size > std::min({max_texture, max_viewport[0], max_viewport[1]}))
-        throw gl::GlError("gl: layer size " + std::to_string(size) + " exceeds the context's limits");
+    if (size < 2 || size > std::min({max_texture, max_viewport[0], max_viewport[1]}))
+        throw gl::GlError("gl: layer size " + std::to_string(size) + " is below 2 or exceeds the context's limits");
+    if (layers < 1 || layers > BC_LAYERS_MAX) throw gl::GlError("gl: " + std::to_string(layers) + " layers, not 1 to 8");
     const std::vector<std::array<glm::vec3, 3>>& vertices = *input.vertices;
     const std::size_t triangles = vertices.size();
     const std::size_t origins = input.origins != nullptr ? input.origins->size() : 0;
@@ -112,29 +130,26 @@ GlClusterLayers GlLayerBuilder::build(const kernelf::LayerView& view, int layers
     for (int s : sizes) pyramid_floats += 2 * static_cast<std::size_t>(s) * static_cast<std::size_t>(s);
 
     const std::uint32_t zero_counts[BC_LAYER_COUNTS] = {};
-    const gl::Buffer triangle_buffer = storage(f, packed.size() * sizeof(gpu::LayerTriangle), packed.data());
-    const gl::Buffer pass_buffer = storage(f, sizeof pass, &pass);
-    const gl::Buffer own_buffer = storage(f, own_bits.size() * sizeof(std::uint32_t), own_bits.data());
-    const gl::Buffer fan_buffer = storage(f, 2 * triangles * sizeof(gpu::LayerFan));
-    const gl::Buffer count_buffer = storage(f, sizeof zero_counts, zero_counts);
-    const gl::Buffer depth_buffer = storage(f, texels * sizeof(std::uint32_t));
-    const gl::Buffer id_buffer = storage(f, texels * sizeof(std::uint32_t));
-    const gl::Buffer cluster_buffer = storage(f, plane * sizeof(std::uint32_t));
-    const gl::Buffer origin_buffer = storage(f, origin_points.size() * sizeof(glm::vec4), origin_points.data());
-    const gl::Buffer pyramid_buffer = storage(f, pyramid_floats * sizeof(float));
+    auto buffer = [&](Binding binding, std::size_t bytes, const void* data = nullptr) -> const gl::Buffer& {
+        const gl::Buffer& b = reserve(f, passes_->buffers[binding], bytes, data);
+        b.bind_base(binding);
+        return b;
+    };
+    buffer(triangles_binding, packed.size() * sizeof(gpu::LayerTriangle), packed.data());
+    buffer(pass_binding, sizeof pass, &pass);
+    buffer(own_binding, own_bits.size() * sizeof(std::uint32_t), own_bits.data());
+    buffer(fans_binding, 2 * triangles * sizeof(gpu::LayerFan));
+    const gl::Buffer& count_buffer = buffer(counts_binding, sizeof zero_counts, zero_counts);
+    const gl::Buffer& depth_buffer = buffer(layer_depth_binding, texels * sizeof(std::uint32_t));
+    const gl::Buffer& id_buffer = buffer(layer_triangle_binding, texels * sizeof(std::uint32_t));
+    const gl::Buffer& cluster_buffer = buffer(cluster_depth_binding, plane * sizeof(std::uint32_t));
+    buffer(origins_binding, origin_points.size() * sizeof(glm::vec4), origin_points.data());
+    const gl::Buffer& pyramid_buffer = buffer(pyramid_binding, pyramid_floats * sizeof(float));
+    const gl::Buffer& texel_count_buffer = buffer(texel_count_binding, plane * sizeof(std::uint32_t));
     fill_words(f, depth_buffer, BC_LAYER_EMPTY);
     fill_words(f, id_buffer, 0xFFFFFFFFu);
     fill_words(f, cluster_buffer, BC_LAYER_EMPTY);
-    triangle_buffer.bind_base(triangles_binding);
-    pass_buffer.bind_base(pass_binding);
-    own_buffer.bind_base(own_binding);
-    fan_buffer.bind_base(fans_binding);
-    count_buffer.bind_base(counts_binding);
-    depth_buffer.bind_base(layer_depth_binding);
-    id_buffer.bind_base(layer_triangle_binding);
-    cluster_buffer.bind_base(cluster_depth_binding);
-    origin_buffer.bind_base(origins_binding);
-    pyramid_buffer.bind_base(pyramid_binding);
+    fill_words(f, texel_count_buffer, 0u);
 
     // The cluster's depth map and the fans.
     if (origins > 0) {
@@ -145,7 +160,9 @@ GlClusterLayers GlLayerBuilder::build(const kernelf::LayerView& view, int layers
         f.UseProgram(passes_->setup.id());
         f.DispatchCompute(groups_of(triangles, 64), 1, 1);
     }
-    f.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    f.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::uint32_t fan_count = 0;  // the draws' size: a wait for the setup pass, but no culled triangle drawn
+    count_buffer.read(&fan_count, sizeof fan_count, BC_LAYER_COUNT_FANS * sizeof(std::uint32_t));
 
     // The two draws: depths into the k-buffer, then their triangles.
     const gl::Texture target(f, GL_TEXTURE_2D, GL_R8, size, size);
@@ -161,31 +178,26 @@ GlClusterLayers GlLayerBuilder::build(const kernelf::LayerView& view, int layers
     f.UseProgram(passes_->draw.id());
     f.BindVertexArray(passes_->vertex_array);
     const GLint peel_pass = f.GetUniformLocation(passes_->draw.id(), "peel_pass");
-    for (int peel = 0; peel < 2 && triangles > 0; ++peel) {
+    for (int peel = 0; peel < 2 && fan_count > 0; ++peel) {
         f.Uniform1i(peel_pass, peel);
-        f.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(6 * triangles));
+        f.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(3 * fan_count));
         f.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
     f.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     f.BindVertexArray(0);
     f.BindFramebuffer(GL_FRAMEBUFFER, 0);
 
-    // The pyramid, level by level.
+    // The pyramid: levels 0 and 1 from the layers, then the rest in one workgroup.
     const GLuint pyramid = passes_->pyramid.id();
     f.UseProgram(pyramid);
-    std::size_t offset = 0, fine_offset = 0;
-    for (std::size_t level = 0; level < sizes.size(); ++level) {
-        f.Uniform1i(f.GetUniformLocation(pyramid, "level"), static_cast<GLint>(level));
-        f.Uniform1i(f.GetUniformLocation(pyramid, "size"), sizes[level]);
-        f.Uniform1i(f.GetUniformLocation(pyramid, "offset"), static_cast<GLint>(offset));
-        f.Uniform1i(f.GetUniformLocation(pyramid, "fine_size"), level > 0 ? sizes[level - 1] : 0);
-        f.Uniform1i(f.GetUniformLocation(pyramid, "fine_offset"), static_cast<GLint>(fine_offset));
-        const GLuint groups = groups_of(static_cast<std::size_t>(sizes[level]), 8);
-        f.DispatchCompute(groups, groups, 1);
-        f.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-        fine_offset = offset;
-        offset += 2 * static_cast<std::size_t>(sizes[level]) * static_cast<std::size_t>(sizes[level]);
-    }
+    f.Uniform1i(f.GetUniformLocation(pyramid, "base_size"), size);
+    f.Uniform1i(f.GetUniformLocation(pyramid, "from_layers"), 1);
+    const GLuint groups = groups_of(static_cast<std::size_t>(sizes[1]), 16);
+    f.DispatchCompute(groups, groups, 1);
+    f.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    f.Uniform1i(f.GetUniformLocation(pyramid, "from_layers"), 0);
+    f.DispatchCompute(1, 1, 1);
+    f.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     f.UseProgram(0);
     f.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     gl::check_gl(f, "dof-secondary: the layer passes");

@@ -23,7 +23,8 @@ using ivec4 = glm::ivec4;
 #define BC_LAYER_COUNT_CULLED_IN_FRONT 2
 #define BC_LAYER_COUNT_CULLED_NORMAL 3
 #define BC_LAYER_COUNT_DROPPED 4
-#define BC_LAYER_COUNTS 5
+#define BC_LAYER_COUNT_FANS 5  // fan triangles written (render_layers_setup.comp)
+#define BC_LAYER_COUNTS 6
 
 // The bits of +infinity: "no surface" in the layers, "no cluster point" in
 // the cluster's depth map. Positive floats order as their bits, so atomicMin
@@ -40,8 +41,9 @@ struct LayerTriangle {
 
 // One triangle of the fan of a triangle clipped at the near plane (at most
 // two per scene triangle): image points (x, y, view depth) in the order the
-// host's scan takes them; info.x the scene triangle (-1: none), info.y 1
-// when it is one of the cluster's own triangles.
+// host's scan takes them; info.x the scene triangle, info.y 1 when it is one
+// of the cluster's own triangles. Appended in any order (the k-buffer's
+// result does not depend on the order of the fragments).
 struct LayerFan {
     vec4 a;
     vec4 b;

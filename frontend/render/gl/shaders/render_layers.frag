@@ -5,7 +5,9 @@
 // depths not beyond the cluster's nearest point in the texel.
 //   peel_pass 0: a k-buffer of the `layers` nearest depths per texel, by an
 //     atomicMin cascade on the depth bits (order-independent: slot l ends
-//     with the l-th smallest, as the host's sorted insertion);
+//     with the l-th smallest, as the host's sorted insertion), and the count
+//     of depths offered per texel (the pyramid's base reads the first and the
+//     last of them only);
 //   peel_pass 1: each fragment whose depth is in its texel's list writes its
 //     triangle there (atomicMin: equal depths keep the lowest triangle).
 layout(std430, binding = 1) readonly buffer Pass { LayerPass pass; };
@@ -13,6 +15,7 @@ layout(std430, binding = 4) buffer Counts { uint counts[]; };
 layout(std430, binding = 5) buffer LayerDepth { uint layer_depth[]; };        // [layer][y][x] depth bits
 layout(std430, binding = 6) buffer LayerTriangleIds { uint layer_triangle[]; };  // [layer][y][x]
 layout(std430, binding = 7) readonly buffer ClusterDepth { uint cluster_depth[]; };  // [y][x] depth bits
+layout(std430, binding = 10) buffer TexelCounts { uint texel_count[]; };           // [y][x]
 uniform int peel_pass;
 flat in vec3 corner_a;
 flat in vec3 corner_b;
@@ -45,6 +48,7 @@ void main() {
     uint bits = floatBitsToUint(z);
     int layers = pass.sizes.y;
     if (peel_pass == 0) {
+        atomicAdd(texel_count[at], 1u);
         uint carried = bits;
         for (int l = 0; l < layers; ++l) {
             uint held = atomicMin(layer_depth[uint(l) * plane + at], carried);

@@ -1,21 +1,20 @@
 // dof-secondary's GL layers, pass 1 of 4 (gl_layer_images.cpp): per scene
 // triangle, the normal cull (the paper's third), the clip at the cluster's
 // near plane (the first) and the projection into the view, with the host's
-// arithmetic (layer_raster_shared.h); writes the fan of at most two image
-// triangles that render_layers.vert draws. docs/secondary-rays.md.
+// arithmetic (layer_raster_shared.h); appends the fan of at most two image
+// triangles that render_layers.vert draws (culled triangles append none).
+// docs/secondary-rays.md.
 layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer Triangles { LayerTriangle triangles[]; };
 layout(std430, binding = 1) readonly buffer Pass { LayerPass pass; };
 layout(std430, binding = 2) readonly buffer Own { uint own_bits[]; };  // bit t: the cluster's own triangle
-layout(std430, binding = 3) writeonly buffer Fans { LayerFan fans[]; };  // 2 per triangle
+layout(std430, binding = 3) writeonly buffer Fans { LayerFan fans[]; };  // up to 2 per triangle
 layout(std430, binding = 4) buffer Counts { uint counts[]; };           // BC_LAYER_COUNT_*
 
 void main() {
     uint t = gl_GlobalInvocationID.x;
     if (t >= uint(pass.sizes.z)) return;
     LayerView v = layer_pass_view(pass);
-    fans[2u * t].info = ivec4(-1, 0, 0, 0);
-    fans[2u * t + 1u].info = ivec4(-1, 0, 0, 0);
     LayerTriangle tri = triangles[t];
     if (bc_dot3(tri.normal.xyz, v.forward) > pass.frustum.w) {
         atomicAdd(counts[BC_LAYER_COUNT_CULLED_NORMAL], 1u);
@@ -47,12 +46,13 @@ void main() {
     vec3 image[4];
     for (int k = 0; k < count; ++k) image[k] = bc_raster_image_point(v, clipped[k]);
     int own = int((own_bits[t >> 5u] >> (t & 31u)) & 1u);
+    uint first = atomicAdd(counts[BC_LAYER_COUNT_FANS], uint(count - 2));
     for (int k = 1; k + 1 < count; ++k) {
         LayerFan fan;
         fan.a = vec4(image[0], 0.0);
         fan.b = vec4(image[k], 0.0);
         fan.c = vec4(image[k + 1], 0.0);
         fan.info = ivec4(int(t), own, 0, 0);
-        fans[2u * t + uint(k - 1)] = fan;
+        fans[first + uint(k - 1)] = fan;
     }
 }
