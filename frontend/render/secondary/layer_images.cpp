@@ -106,7 +106,7 @@ DepthPyramid::DepthPyramid(const LayerImages& images) {
 DepthPyramid DepthPyramid::from_levels(int size, const std::vector<float>& lo_hi) {
     DepthPyramid pyramid;
     std::size_t at = 0;
-    for (int level_size = size;; level_size = (level_size + 1) / 2) {
+    for (int level_size = size; level_size >= 1; level_size = (level_size + 1) / 2) {
         const std::size_t cells = static_cast<std::size_t>(level_size) * static_cast<std::size_t>(level_size);
         if (at + 2 * cells > lo_hi.size()) break;
         Level level{level_size, std::vector<float>(cells), std::vector<float>(cells)};
