@@ -1,6 +1,7 @@
 // `blurcull view`: the GL backend rendering into a GLFW window, with an orbit
 // camera and keys for the lens, focus, shutter, spp, cull method and render
-// method (stochastic or dof-secondary); STE and frame time on screen. --frames and --screenshot run it without a user.
+// method (stochastic or dof-secondary); STE and frame time on screen.
+// --frames and --screenshot run it without a user.
 #pragma once
 
 #include "app/scene_setup.hpp"
