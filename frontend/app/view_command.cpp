@@ -5,6 +5,7 @@
 #include "app/text_overlay.hpp"
 
 #include "render/common/image.hpp"
+#include "render/common/motion_segments.hpp"
 #include "render/common/render_types.hpp"
 #include "render/gl/gl_backend.hpp"
 #include "render/gl/gl_context.hpp"
@@ -438,10 +439,15 @@ private:
 
     // One frame of `method` on the window's context: GlRenderer::render, or
     // for dof-secondary the same GL passes as `render --backend gl` (the
-    // trace pass compiled on first use).
+    // trace pass compiled on first use). Motion segments (K > 1) are refused
+    // with render's lines: render_gl's check (GlRenderer::render has none)
+    // and render_dof_secondary's own.
     RenderResult render_with_method(const Scene& scene, RenderSettings settings, RenderMethod method) {
         settings.method = method;
-        if (method != RenderMethod::dof_secondary) return renderer_.render(scene, settings);
+        if (method != RenderMethod::dof_secondary) {
+            refuse_motion_segments(scene, "gl");
+            return renderer_.render(scene, settings);
+        }
         if (!dof_secondary_) dof_secondary_.emplace(renderer_, window_context_);
         return dof_secondary_->render(scene, settings, GlOptions{}, secondary_);
     }
