@@ -178,13 +178,14 @@ void compare_layers(const WorldTriangles& world, const kernelf::LayerView& view,
 TEST_CASE("dof-secondary: the GL build with host layers gives the CPU build's image") {
     std::optional<blurcull::gl::HeadlessContext> context = context_or_skip();
     if (!context) return;
-    GlDofSecondary passes;
+    GlRenderer rasterizer;
+    const GlDofSecondary passes(rasterizer, *context);
     const RenderSettings settings = quiet_settings(48, 36, 8);
     for (const Scene& scene : {mirror_sphere_scene(), plane_mirror_scene(0.1f)}) {
         CAPTURE(scene.name);
         SecondaryStats cpu_stats, gl_stats;
         const Image cpu = render_dof_secondary(scene, settings, small_options(), &cpu_stats).image;
-        const Image gpu = passes.render(scene, settings, small_options(), {}, LayerImagesOn::host, &gl_stats).image;
+        const Image gpu = passes.render(scene, settings, {}, small_options(), &gl_stats, LayerImagesOn::host).image;
         const ImageError e = compare(cpu, gpu);
         MESSAGE("GL (host layers) against CPU build: max difference " << e.max_abs);
         CHECK(e.max_abs <= 1e-6);
@@ -198,7 +199,8 @@ TEST_CASE("dof-secondary: the GL build with host layers gives the CPU build's im
 TEST_CASE("dof-secondary: GL layers and pyramid against the host's, every cluster") {
     std::optional<blurcull::gl::HeadlessContext> context = context_or_skip();
     if (!context) return;
-    GlDofSecondary passes;
+    GlRenderer rasterizer;
+    const GlDofSecondary passes(rasterizer, *context);
     const LayerBuilder gl_builder = passes.layer_builder();
     const RenderSettings settings = quiet_settings(48, 36, 8);
     // One layer on the sphere: full lists, so the cascade drops fragments.
@@ -256,13 +258,14 @@ TEST_CASE("dof-secondary: GL layers and pyramid against the host's, every cluste
 TEST_CASE("dof-secondary: the GL build with GL layers against the CPU build") {
     std::optional<blurcull::gl::HeadlessContext> context = context_or_skip();
     if (!context) return;
-    GlDofSecondary passes;
+    GlRenderer rasterizer;
+    const GlDofSecondary passes(rasterizer, *context);
     const RenderSettings settings = quiet_settings(48, 36, 8);
     for (const Scene& scene : {mirror_sphere_scene(), plane_mirror_scene(0.1f)}) {
         CAPTURE(scene.name);
         SecondaryStats cpu_stats, gl_stats;
         const Image cpu = render_dof_secondary(scene, settings, small_options(), &cpu_stats).image;
-        const Image gpu = passes.render(scene, settings, small_options(), {}, LayerImagesOn::gl, &gl_stats).image;
+        const Image gpu = passes.render(scene, settings, {}, small_options(), &gl_stats, LayerImagesOn::gl).image;
         const ImageError e = compare(cpu, gpu);
         MESSAGE("GL (GL layers) against CPU build: RMSE " << e.rmse << ", max " << e.max_abs << ", pixels off "
                                                           << e.pixels_off << "; trace steps " << gl_stats.trace_steps

@@ -14,6 +14,7 @@
 #include "render/gl/gl_backend.hpp"
 #if BLURCULL_HAVE_GL
 #include "app/gl_dof_secondary.hpp"
+#include "render/gl/gl_context.hpp"
 #endif
 #include "render/secondary/dof_secondary.hpp"
 #include "scene/builtin_scenes.hpp"
@@ -241,14 +242,7 @@ void refuse_unhonoured_options(const RenderCommand& command, Backend backend) {
         {"--secondary", command.secondary_option, backend_bit(Backend::embree)},
         {"--layer-images", command.layer_images_option, backend_bit(Backend::gl)},
     };
-    if (method.method != RenderMethod::dof_secondary) {
-        for (const CLI::Option* option : command.dof_secondary_options) {
-            if (option->count() > 0) {
-                throw std::invalid_argument(option->get_name() + ": only --method dof-secondary takes it (method " +
-                                            method.name + ")");
-            }
-        }
-    }
+    command.refuse_secondary_flags(method.method);
     for (const BackendOption& option : options) {
         if (option.option == nullptr || option.option->count() == 0) continue;
         if (!takes(option.backends, backend)) {
@@ -322,10 +316,7 @@ RenderJob set_up(const RenderCommand& command) {
 #if BLURCULL_HAVE_EMBREE
     job.embree.secondary = parse_embree_secondary(command.secondary);
 #endif
-    job.secondary = command.dof_secondary;
-    job.secondary.bounces = command.secondary_bounces == "exact"         ? SecondaryBounces::exact
-                            : command.secondary_bounces == "environment" ? SecondaryBounces::environment_only
-                                                                         : SecondaryBounces::image_space;
+    job.secondary = command.secondary_options();
     job.layer_images = command.layer_images == "host" ? LayerImagesOn::host : LayerImagesOn::gl;
     try {
         validate_secondary_options(job.secondary);
@@ -340,8 +331,11 @@ RenderJob set_up(const RenderCommand& command) {
 RenderResult render_secondary(const RenderJob& job) {
 #if BLURCULL_HAVE_GL
     if (job.backend == Backend::gl) {
-        GlDofSecondary passes;
-        return passes.render(job.scene, job.settings, job.secondary, job.gl, job.layer_images);
+        // The GL rasterizer on its own context, the layer and trace passes on a second one.
+        GlRenderer rasterizer;
+        const gl::HeadlessContext context = gl::HeadlessContext::create();
+        return GlDofSecondary(rasterizer, context).render(job.scene, job.settings, job.gl, job.secondary, nullptr,
+                                                            job.layer_images);
     }
 #endif
     return render_dof_secondary(job.scene, job.settings, job.secondary);
@@ -575,35 +569,15 @@ void RenderCommand::add_options(CLI::App& app) {
                                       "along the bounced pinhole ray, as the cpu and gl backends)")
                            ->check(CLI::IsMember({"bounce", "none"}))
                            ->capture_default_str();
-    dof_secondary_options = {
-        app.add_option("--secondary-layers", dof_secondary.layers,
-                       "dof-secondary: depth-peeled layers per cluster view")
-            ->check(CLI::Range(1, 8))->capture_default_str(),
-        app.add_option("--clusters-per-facet", dof_secondary.clusters_per_facet,
-                       "dof-secondary: k-means clusters per dodecahedron facet at most")
-            ->check(CLI::Range(1, 3))->capture_default_str(),
-        app.add_option("--secondary-fov", dof_secondary.fov_degrees,
-                       "dof-secondary: field of view of a cluster's virtual view, degrees")
-            ->check(CLI::Range(1.0f, 179.0f))->capture_default_str(),
-        app.add_option("--layer-size", dof_secondary.layer_size, "dof-secondary: texels per side of a cluster's layers")
-            ->check(CLI::Range(16, 4096))->capture_default_str(),
-        app.add_option("--lens-parts", dof_secondary.lens_parts,
-                       "dof-secondary: lens parts with a depth interval each (1, 4 or 16)")
-            ->check(CLI::IsMember({1, 4, 16}))->capture_default_str(),
-        app.add_option("--secondary-bounces", secondary_bounces,
-                       "dof-secondary: image-space (the method), exact (every bounce against every triangle: the "
-                       "reference) or environment (the primary-only image)")
-            ->check(CLI::IsMember({"image-space", "exact", "environment"}))->capture_default_str(),
-        layer_images_option = app.add_option("--layer-images", layer_images,
-                       "dof-secondary on gl: build the clusters' layered images and depth pyramids with the GL "
-                       "rasterizer and a compute pass (gl), or on the host with the cpu backend's code (host)")
-            ->check(CLI::IsMember({"gl", "host"}))->capture_default_str(),
-    };
+    SecondaryFlags::add_options(app);
+    layer_images_option = app.add_option("--layer-images", layer_images,
+                                         "dof-secondary on gl: build the clusters' layered images and depth "
+                                         "pyramids with the GL rasterizer and a compute pass (gl), or on the host "
+                                         "with the cpu backend's code (host)")
+                              ->check(CLI::IsMember({"gl", "host"}))
+                              ->capture_default_str();
+    dof_secondary_options.push_back(layer_images_option);  // refused with the other methods
     app.add_flag("-q,--quiet", quiet, "no progress on stderr");
-    app.add_option("--motion-segments", motion_segments,
-                   "glTF: K linear motion segments over the shutter (1 to " + std::to_string(max_motion_segments) +
-                       "), or auto: K from the largest rotation, chord within 1/4 pixel (cpu and embree)")
-        ->capture_default_str();
 }
 
 int RenderCommand::run() const {

@@ -2,10 +2,10 @@
 #pragma once
 
 #include "app/scene_setup.hpp"
+#include "app/secondary_flags.hpp"
 #include "render/common/render_types.hpp"
 #include "render/cpu/cpu_backend.hpp"
 #include "render/gl/gl_backend.hpp"
-#include "render/secondary/secondary_options.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -15,7 +15,8 @@
 
 namespace blurcull::frontend {
 
-struct RenderCommand : SceneFlags {
+// The dof-secondary flags come from SecondaryFlags (shared with `blurcull view`).
+struct RenderCommand : SceneFlags, SecondaryFlags {
     RenderCommand() : SceneFlags("forest", 16, "1024x768") {}
 
     std::string backend = "auto";
@@ -33,11 +34,7 @@ struct RenderCommand : SceneFlags {
     int gl_cell = GlOptions{}.cell_pixels;
     std::string secondary = "bounce";  // embree: bounce or none (EmbreeSecondary)
     bool quiet = false;
-    std::string motion_segments = "1";  // K, or "auto" (parse_motion_segments)
-    // dof-secondary (render/secondary/secondary_options.hpp).
-    SecondaryOptions dof_secondary;
-    std::string secondary_bounces = "image-space";
-    std::string layer_images = "gl";  // dof-secondary on gl: gl or host
+    std::string layer_images = "gl";  // dof-secondary on gl: where the layers are built, gl or host
 
     // The backend-specific options, to tell whether they were given
     // (count() > 0) when the backend in use cannot honour them.
@@ -52,7 +49,6 @@ struct RenderCommand : SceneFlags {
     CLI::Option* fps_option = nullptr;
     CLI::Option* shutter_angle_option = nullptr;
     CLI::Option* exr_type_option = nullptr;
-    std::vector<CLI::Option*> dof_secondary_options;  // only --method dof-secondary takes them
 
     // Declares the options on `app`, their checks and help read from the
     // registries of cull methods, render methods, precisions and backends.

@@ -1,10 +1,12 @@
 #include "app/scene_setup.hpp"
 
 #include "render/common/cull_method.hpp"
+#include "scene/motion_segments.hpp"
 
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
+#include <string>
 
 namespace blurcull::frontend {
 
@@ -72,6 +74,10 @@ void SceneFlags::add_options(CLI::App& app, bool initial) {
         ->check(CLI::Range(0.0, 1000.0))
         ->capture_default_str();
     app.add_option("--seed", seed, "sample pattern seed")->capture_default_str();
+    app.add_option("--motion-segments", motion_segments,
+                   "glTF: K linear motion segments over the shutter (1 to " + std::to_string(max_motion_segments) +
+                       "), or auto: K from the largest rotation, chord within 1/4 pixel (cpu and embree)")
+        ->capture_default_str();
 }
 
 }  // namespace blurcull::frontend

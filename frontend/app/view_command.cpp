@@ -1,12 +1,15 @@
 #include "app/view_command.hpp"
 
+#include "app/gl_dof_secondary.hpp"
 #include "app/scene_setup.hpp"
 #include "app/text_overlay.hpp"
 
 #include "render/common/image.hpp"
+#include "render/common/motion_segments.hpp"
 #include "render/common/render_types.hpp"
 #include "render/gl/gl_backend.hpp"
 #include "render/gl/gl_context.hpp"
+#include "scene/motion_segments.hpp"
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -23,6 +26,7 @@
 #include <cstdlib>
 #include <iterator>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -35,9 +39,16 @@ const char* const view_controls_help =
     "  A / Shift+A  lens radius x1.25 / /1.25     F / Shift+F  focus distance x1.1 / /1.1\n"
     "  S / Shift+S  shutter length x1.25 / /1.25  B / Shift+B  blur scale x1.25 / /1.25\n"
     "  N  next spp (4, 8, 16, 32)                 C  next cull method (bbox, hull, dualspace, twostage)\n"
+    "  M  method stochastic <-> dof-secondary (mirrors and glass: one bounce, seconds a frame on llvmpipe)\n"
     "  P  screenshot (--screenshot FILE, else view-N.png)   Esc / Q  quit\n";
 
 namespace {
+
+// --method dof-secondary's size when --size is not given: on a quiet machine
+// its frame of mirror-sphere took 11.8 s on llvmpipe at 320x240 and 33.6 s at
+// 480x360, nearly all of it the primary pass (docs/secondary-rays.md, "In
+// the window").
+const char* const view_dof_secondary_size = "320x240";
 
 using Clock = std::chrono::steady_clock;
 
@@ -130,7 +141,13 @@ struct ViewState {
     double blur_scale = 1.0;
     int spp = 4;
     CullMethod cull = CullMethod::two_stage;
+    RenderMethod method = RenderMethod::stochastic;
 };
+
+// M: the view's two methods, the directly seen image and the bounce.
+RenderMethod other_method(RenderMethod method) {
+    return method == RenderMethod::dof_secondary ? RenderMethod::stochastic : RenderMethod::dof_secondary;
+}
 
 // The orbit: rotates the world about its centre in view space, then moves
 // the camera along its axis; the same for shutter open and close, so camera
@@ -272,6 +289,7 @@ void on_key(GLFWwindow* window, int key, int, int action, int mods) {
             break;
         case GLFW_KEY_N: view.spp = next_spp(view.spp); break;
         case GLFW_KEY_C: view.cull = next_cull(view.cull); break;
+        case GLFW_KEY_M: view.method = other_method(view.method); break;
         case GLFW_KEY_R: input.reset = true; break;
         case GLFW_KEY_P: input.screenshot = true; return;
         default: return;
@@ -320,6 +338,8 @@ SceneRequest view_scene_request(const ViewCommand& command, int width, int heigh
     request.lens_radius = command.lens_radius;
     request.fstop = command.fstop;
     request.focus = command.focus;
+    request.motion_segments = parse_motion_segments(command.motion_segments);
+    request.image_height = height;
     return request;
 }
 
@@ -347,6 +367,7 @@ class ViewSession {
 public:
     ViewSession(const ViewCommand& command, int width, int height)
         : command_(command),
+          secondary_(command.secondary_options()),
           width_(width),
           height_(height),
           request_(view_scene_request(command, width, height)),
@@ -397,11 +418,14 @@ private:
         view.blur_scale = command.blur_scale;
         view.spp = command.spp;
         view.cull = parse_cull_method(command.cull);
+        view.method = parse_render_method(command.method);
         return view;
     }
 
     // llvmpipe compiles a program's code on its first draw: a 1x1 frame
     // first, as render_gl does, so frame times are frames alone.
+    // With dof-secondary it goes through that method, so a scene it refuses
+    // (motion segments) is refused here with its message, as render does.
     void warm_up() {
         glfwSetWindowTitle(window_, "blurcull view: compiling shaders...");
         glfwPollEvents();
@@ -410,7 +434,22 @@ private:
         settings.height = 1;
         settings.spp = 4;
         settings.progress = false;
-        renderer_.render(base_, settings);
+        render_with_method(base_, settings, view_.method);
+    }
+
+    // One frame of `method` on the window's context: GlRenderer::render, or
+    // for dof-secondary the same GL passes as `render --backend gl` (the
+    // trace pass compiled on first use). Motion segments (K > 1) are refused
+    // with render's lines: render_gl's check (GlRenderer::render has none)
+    // and render_dof_secondary's own.
+    RenderResult render_with_method(const Scene& scene, RenderSettings settings, RenderMethod method) {
+        settings.method = method;
+        if (method != RenderMethod::dof_secondary) {
+            refuse_motion_segments(scene, "gl");
+            return renderer_.render(scene, settings);
+        }
+        if (!dof_secondary_) dof_secondary_.emplace(renderer_, window_context_);
+        return dof_secondary_->render(scene, settings, GlOptions{}, secondary_);
     }
 
     // --frames: between frames a turn of the orbit and the next cull method,
@@ -471,30 +510,55 @@ private:
         settings.seed = command_.seed;
         settings.cull = view_.cull;
         settings.progress = false;
-        const std::string busy = "blurcull view: rendering " + std::to_string(view_.spp) + " spp...";
+        const bool bounce = view_.method == RenderMethod::dof_secondary;
+        const std::string busy = "blurcull view: rendering " + std::to_string(view_.spp) + " spp" +
+                                 (bounce ? ", dof-secondary: primary pass, then the bounces..." : "...");
         glfwSetWindowTitle(window_, busy.c_str());
         glfwPollEvents();
         const Clock::time_point start = Clock::now();
-        RenderResult result = renderer_.render(posed_scene(), settings);
+        std::optional<RenderResult> rendered = render_or_keep_method(settings);
+        if (!rendered) return;
+        RenderResult& result = *rendered;
         const double frame_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
         const RenderStats& stats = result.stats;
         draw_text_panel(result.image, 6, 6, overlay_text(stats, frame_ms), width_ >= 640 ? 2 : 1);
         shown_ = std::move(result.image);
         presenter_.show(shown_, window_width, window_height);
-        const std::string title = "blurcull view: " + scene_name_ + " | " + to_string(view_.cull) + " " +
-                                  std::to_string(view_.spp) + " spp | " + format("STE %.2f%%", 100.0 * stats.ste()) +
-                                  " | " + format("%.0f ms", frame_ms) + " " + timing_label_;
+        const std::string title = "blurcull view: " + scene_name_ + " | " + (bounce ? "dof-secondary, " : "") +
+                                  to_string(view_.cull) + " " + std::to_string(view_.spp) + " spp | " +
+                                  format("STE %.2f%%", 100.0 * stats.ste()) + " | " + format("%.0f ms", frame_ms) +
+                                  " " + timing_label_;
         glfwSetWindowTitle(window_, title.c_str());
         ++rendered_;
         needs_render_ = false;
         if (command_.frames > 0 && !command_.quiet) {
-            std::printf("frame %d: cull %s, %d spp, STE %.4f, %.1f ms (%s)\n", rendered_, to_string(view_.cull),
-                        view_.spp, stats.ste(), frame_ms, timing_label_.c_str());
+            std::printf("frame %d: method %s, cull %s, %d spp, STE %.4f, %.1f ms (%s)\n", rendered_,
+                        to_string(view_.method), to_string(view_.cull), view_.spp, stats.ste(), frame_ms,
+                        timing_label_.c_str());
             std::fflush(stdout);
         }
     }
 
-    // The overlay's four lines: settings, camera, STE, frame time.
+    // The frame in the view's method. A method the scene cannot take,
+    // switched to with M, is switched back with one warning line (the
+    // method given on the command line was refused by warm_up already).
+    std::optional<RenderResult> render_or_keep_method(const RenderSettings& settings) {
+        try {
+            RenderResult result = render_with_method(posed_scene(), settings, view_.method);
+            for (const std::string& warning : result.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
+            return result;
+        } catch (const std::invalid_argument& error) {
+            if (view_.method == initial_.method) throw;
+            std::fprintf(stderr, "warning: %s; back to method %s\n", error.what(),
+                         to_string(other_method(view_.method)));
+            view_.method = other_method(view_.method);
+            needs_render_ = true;  // the next turn of the loop renders the method back
+            return std::nullopt;
+        }
+    }
+
+    // The overlay: settings, camera, STE, frame time; with dof-secondary a
+    // fifth line, bounce_line.
     std::string overlay_text(const RenderStats& stats, double frame_ms) const {
         const std::string settings_line = scene_name_ + "  " + std::to_string(width_) + "x" +
                                           std::to_string(height_) + "  " + std::to_string(view_.spp) + " spp  cull " +
@@ -506,7 +570,24 @@ private:
                                             static_cast<double>(stats.samples_hit),
                                             static_cast<double>(stats.samples_tested));
         const std::string time_line = format("frame %.0f ms", frame_ms) + " (" + timing_label_ + ")";
-        return settings_line + "\n" + camera_line + "\n" + ste_line + "\n" + time_line;
+        const std::string text = settings_line + "\n" + camera_line + "\n" + ste_line + "\n" + time_line;
+        return view_.method == RenderMethod::dof_secondary ? text + "\n" + bounce_line(stats) : text;
+    }
+
+    // dof-secondary's fifth line: the method, its bounced rays, clusters, the host's
+    // share of the frame (resolve + bounce: clusters, layers, traces) and
+    // the layers per cluster view x their texels.
+    std::string bounce_line(const RenderStats& stats) const {
+        double clusters = 0.0, bounce_ms = 0.0;
+        for (const auto& [name, value] : stats.counters) {
+            if (name == "clusters") clusters = value;
+        }
+        for (const auto& [name, ms] : stats.ms_per_phase) {
+            if (name == "resolve" || name == "bounce") bounce_ms += ms;
+        }
+        return format("dof-secondary %.0f rays %.0f clusters %.0f ms", static_cast<double>(stats.secondary_rays),
+                      clusters, bounce_ms) +
+               " " + std::to_string(secondary_.layers) + "x" + std::to_string(secondary_.layer_size) + "^2";
     }
 
     void take_screenshots(int window_width, int window_height) {
@@ -528,6 +609,7 @@ private:
     }
 
     const ViewCommand& command_;
+    SecondaryOptions secondary_;  // the --secondary-* flags
     int width_, height_;
     SceneRequest request_;
     Scene base_;
@@ -539,6 +621,7 @@ private:
     gl::HeadlessContext window_context_;
     std::string timing_label_;
     Presenter presenter_;
+    std::optional<GlDofSecondary> dof_secondary_;  // made on the first dof-secondary frame
     std::string scene_name_;
     glm::vec3 centre_;
     Input input_;
@@ -548,10 +631,29 @@ private:
     bool needs_render_ = true;
 };
 
+// The names --method takes in the view: its two methods and their aliases.
+std::vector<std::string> view_method_names() {
+    std::vector<std::string> names;
+    for (const RenderMethod method : {RenderMethod::stochastic, RenderMethod::dof_secondary}) {
+        const RenderMethodInfo& info = render_method_info(method);
+        names.push_back(info.name);
+        names.insert(names.end(), info.aliases.begin(), info.aliases.end());
+    }
+    return names;
+}
+
 }  // namespace
 
 void ViewCommand::add_options(CLI::App& app) {
     SceneFlags::add_options(app, true);
+    scene_option = app.get_option("--scene");
+    size_option = app.get_option("--size");
+    app.add_option("--method", method,
+                   "initial method: stochastic (the GL rasterizer) or dof-secondary (one bounce on mirrors and glass; "
+                   "without --scene and --size: mirror-sphere at " + std::string(view_dof_secondary_size) + ")")
+        ->check(CLI::IsMember(view_method_names()))
+        ->capture_default_str();
+    SecondaryFlags::add_options(app);
     app.add_option("--frames", frames,
                    "render this many frames, turning the orbit and cycling the cull method between them, then exit "
                    "(0: interactive)")
@@ -563,10 +665,20 @@ void ViewCommand::add_options(CLI::App& app) {
 }
 
 int ViewCommand::run() const {
+    ViewCommand command = *this;
+    const RenderMethod initial_method = parse_render_method(method);
+    refuse_secondary_flags(initial_method);
+    if (initial_method == RenderMethod::dof_secondary) {
+        // A frame of the bounce takes seconds on llvmpipe: a smaller window,
+        // and a scene with a mirror, unless the user named them.
+        if (scene_option == nullptr || scene_option->count() == 0) command.scene = "mirror-sphere";
+        if (size_option == nullptr || size_option->count() == 0) command.size = view_dof_secondary_size;
+    }
+    validate_secondary_options(command.secondary_options());
     int width = 0, height = 0;
-    parse_size(size, width, height);
+    parse_size(command.size, width, height);
     if (!screenshot.empty()) require_writable_folder(screenshot, "--screenshot");
-    ViewSession session(*this, width, height);
+    ViewSession session(command, width, height);
     session.run();
     return 0;
 }
