@@ -635,7 +635,9 @@ private:
         for (const std::string& warning : frame.warnings) {
             if (!command_.quiet && warned_.insert(warning).second) std::fprintf(stderr, "warning: %s\n", warning.c_str());
         }
-        const std::string preview = frame.preview_scale > 1 ? " (preview 1/" + std::to_string(frame.preview_scale) + ")" : "";
+        const std::string preview = frame.preview_scale > 1 ? " (preview 1/" + std::to_string(frame.preview_scale) +
+                                                                  ", " + to_string(frame.cull) + ")"
+                                                            : "";
         const std::string spp_text = std::to_string(frame.samples) + "/" + std::to_string(frame.target) + " spp" + preview;
         const std::string time_text = format("pass %.0f ms", frame.pass_ms) + " (" + timing_label_ + ")";
         draw_text_panel(frame.image, 6, 6, overlay_text(frame.stats, spp_text, time_text), width_ >= 640 ? 2 : 1);

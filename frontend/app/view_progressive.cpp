@@ -137,6 +137,7 @@ void ProgressiveView::render_job(Job& job) {
         frame.warnings = result.warnings;
         frame.samples = render.samples();
         frame.target = render.target();
+        frame.cull = job.settings.cull;
         frame.pass_ms = timer.wall_ms();
         frame.pass_cpu_ms = timer.cpu_ms();
         ms_per_sample = frame.pass_ms / count;
@@ -152,6 +153,7 @@ void ProgressiveView::render_preview(Job& job, int scale) {
     small.width = std::max(1, static_cast<int>(std::lround(job.settings.width / static_cast<double>(scale))));
     small.height = std::max(1, static_cast<int>(std::lround(job.settings.height / static_cast<double>(scale))));
     small.spp = 1;
+    small.cull = preview_cull;
     small.progress = false;
     CpuOptions options;
     options.cancel = &cancel_;
@@ -167,6 +169,7 @@ void ProgressiveView::render_preview(Job& job, int scale) {
     frame.samples = 1;
     frame.target = job.settings.spp;
     frame.preview_scale = scale;
+    frame.cull = small.cull;
     frame.pass_ms = timer.wall_ms();
     frame.pass_cpu_ms = timer.cpu_ms();
     preview_scale_ = next_preview_scale(scale, frame.pass_ms);

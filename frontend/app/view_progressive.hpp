@@ -37,6 +37,7 @@ struct ViewFrame {
     int samples = 0;           // spp in the image
     int target = 0;            // the settings' spp
     int preview_scale = 1;     // > 1: a preview at 1/preview_scale of the size, outside the accumulation
+    CullMethod cull = CullMethod::two_stage;  // what drew it: the settings', or a preview's preview_cull
     double pass_ms = 0.0;      // wall time of the pass
     double pass_cpu_ms = 0.0;  // CPU time of the process during the pass, every thread
 
@@ -48,6 +49,10 @@ struct ViewFrame {
 inline constexpr double preview_budget_ms = 100.0;
 // The largest preview reduction (1/4 of the width and height).
 inline constexpr int max_preview_scale = 4;
+// A scaled preview's cull method: every method gives the same image, and at
+// 1 spp on a small image the per-triangle setup dominates, which bbox keeps
+// cheapest (docs/view-cpu.md has the times).
+inline constexpr CullMethod preview_cull = CullMethod::bbox;
 
 // The preview scale for the next job, from the last preview's: one step
 // coarser when it took longer than the budget, one step finer when the finer
