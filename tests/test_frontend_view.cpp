@@ -425,8 +425,9 @@ TEST_CASE("blurcull view --method dof-secondary takes bad input as render does")
         CHECK(count_lines(view.err) == 1);
         CHECK(view.err.find("motion segments (K > 1) are not supported") != std::string::npos);
         CHECK(first_line(view.err) == first_line(render.err));
-        // And the stochastic method refuses it as render --backend gl does.
-        Run view_stochastic = run_cli("view " + settings + " --frames 1", "xvfb-run -a");
+        // And the stochastic method on gl refuses it as render --backend gl
+        // does (the cpu backend's view draws motion segments).
+        Run view_stochastic = run_cli("view --backend gl " + settings + " --frames 1", "xvfb-run -a");
         Run render_gl = run_cli("render --backend gl " + settings + " -o refused.png", no_leak_check);
         CHECK(view_stochastic.status == 1);
         CHECK(count_lines(view_stochastic.err) == 1);
