@@ -347,6 +347,12 @@ TEST_CASE("blurcull view refuses bad input with one line") {
         CHECK(count_lines(run.err) == 1);
         CHECK(run.err.find("--size") != std::string::npos);
     }
+    SUBCASE("dof-secondary on the cpu backend") {
+        Run run = run_cli(view_args + " --backend cpu --method dof-secondary --frames 1");
+        CHECK(run.status == 1);
+        CHECK(count_lines(run.err) == 1);
+        CHECK(run.err.find("--backend cpu: the view draws --method stochastic only") != std::string::npos);
+    }
     SUBCASE("screenshot folder not writable") {
         Run run = run_cli(view_args + " --frames 1 --screenshot /nonexistent/folder/shot.png");
         CHECK(run.status == 1);
