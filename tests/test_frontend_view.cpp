@@ -125,7 +125,8 @@ TEST_CASE("blurcull view renders frames under Xvfb and writes the window's conte
     const fs::path shot = scratch() / "view_three.png";
     fs::remove(shot);
     // One animated triangle: milliseconds a frame on llvmpipe, where the hand takes seconds.
-    Run run = run_cli("view --scene '" + data_dir + "/triangle_animated.gltf' --size 160x120 --frames 3 --screenshot '" +
+    Run run = run_cli("view --backend gl --scene '" + data_dir +
+                          "/triangle_animated.gltf' --size 160x120 --frames 3 --screenshot '" +
                           shot.string() + "'",
                       "xvfb-run -a");
     INFO("stdout: " << run.out << "\nstderr: " << run.err);
@@ -172,7 +173,7 @@ TEST_CASE("blurcull view shows the GL backend's image: one frame matches blurcul
     if (!xvfb_or_skip()) return;
     const fs::path shot = scratch() / "view_one.png";
     const fs::path rendered = scratch() / "render_gl.png";
-    Run view = run_cli(view_args + " --frames 1 --screenshot '" + shot.string() + "'", "xvfb-run -a");
+    Run view = run_cli(view_args + " --backend gl --frames 1 --screenshot '" + shot.string() + "'", "xvfb-run -a");
     INFO("view stderr: " << view.err);
     REQUIRE(view.status == 0);
     // Under the sanitizer build llvmpipe leaves 112 bytes from its unloaded
@@ -197,6 +198,127 @@ TEST_CASE("blurcull view shows the GL backend's image: one frame matches blurcul
         for (int x = 0; x < image.width; ++x) worst = std::max(worst, max_channel(glm::abs(window.at(x, y) - image.at(x, y))));
     }
     CHECK(worst < 0.01f);
+}
+
+namespace {
+
+// One line of `view --backend cpu --frames N`: "frame F pass P: cull C, S/T spp[ (preview 1/K)], STE ...".
+struct PassLine {
+    int frame = 0, pass = 0, samples = 0, target = 0;
+    bool preview = false;
+    std::string line;
+};
+
+std::vector<PassLine> pass_lines(const std::string& out) {
+    std::vector<PassLine> lines;
+    std::istringstream in(out);
+    std::string line;
+    while (std::getline(in, line)) {
+        PassLine pass;
+        pass.line = line;
+        REQUIRE_MESSAGE(std::sscanf(line.c_str(), "frame %d pass %d", &pass.frame, &pass.pass) == 2, line);
+        const std::size_t spp = line.find(" spp");
+        REQUIRE_MESSAGE(spp != std::string::npos, line);
+        const std::size_t start = line.rfind(' ', spp - 1) + 1;
+        REQUIRE_MESSAGE(std::sscanf(line.c_str() + start, "%d/%d", &pass.samples, &pass.target) == 2, line);
+        pass.preview = line.find("(preview 1/") != std::string::npos;
+        lines.push_back(pass);
+    }
+    return lines;
+}
+
+// The largest channel difference below the overlay's panel.
+float worst_below_panel(const Image& a, const Image& b) {
+    REQUIRE(a.width == b.width);
+    REQUIRE(a.height == b.height);
+    float worst = 0.0f;
+    for (int y = panel_bottom; y < a.height; ++y) {
+        for (int x = 0; x < a.width; ++x) worst = std::max(worst, max_channel(glm::abs(a.at(x, y) - b.at(x, y))));
+    }
+    return worst;
+}
+
+}  // namespace
+
+TEST_CASE("blurcull view --backend cpu refines progressively to the image of blurcull render --backend cpu") {
+    if (!xvfb_or_skip()) return;
+    const fs::path shot = scratch() / "view_cpu.png";
+    const fs::path rendered = scratch() / "render_cpu.png";
+    fs::remove(shot);
+    // Two views: the second after a turn of the orbit and the next cull
+    // method, so the accumulation restarts from 1 spp.
+    Run view = run_cli("view --backend cpu --scene hand --size 160x120 --spp 8 --cull bbox --frames 2 --screenshot '" +
+                           shot.string() + "'",
+                       "xvfb-run -a");
+    INFO("view stdout: " << view.out << "\nstderr: " << view.err);
+    REQUIRE(view.status == 0);
+    const std::vector<PassLine> lines = pass_lines(view.out);
+    REQUIRE(!lines.empty());
+    for (int frame : {1, 2}) {
+        std::vector<PassLine> passes;
+        for (const PassLine& line : lines) {
+            if (line.frame == frame) passes.push_back(line);
+        }
+        REQUIRE(passes.size() >= 2);
+        // First a 1-spp image (a scaled preview, or the accumulation's first pass).
+        CHECK(passes.front().pass == 1);
+        CHECK(passes.front().samples == 1);
+        int previous = 0;
+        for (const PassLine& pass : passes) {
+            INFO(pass.line);
+            CHECK(pass.target == 8);
+            CHECK(pass.line.find("cpu backend") != std::string::npos);
+            CHECK(pass.line.find(frame == 1 ? "cull bbox," : "cull hull,") != std::string::npos);
+            if (pass.preview) continue;
+            // The accumulation only grows: never a restart within a view.
+            CHECK(pass.samples > previous);
+            previous = pass.samples;
+        }
+        CHECK(passes.back().samples == 8);
+        CHECK(!passes.back().preview);
+    }
+    // The window after the second view's last pass: turned, so unlike the
+    // render of the first view's camera (the next test compares a converged
+    // view with its render).
+    Run render = run_cli("render --backend cpu --scene hand --size 160x120 --spp 8 --cull hull -q -o '" +
+                         rendered.string() + "'");
+    REQUIRE(render.status == 0);
+    const Image window = blurcull::frontend::read_png(shot.string());
+    const Image first_view = blurcull::frontend::read_png(rendered.string());
+    CHECK(worst_below_panel(window, first_view) > 0.1f);
+}
+
+TEST_CASE("blurcull view --backend cpu, one view converged: the window equals blurcull render --backend cpu") {
+    if (!xvfb_or_skip()) return;
+    const fs::path shot = scratch() / "view_cpu_one.png";
+    const fs::path rendered = scratch() / "render_cpu_one.png";
+    fs::remove(shot);
+    Run view = run_cli("view --backend cpu --scene hand --size 160x120 --spp 16 --cull clip2 -q --frames 1 "
+                       "--screenshot '" + shot.string() + "'",
+                       "xvfb-run -a");
+    INFO("view stderr: " << view.err);
+    REQUIRE(view.status == 0);
+    Run render = run_cli("render --backend cpu --scene hand --size 160x120 --spp 16 --cull clip2 -q -o '" +
+                         rendered.string() + "'");
+    REQUIRE(render.status == 0);
+    // The same samples summed in the same order: the same floats, so the same
+    // 8-bit values (the window's texture and readback encode as the PNG
+    // writer does). Tolerance 0.
+    CHECK(worst_below_panel(blurcull::frontend::read_png(shot.string()),
+                            blurcull::frontend::read_png(rendered.string())) == 0.0f);
+}
+
+TEST_CASE("blurcull view --backend auto draws with the cpu backend when the window's OpenGL is software") {
+    if (!xvfb_or_skip()) return;
+    Run view = run_cli("view --scene hand --size 64x48 --spp 2 --frames 1", "xvfb-run -a");
+    INFO("view stdout: " << view.out << "\nstderr: " << view.err);
+    REQUIRE(view.status == 0);
+    // The start-up line names what draws: "on cpu backend; GL llvmpipe, software" or the GL renderer.
+    const bool software = view.err.find("llvmpipe") != std::string::npos ||
+                          view.err.find("softpipe") != std::string::npos ||
+                          view.err.find("swrast") != std::string::npos;
+    CHECK(software == (view.err.find("on cpu backend") != std::string::npos));
+    if (software) CHECK(view.out.find("2/2 spp") != std::string::npos);
 }
 
 TEST_CASE("blurcull view refuses bad input with one line") {
@@ -224,6 +346,12 @@ TEST_CASE("blurcull view refuses bad input with one line") {
         CHECK(run.status == 1);
         CHECK(count_lines(run.err) == 1);
         CHECK(run.err.find("--size") != std::string::npos);
+    }
+    SUBCASE("dof-secondary on the cpu backend") {
+        Run run = run_cli(view_args + " --backend cpu --method dof-secondary --frames 1");
+        CHECK(run.status == 1);
+        CHECK(count_lines(run.err) == 1);
+        CHECK(run.err.find("--backend cpu: the view draws --method stochastic only") != std::string::npos);
     }
     SUBCASE("screenshot folder not writable") {
         Run run = run_cli(view_args + " --frames 1 --screenshot /nonexistent/folder/shot.png");
@@ -303,8 +431,9 @@ TEST_CASE("blurcull view --method dof-secondary takes bad input as render does")
         CHECK(count_lines(view.err) == 1);
         CHECK(view.err.find("motion segments (K > 1) are not supported") != std::string::npos);
         CHECK(first_line(view.err) == first_line(render.err));
-        // And the stochastic method refuses it as render --backend gl does.
-        Run view_stochastic = run_cli("view " + settings + " --frames 1", "xvfb-run -a");
+        // And the stochastic method on gl refuses it as render --backend gl
+        // does (the cpu backend's view draws motion segments).
+        Run view_stochastic = run_cli("view --backend gl " + settings + " --frames 1", "xvfb-run -a");
         Run render_gl = run_cli("render --backend gl " + settings + " -o refused.png", no_leak_check);
         CHECK(view_stochastic.status == 1);
         CHECK(count_lines(view_stochastic.err) == 1);

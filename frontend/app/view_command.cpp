@@ -3,6 +3,7 @@
 #include "app/gl_dof_secondary.hpp"
 #include "app/scene_setup.hpp"
 #include "app/text_overlay.hpp"
+#include "app/view_progressive.hpp"
 
 #include "render/common/image.hpp"
 #include "render/common/motion_segments.hpp"
@@ -27,6 +28,7 @@
 #include <iterator>
 #include <memory>
 #include <optional>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -181,6 +183,14 @@ bool is_software(const std::string& renderer) {
         if (renderer.find(name) != std::string::npos) return true;
     }
     return false;
+}
+
+// --backend for the window: gl or cpu as named; auto draws with the cpu
+// backend when the window's GL is software (llvmpipe is far slower than the
+// cpu backend on the same cores) and the method is stochastic (the one the
+// cpu view refines progressively), else with gl.
+bool view_draws_with_cpu(const std::string& backend, const std::string& gl_renderer, RenderMethod method) {
+    return backend == "cpu" || (backend == "auto" && is_software(gl_renderer) && method == RenderMethod::stochastic);
 }
 
 // The window's image: the render plus the overlay, as an RGBA8 texture in an
@@ -375,8 +385,7 @@ public:
           view_(initial_view(command, base_, request_)),
           initial_(view_),
           window_((glfw_.window = open_window(width, height))),
-          renderer_(gl::HeadlessContext::from_current(glfwGetProcAddress, "glfwGetProcAddress")),
-          // from_current loaded the same table; a second copy is only for the window's own calls.
+          // The renderer (gl) is made in the body, on a copy of this table.
           window_context_(gl::HeadlessContext::from_current(glfwGetProcAddress, "glfwGetProcAddress")),
           timing_label_(is_software(window_context_.renderer()) ? "llvmpipe, software" : "GPU"),
           presenter_(window_context_.gl(), width, height),
@@ -388,12 +397,25 @@ public:
         glfwSetMouseButtonCallback(window_, on_mouse_button);
         glfwSetCursorPosCallback(window_, on_cursor);
         glfwSetScrollCallback(window_, on_scroll);
+        cpu_ = view_draws_with_cpu(command.backend, window_context_.renderer(), view_.method);
+        if (cpu_) {
+            // "llvmpipe (LLVM 15.0.6, 256 bits)": its first word is the name.
+            const std::string gl = window_context_.renderer().substr(0, window_context_.renderer().find(' '));
+            timing_label_ = "cpu backend; GL " + gl + (is_software(window_context_.renderer()) ? ", software" : "");
+            progressive_ = std::make_unique<ProgressiveView>([] { glfwPostEmptyEvent(); });
+        } else {
+            renderer_.emplace(gl::HeadlessContext::from_current(glfwGetProcAddress, "glfwGetProcAddress"));
+        }
     }
 
     void run() {
         if (!command_.quiet) {
             std::fprintf(stderr, "blurcull view: %s on %s\n%s", command_.scene.c_str(),
-                         renderer_.description().c_str(), view_controls_help);
+                         cpu_ ? timing_label_.c_str() : renderer_->description().c_str(), view_controls_help);
+        }
+        if (cpu_) {
+            run_progressive();
+            return;
         }
         warm_up();
         while (!glfwWindowShouldClose(window_)) {
@@ -446,9 +468,9 @@ private:
         settings.method = method;
         if (method != RenderMethod::dof_secondary) {
             refuse_motion_segments(scene, "gl");
-            return renderer_.render(scene, settings);
+            return renderer_->render(scene, settings);
         }
-        if (!dof_secondary_) dof_secondary_.emplace(renderer_, window_context_);
+        if (!dof_secondary_) dof_secondary_.emplace(*renderer_, window_context_);
         return dof_secondary_->render(scene, settings, GlOptions{}, secondary_);
     }
 
@@ -502,7 +524,8 @@ private:
         return posed;
     }
 
-    void render_frame(int window_width, int window_height) {
+    // The settings of a frame: the view's spp and cull, the command's seed.
+    RenderSettings frame_settings() const {
         RenderSettings settings;
         settings.width = width_;
         settings.height = height_;
@@ -510,6 +533,11 @@ private:
         settings.seed = command_.seed;
         settings.cull = view_.cull;
         settings.progress = false;
+        return settings;
+    }
+
+    void render_frame(int window_width, int window_height) {
+        const RenderSettings settings = frame_settings();
         const bool bounce = view_.method == RenderMethod::dof_secondary;
         const std::string busy = "blurcull view: rendering " + std::to_string(view_.spp) + " spp" +
                                  (bounce ? ", dof-secondary: primary pass, then the bounces..." : "...");
@@ -521,7 +549,10 @@ private:
         RenderResult& result = *rendered;
         const double frame_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
         const RenderStats& stats = result.stats;
-        draw_text_panel(result.image, 6, 6, overlay_text(stats, frame_ms), width_ >= 640 ? 2 : 1);
+        draw_text_panel(result.image, 6, 6,
+                        overlay_text(stats, std::to_string(view_.spp) + " spp",
+                                     format("frame %.0f ms", frame_ms) + " (" + timing_label_ + ")"),
+                        width_ >= 640 ? 2 : 1);
         shown_ = std::move(result.image);
         presenter_.show(shown_, window_width, window_height);
         const std::string title = "blurcull view: " + scene_name_ + " | " + (bounce ? "dof-secondary, " : "") +
@@ -557,11 +588,78 @@ private:
         }
     }
 
-    // The overlay: settings, camera, STE, frame time; with dof-secondary a
-    // fifth line, bounce_line.
-    std::string overlay_text(const RenderStats& stats, double frame_ms) const {
+    // The cpu backend's loop: a change submits a job to the worker, which
+    // wakes the loop with each pass it finishes; --frames N: N views along
+    // the orbit (as the gl loop's), each refined to the target spp, one line
+    // per pass.
+    void run_progressive() {
+        std::uint64_t job = 0;
+        while (!glfwWindowShouldClose(window_)) {
+            if (command_.frames > 0 && rendered_ == command_.frames) break;
+            if (needs_render_) {
+                job = progressive_->submit(posed_scene(), frame_settings());
+                needs_render_ = false;
+            }
+            glfwWaitEvents();  // input, or the worker's wake
+            keep_stochastic_method();
+            apply_input();
+            std::optional<ViewFrame> frame = progressive_->take();
+            if (!frame && !input_.screenshot) continue;
+            int window_width = width_, window_height = height_;
+            glfwGetFramebufferSize(window_, &window_width, &window_height);
+            if (frame) {
+                show_pass(*frame, window_width, window_height);
+                if (frame->job == job && frame->converged()) ++rendered_;
+                if (command_.frames > 0 && frame->job == job && frame->converged() && rendered_ < command_.frames) {
+                    view_.yaw += 0.35f;
+                    view_.cull = next_cull(view_.cull);
+                    needs_render_ = true;
+                }
+            }
+            take_screenshots(window_width, window_height);
+            glfwSwapBuffers(window_);
+        }
+    }
+
+    // M on the cpu backend: dof-secondary is drawn by the gl backend only.
+    void keep_stochastic_method() {
+        if (view_.method == RenderMethod::stochastic) return;
+        view_.method = RenderMethod::stochastic;
+        std::fprintf(stderr, "warning: the cpu backend's view draws --method stochastic only; for dof-secondary "
+                             "run with --backend gl\n");
+    }
+
+    // One image from the worker, with the overlay: spp so far / target, the
+    // pass time, the backend.
+    void show_pass(ViewFrame& frame, int window_width, int window_height) {
+        for (const std::string& warning : frame.warnings) {
+            if (!command_.quiet && warned_.insert(warning).second) std::fprintf(stderr, "warning: %s\n", warning.c_str());
+        }
+        const std::string preview = frame.preview_scale > 1 ? " (preview 1/" + std::to_string(frame.preview_scale) +
+                                                                  ", " + to_string(frame.cull) + ")"
+                                                            : "";
+        const std::string spp_text = std::to_string(frame.samples) + "/" + std::to_string(frame.target) + " spp" + preview;
+        const std::string time_text = format("pass %.0f ms", frame.pass_ms) + " (" + timing_label_ + ")";
+        draw_text_panel(frame.image, 6, 6, overlay_text(frame.stats, spp_text, time_text), width_ >= 640 ? 2 : 1);
+        shown_ = std::move(frame.image);
+        presenter_.show(shown_, window_width, window_height);
+        const std::string title = "blurcull view: " + scene_name_ + " | " + to_string(view_.cull) + " " + spp_text +
+                                  " | " + format("STE %.2f%%", 100.0 * frame.stats.ste()) + " | " +
+                                  format("pass %.0f ms", frame.pass_ms) + " cpu backend";
+        glfwSetWindowTitle(window_, title.c_str());
+        if (command_.frames > 0 && !command_.quiet) {
+            std::printf("frame %d pass %d: cull %s, %s, STE %.4f, %.1f ms, %.1f ms CPU (%s)\n", rendered_ + 1,
+                        frame.pass, to_string(view_.cull), spp_text.c_str(), frame.stats.ste(), frame.pass_ms,
+                        frame.pass_cpu_ms, timing_label_.c_str());
+            std::fflush(stdout);
+        }
+    }
+
+    // The overlay: settings (with `spp_text`), camera, STE, `time_line`;
+    // with dof-secondary a fifth line, bounce_line.
+    std::string overlay_text(const RenderStats& stats, const std::string& spp_text, const std::string& time_line) const {
         const std::string settings_line = scene_name_ + "  " + std::to_string(width_) + "x" +
-                                          std::to_string(height_) + "  " + std::to_string(view_.spp) + " spp  cull " +
+                                          std::to_string(height_) + "  " + spp_text + "  cull " +
                                           to_string(view_.cull);
         const std::string camera_line = format("lens %.4g  focus %.4g  shutter [%.3g, %.3g]", view_.lens_radius,
                                                view_.focus, view_.shutter_open, view_.shutter_close) +
@@ -569,7 +667,6 @@ private:
         const std::string ste_line = format("STE %.2f%%  (%.0f hit / %.0f tested)", 100.0 * stats.ste(),
                                             static_cast<double>(stats.samples_hit),
                                             static_cast<double>(stats.samples_tested));
-        const std::string time_line = format("frame %.0f ms", frame_ms) + " (" + timing_label_ + ")";
         const std::string text = settings_line + "\n" + camera_line + "\n" + ste_line + "\n" + time_line;
         return view_.method == RenderMethod::dof_secondary ? text + "\n" + bounce_line(stats) : text;
     }
@@ -592,7 +689,7 @@ private:
 
     void take_screenshots(int window_width, int window_height) {
         const gl::Functions& gl = window_context_.gl();
-        if (input_.screenshot && rendered_ > 0) {
+        if (input_.screenshot && !shown_.pixels.empty()) {
             // The back buffer is undefined after a swap: draw the last frame again.
             presenter_.show(shown_, window_width, window_height);
             const std::string path = command_.screenshot.empty()
@@ -617,7 +714,7 @@ private:
     const ViewState initial_;
     GlfwSession glfw_;  // before the window and everything on its context, released after them
     GLFWwindow* window_;
-    GlRenderer renderer_;
+    std::optional<GlRenderer> renderer_;  // --backend gl (or auto on a GPU)
     gl::HeadlessContext window_context_;
     std::string timing_label_;
     Presenter presenter_;
@@ -629,6 +726,9 @@ private:
     int rendered_ = 0;
     int screenshot_count_ = 0;
     bool needs_render_ = true;
+    std::set<std::string> warned_;  // the worker's warnings, printed once each
+    bool cpu_ = false;  // drawn with the cpu backend, progressively (view_progressive.hpp)
+    std::unique_ptr<ProgressiveView> progressive_;  // its worker; before the window is gone
 };
 
 // The names --method takes in the view: its two methods and their aliases.
@@ -659,6 +759,11 @@ void ViewCommand::add_options(CLI::App& app) {
                    "(0: interactive)")
         ->check(CLI::Range(0, 100000))
         ->capture_default_str();
+    app.add_option("--backend", backend,
+                   "auto, gl or cpu: what draws the frames (auto: cpu when the window's OpenGL is software, "
+                   "e.g. llvmpipe, and the method stochastic; cpu refines progressively to --spp)")
+        ->check(CLI::IsMember({"auto", "gl", "cpu"}))
+        ->capture_default_str();
     app.add_option("--screenshot", screenshot, "PNG of the window (render and overlay) after the last frame");
     app.add_flag("-q,--quiet", quiet, "no controls or per-frame lines");
     app.footer(view_controls_help);
@@ -668,6 +773,10 @@ int ViewCommand::run() const {
     ViewCommand command = *this;
     const RenderMethod initial_method = parse_render_method(method);
     refuse_secondary_flags(initial_method);
+    if (backend == "cpu" && initial_method != RenderMethod::stochastic) {
+        throw std::invalid_argument("--backend cpu: the view draws --method stochastic only on the cpu backend; "
+                                    "use --backend gl");
+    }
     if (initial_method == RenderMethod::dof_secondary) {
         // A frame of the bounce takes seconds on llvmpipe: a smaller window,
         // and a scene with a mirror, unless the user named them.

@@ -1,7 +1,9 @@
-// `blurcull view`: the GL backend rendering into a GLFW window, with an orbit
-// camera and keys for the lens, focus, shutter, spp, cull method and render
-// method (stochastic or dof-secondary); STE and frame time on screen.
-// --frames and --screenshot run it without a user.
+// `blurcull view`: the GL backend (or, where GL is software, the CPU backend
+// refining progressively: view_progressive.hpp) rendering into a GLFW window,
+// with an orbit camera and keys for the lens, focus, shutter, spp, cull method
+// and render method (stochastic or dof-secondary; on the CPU backend
+// stochastic only); STE and frame time on screen. --frames and --screenshot
+// run it without a user.
 #pragma once
 
 #include "app/scene_setup.hpp"
@@ -23,6 +25,7 @@ struct ViewCommand : SceneFlags, SecondaryFlags {
     // (168k) takes a minute a frame there.
     ViewCommand() : SceneFlags("hand", 4, "480x360") {}
 
+    std::string backend = "auto";  // auto, gl or cpu (view_command.cpp, view_draws_with_cpu)
     int frames = 0;             // > 0: render this many frames, then exit
     std::string screenshot;     // PNG of the window after the last frame
     bool quiet = false;

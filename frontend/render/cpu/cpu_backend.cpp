@@ -183,7 +183,7 @@ struct FrameContext {
     const SurfaceShader& shader;  // the alpha test of the raster decision and the resolve
     int method;
     Real near;
-    std::uint32_t spp;
+    std::uint32_t spp;  // samples per pixel drawn: a progressive pass's, else settings.spp
     int footprint;
     int block;          // a multiple of the footprint
     bool cull_bounds;   // the method bounds lens and time per footprint
@@ -191,6 +191,11 @@ struct FrameContext {
     // When set, each sample's winning triangle (or no_sample_hit) goes to
     // (*sample_ids)[(py * width + px) * spp + j], for a resolve after the raster.
     std::vector<std::uint32_t>* sample_ids = nullptr;
+    // A progressive pass (CpuOptions::sums): its samples are the pattern's
+    // first_sample .. first_sample + spp - 1 of settings.spp, added to *sums.
+    SampleSums* sums = nullptr;
+    std::uint32_t first_sample = 0;
+    const std::atomic<bool>* cancel = nullptr;
 };
 
 // One worker's rasterization of work tiles: its sample, depth and hit
@@ -252,9 +257,10 @@ private:
         for (int py = y0_; py <= y1_; ++py) {
             for (int px = x0_; px <= x1_; ++px) {
                 const kernelf::PixelSampleSetup pattern = kernelf::pixel_sample_setup(
-                    static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py), frame_.spp, frame_.settings.seed);
+                    static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py),
+                    static_cast<std::uint32_t>(frame_.settings.spp), frame_.settings.seed);
                 for (std::uint32_t j = 0; j < frame_.spp; ++j) {
-                    const kernelf::PixelSample s = kernelf::pixel_sample_from(pattern, j);
+                    const kernelf::PixelSample s = kernelf::pixel_sample_from(pattern, frame_.first_sample + j);
                     const std::size_t k = slot(px, py, j);
                     const glm::vec2 ndc = frame_.model.sample_ndc(px, py, s.offset);
                     samples_[k] = Sample{typename K::vec2(ndc), typename K::vec2(s.lens), static_cast<Real>(s.time)};
@@ -539,12 +545,15 @@ private:
         }
     }
 
-    // The box filter of the tile's samples into its pixels.
+    // The box filter of the tile's samples into its pixels; a progressive
+    // pass continues its pixel's sums from the passes before.
     void resolve(Image& image) const {
+        const int summed = static_cast<int>(frame_.first_sample + frame_.spp);
         for (int py = y0_; py <= y1_; ++py) {
             for (int px = x0_; px <= x1_; ++px) {
-                glm::vec3 sum(0.0f);
-                std::uint32_t covered = 0;
+                const std::size_t at = image.index(px, py);
+                glm::vec3 sum = frame_.sums != nullptr ? frame_.sums->colour[at] : glm::vec3(0.0f);
+                std::uint32_t covered = frame_.sums != nullptr ? frame_.sums->covered[at] : 0;
                 for (std::uint32_t j = 0; j < frame_.spp; ++j) {
                     const std::size_t k = slot(px, py, j);
                     const Sample& s = samples_[k];
@@ -555,8 +564,12 @@ private:
                         (*frame_.sample_ids)[pixel * frame_.spp + j] = hit_[k] == none ? no_sample_hit : hit_[k];
                     }
                 }
-                image.at(px, py) = resolve_box(sum, frame_.settings.spp);
-                image.coverage[image.index(px, py)] = resolve_coverage(covered, frame_.settings.spp);
+                if (frame_.sums != nullptr) {
+                    frame_.sums->colour[at] = sum;
+                    frame_.sums->covered[at] = covered;
+                }
+                image.at(px, py) = resolve_box(sum, summed);
+                image.coverage[at] = resolve_coverage(covered, summed);
             }
         }
     }
@@ -590,6 +603,7 @@ void rasterize_tiles(const FrameContext<Real>& frame, int threads, Clock::time_p
     cpu_methods::run_parallel_items(
         threads, tile_count, [&] { return TileRasterizer<Real>(frame); },
         [&](TileRasterizer<Real>& rasterizer, int tile) {
+            if (frame.cancel != nullptr && frame.cancel->load(std::memory_order_relaxed)) return;
             rasterizer.render_tile(tile, result.image);
             progress.advance();
         },
@@ -601,6 +615,7 @@ void rasterize_tiles(const FrameContext<Real>& frame, int threads, Clock::time_p
             total_visited.fetch_add(rasterizer.visited);
         });
     progress.finish();
+    if (frame.cancel != nullptr && frame.cancel->load()) throw RenderCancelled();
     RenderStats& stats = result.stats;
     stats.samples_tested = total_tested.load();
     stats.samples_hit = total_hit.load();
@@ -648,19 +663,36 @@ RenderResult render_cpu_in(const Scene& scene, const RenderSettings& settings, c
                                    shader,
                                    cull.kernel_method,
                                    static_cast<Real>(model.znear),
-                                   static_cast<std::uint32_t>(settings.spp),
+                                   static_cast<std::uint32_t>(options.sums != nullptr ? options.pass_samples
+                                                                                      : settings.spp),
                                    footprint,
                                    block,
                                    cull_bounds,
                                    // Footprints that tile the work tiles get their samples sorted by time.
                                    cull_bounds && footprint <= tile_size && tile_size % footprint == 0,
-                                   sample_ids};
+                                   sample_ids,
+                                   options.sums,
+                                   options.sums != nullptr ? static_cast<std::uint32_t>(options.sums->samples) : 0u,
+                                   options.cancel};
     if (sample_ids != nullptr)
         sample_ids->assign(static_cast<std::size_t>(settings.width) * settings.height * frame.spp, no_sample_hit);
     rasterize_tiles(frame, threads, start, result);
+    if (options.sums != nullptr) options.sums->samples += options.pass_samples;
     result.stats.ms_per_phase.emplace_back("raster+resolve", ms_since(phase));
     result.stats.ms_total = ms_since(start);
     return result;
+}
+
+// A progressive pass must continue sums of this image size and fit in settings.spp.
+void validate_pass(const RenderSettings& settings, const SampleSums& sums, int pass_samples) {
+    const std::size_t pixels = static_cast<std::size_t>(settings.width) * static_cast<std::size_t>(settings.height);
+    if (sums.colour.size() != pixels || sums.covered.size() != pixels)
+        throw std::invalid_argument("cpu: the progressive sums are not of a " + std::to_string(settings.width) + "x" +
+                                    std::to_string(settings.height) + " image");
+    if (pass_samples < 1 || sums.samples < 0 || sums.samples > settings.spp - pass_samples)
+        throw std::invalid_argument("cpu: a progressive pass of " + std::to_string(pass_samples) +
+                                    " samples after " + std::to_string(sums.samples) + " does not fit in " +
+                                    std::to_string(settings.spp) + " spp");
 }
 
 }  // namespace
@@ -671,6 +703,7 @@ RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, cons
     require_valid_scene(scene);
     if (options.footprint < 1) throw std::invalid_argument("cpu: footprint must be >= 1 pixel");
     if (options.block < 0) throw std::invalid_argument("cpu: block must be >= 0 pixels");
+    if (options.sums != nullptr) validate_pass(settings, *options.sums, options.pass_samples);
     switch (options.precision) {
     case KernelPrecision::float32:
         return render_cpu_in<float>(scene, settings, options, sample_ids);

@@ -5,7 +5,11 @@
 #include "render/common/render_types.hpp"
 #include "scene/scene.hpp"
 
+#include <glm/vec3.hpp>
+
+#include <atomic>
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -34,6 +38,29 @@ std::vector<std::string> kernel_precision_names();
 // not double or float") otherwise.
 KernelPrecision parse_kernel_precision(const std::string& name);
 
+// Progressive rendering (render/cpu/progressive.hpp): the running per-pixel
+// sums of the samples drawn so far, the pattern's samples 0 .. samples-1 of
+// settings.spp. A pass adds its samples to them in index order, which is the
+// order of a one-shot render's sums, so the pass that reaches settings.spp
+// gives render_cpu's one-shot image bit for bit.
+struct SampleSums {
+    int samples = 0;                  // per pixel, summed so far
+    std::vector<glm::vec3> colour;    // width * height, row-major: colour sums
+    std::vector<std::uint32_t> covered;  // width * height: samples that hit a triangle
+
+    // Empty sums for a width x height image.
+    void reset(int width, int height) {
+        samples = 0;
+        colour.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), glm::vec3(0.0f));
+        covered.assign(colour.size(), 0);
+    }
+};
+
+// Thrown by render_cpu when CpuOptions::cancel became true during the render.
+struct RenderCancelled : std::runtime_error {
+    RenderCancelled() : std::runtime_error("cpu: render cancelled") {}
+};
+
 struct CpuOptions {
     // Side, in pixels, of the screen footprint the per-footprint sample bounds
     // (dualspace, twostage) are computed for: 1 = per pixel; larger amortises
@@ -46,6 +73,15 @@ struct CpuOptions {
     // method is still conservative against the double oracle (property
     // tests), and the decisions are those the GL backend makes.
     KernelPrecision precision = KernelPrecision::float64;
+    // Progressive rendering: when set, the render draws only the pattern's
+    // samples sums->samples .. sums->samples + pass_samples - 1 (of
+    // settings.spp), adds them to *sums (sums->samples grows by
+    // pass_samples) and returns the image of every sample summed so far.
+    SampleSums* sums = nullptr;
+    int pass_samples = 0;  // >= 1 with sums; ignored without
+    // When set, checked before each work tile: once true, render_cpu throws
+    // RenderCancelled (and *sums is left part-updated: reset it).
+    const std::atomic<bool>* cancel = nullptr;
 };
 
 // Renders with settings.spp samples per pixel, sample j of pixel (px, py)
@@ -54,7 +90,9 @@ struct CpuOptions {
 // image is the same for every settings.cull (tests/test_frontend_cpu.cpp).
 // stats.samples_tested counts the exact tests run (samples that passed the
 // cull), stats.samples_hit those that found coverage. Deterministic whatever
-// the thread count. Throws std::invalid_argument for bad settings and
+// the thread count. With options.sums, one pass of a progressive render
+// (SampleSums above); sample_ids then hold the pass's samples only. Throws
+// std::invalid_argument for bad settings and
 // SceneError for a bad scene. Triangles it skips are in result.warnings.
 RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, const CpuOptions& options = {},
                         std::vector<std::uint32_t>* sample_ids = nullptr);

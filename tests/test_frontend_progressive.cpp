@@ -1,0 +1,164 @@
+// Progressive rendering on the CPU backend (render/cpu/progressive.hpp):
+// passes over consecutive sample indices of one spp pattern, added to running
+// sums, give the one-shot render_cpu image bit for bit however the passes
+// split the samples; a cancelled pass throws and ends the render; bad sums are
+// refused in one line; the pass schedule doubles within its time budget.
+#include "frontend_test_helpers.hpp"
+#include "render/cpu/cpu_backend.hpp"
+#include "render/cpu/progressive.hpp"
+#include "scene/builtin_scenes.hpp"
+
+#include <doctest/doctest.h>
+
+#include <atomic>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+using namespace blurcull::frontend;
+using namespace blurcull::frontend::test;
+
+namespace {
+
+Scene small_scene(const std::string& name, int width, int height) {
+    SceneOptions options;
+    options.aspect = float(width) / float(height);
+    return make_builtin_scene(name, options);
+}
+
+// The progressive render of `settings.spp` samples in passes of `passes`
+// samples each (their sum is the spp).
+RenderResult render_in_passes(const Scene& scene, const RenderSettings& settings, const std::vector<int>& passes,
+                              const CpuOptions& options = {}) {
+    ProgressiveRender render(scene, settings, options);
+    for (int count : passes) render.next_pass(count);
+    REQUIRE(render.done());
+    return render.result();
+}
+
+bool same_coverage(const Image& a, const Image& b) { return a.coverage == b.coverage; }
+
+// One-shot against progressive in each split of `splits`, pixels, coverage and counts.
+void check_splits(const Scene& scene, const RenderSettings& settings, const CpuOptions& options,
+                  const std::vector<std::vector<int>>& splits) {
+    const RenderResult one_shot = render_cpu(scene, settings, options);
+    for (const std::vector<int>& passes : splits) {
+        INFO(scene.name << ", cull " << to_string(settings.cull) << ", " << to_string(options.precision) << ", "
+                        << passes.size() << " passes");
+        const RenderResult progressive = render_in_passes(scene, settings, passes, options);
+        CHECK(same_pixels(progressive.image, one_shot.image));
+        CHECK(same_coverage(progressive.image, one_shot.image));
+        CHECK(progressive.stats.samples_hit == one_shot.stats.samples_hit);
+        CHECK(progressive.stats.samples_tested == one_shot.stats.samples_tested);
+    }
+}
+
+}  // namespace
+
+TEST_CASE("passes accumulated give the one-shot image bit for bit, on every built-in scene and split") {
+    const int width = 48, height = 36;
+    const std::vector<std::vector<int>> splits_16 = {std::vector<int>(16, 1), {1, 1, 2, 4, 8}, {5, 11},
+                                                      {3, 3, 3, 3, 3, 1}};
+    // Every split, both culls and precisions on the two small scenes; the
+    // view's schedule on the two large ones (the forest's 168k triangles are
+    // set up again in every pass).
+    for (const std::string name : {"hand", "car", "dragonfly", "forest"}) {
+        const Scene scene = small_scene(name, width, height);
+        const bool small = name == "hand" || name == "car";
+        for (CullMethod cull : {CullMethod::two_stage, CullMethod::bbox}) {
+            for (KernelPrecision precision : {KernelPrecision::float64, KernelPrecision::float32}) {
+                if (!small && (cull != CullMethod::two_stage || precision != KernelPrecision::float64)) continue;
+                RenderSettings settings = quiet_settings(width, height, 16);
+                settings.cull = cull;
+                CpuOptions options;
+                options.precision = precision;
+                check_splits(scene, settings, options,
+                             small ? splits_16 : std::vector<std::vector<int>>{{1, 1, 2, 4, 8}});
+            }
+        }
+    }
+}
+
+TEST_CASE("passes accumulated give the one-shot image for an spp that is not a square, and another seed") {
+    RenderSettings settings = quiet_settings(48, 36, 7);
+    settings.seed = 12345;
+    check_splits(small_scene("car", 48, 36), settings, {}, {{1, 2, 4}});
+}
+
+TEST_CASE("the image after some passes is the mean of the pattern's first samples, however they were split") {
+    const Scene scene = small_scene("hand", 40, 30);
+    const RenderSettings settings = quiet_settings(40, 30, 16);
+    ProgressiveRender split(scene, settings), whole(scene, settings);
+    split.next_pass(1);
+    split.next_pass(1);
+    split.next_pass(2);
+    whole.next_pass(4);
+    CHECK(split.samples() == 4);
+    CHECK(!split.done());
+    CHECK(same_pixels(split.result().image, whole.result().image));
+    // The first 4 of 16 are not the 4-spp pattern (strata of 16): a
+    // different image, not a copy of one.
+    const RenderResult four = render_cpu(scene, quiet_settings(40, 30, 4));
+    CHECK(!same_pixels(split.result().image, four.image));
+    // A pass asking for more than is left draws what is left.
+    split.next_pass(100);
+    CHECK(split.done());
+    CHECK(same_pixels(split.result().image, render_cpu(scene, settings).image));
+    CHECK_THROWS_AS(split.next_pass(1), std::logic_error);
+}
+
+TEST_CASE("a cancelled pass throws RenderCancelled and the render cannot go on") {
+    const Scene scene = small_scene("hand", 40, 30);
+    std::atomic<bool> cancel{false};
+    CpuOptions options;
+    options.cancel = &cancel;
+    ProgressiveRender render(scene, quiet_settings(40, 30, 8), options);
+    render.next_pass(1);
+    cancel = true;
+    CHECK_THROWS_AS(render.next_pass(1), RenderCancelled);
+    cancel = false;
+    CHECK_THROWS_AS(render.next_pass(1), std::logic_error);
+    // A one-shot render too.
+    cancel = true;
+    CHECK_THROWS_AS(render_cpu(scene, quiet_settings(40, 30, 2), options), RenderCancelled);
+}
+
+TEST_CASE("render_cpu refuses progressive sums that do not fit, in one line") {
+    const Scene scene = small_scene("hand", 16, 12);
+    const RenderSettings settings = quiet_settings(16, 12, 4);
+    SampleSums sums;
+    CpuOptions options;
+    options.sums = &sums;
+    options.pass_samples = 1;
+    sums.reset(8, 8);
+    CHECK_THROWS_WITH_AS(render_cpu(scene, settings, options), "cpu: the progressive sums are not of a 16x12 image",
+                         std::invalid_argument);
+    sums.reset(16, 12);
+    sums.samples = 3;
+    options.pass_samples = 2;
+    CHECK_THROWS_WITH_AS(render_cpu(scene, settings, options),
+                         "cpu: a progressive pass of 2 samples after 3 does not fit in 4 spp", std::invalid_argument);
+    options.pass_samples = 0;
+    CHECK_THROWS_AS(render_cpu(scene, settings, options), std::invalid_argument);
+    options.pass_samples = 1;
+    render_cpu(scene, settings, options);
+    CHECK(sums.samples == 4);
+}
+
+TEST_CASE("the pass schedule doubles the samples within the time budget") {
+    // No time known: 1, 1, 2, 4, 8 for 16.
+    std::vector<int> passes;
+    for (int samples = 0; samples < 16;) {
+        passes.push_back(next_pass_samples(samples, 16, 0.0, 500.0));
+        samples += passes.back();
+    }
+    CHECK(passes == std::vector<int>{1, 1, 2, 4, 8});
+    // The last pass is what is left.
+    CHECK(next_pass_samples(12, 16, 0.0, 500.0) == 4);
+    CHECK(next_pass_samples(16, 16, 0.0, 500.0) == 0);
+    // 100 ms a sample and 500 ms of budget: at most 5.
+    CHECK(next_pass_samples(8, 32, 100.0, 500.0) == 5);
+    // Slower than the budget: still one sample.
+    CHECK(next_pass_samples(8, 32, 900.0, 500.0) == 1);
+}
