@@ -223,6 +223,8 @@ TEST_CASE("blurcull render refuses an option the backend cannot honour") {
         {"--backend gl --precision double", "--precision: only the cpu backend takes it (backend gl)"},
         {"--backend cpu --gl-cell 4", "--gl-cell: only the gl backend takes it (backend cpu)"},
         {"--backend embree --gl-cell 4", "--gl-cell: only the gl backend takes it (backend embree)"},
+        {"--backend cpu --method dof-secondary --layer-images host",
+         "--layer-images: only the gl backend takes it (backend cpu)"},
         {"--backend embree --method interval", "--method interval: only the cpu and gl backends take it (backend embree)"},
         {"--backend cpu --method accum --footprint 2", "--footprint: only the stochastic method takes it (method accum)"},
         {"--backend cpu --method interleave --precision float",

@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 
 using namespace blurcull::frontend;
 using namespace blurcull::frontend::test;
@@ -154,4 +155,35 @@ TEST_CASE("dof-secondary: lens parts") {
     CHECK(lens_part_of({0.9f, 0.9f}, 16) == 15);
     CHECK(lens_part_of({-1.0f, -1.0f}, 16) == 0);
     CHECK(lens_part_of({1.0f, 1.0f}, 16) == 15);  // the border clamps into the grid
+}
+
+// The pyramid as the GL build hands it over (DepthPyramid::from_levels):
+// the host's levels flattened and read back give the same intervals; an
+// array of another length is refused in one line.
+TEST_CASE("dof-secondary: DepthPyramid::from_levels") {
+    LayerImages images;
+    images.size = 5;
+    images.layers = 2;
+    images.depth.assign(2 * 25, std::numeric_limits<float>::infinity());
+    images.triangle.assign(images.depth.size(), 0);
+    for (int i = 0; i < 25; i += 3) images.depth[static_cast<std::size_t>(i)] = 1.0f + 0.25f * float(i);
+    images.depth[25 + 6] = 9.5f;
+    const DepthPyramid host(images);
+    std::vector<float> flat;
+    for (const DepthPyramid::Level& level : host.levels())
+        for (std::size_t cell = 0; cell < level.lo.size(); ++cell) {
+            flat.push_back(level.lo[cell]);
+            flat.push_back(level.hi[cell]);
+        }
+    const DepthPyramid read = DepthPyramid::from_levels(5, flat);
+    REQUIRE(read.levels().size() == host.levels().size());  // 5, 3, 2, 1
+    CHECK(read.levels().size() == 4);
+    for (int y0 = 0; y0 < 5; ++y0)
+        for (int x0 = 0; x0 < 5; ++x0)
+            for (int y1 = y0; y1 < 5; ++y1)
+                for (int x1 = x0; x1 < 5; ++x1) CHECK(read.interval(x0, y0, x1, y1) == host.interval(x0, y0, x1, y1));
+    CHECK(host.interval(0, 1, 1, 1).y == 9.5f);
+    flat.pop_back();
+    CHECK_THROWS_AS(DepthPyramid::from_levels(5, flat), std::invalid_argument);
+    CHECK_THROWS_AS(DepthPyramid::from_levels(0, {}), std::invalid_argument);
 }

@@ -1,12 +1,13 @@
 #include "app/gl_dof_secondary.hpp"
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace blurcull::frontend {
 namespace {
 
-// The context, made current: the trace pass compiles on it.
+// The context, made current: the passes compile on it.
 const gl::HeadlessContext& made_current(const gl::HeadlessContext& context) {
     context.make_current();
     return context;
@@ -14,22 +15,60 @@ const gl::HeadlessContext& made_current(const gl::HeadlessContext& context) {
 
 }  // namespace
 
-GlDofSecondary::GlDofSecondary(GlRenderer& rasterizer, const gl::HeadlessContext& trace_context)
-    : rasterizer_(&rasterizer), trace_context_(&trace_context), tracer_(made_current(trace_context)) {}
+ClusterLayers to_cluster_layers(GlClusterLayers&& built, LayerStats& stats) {
+    stats.fragments += built.counts.fragments;
+    stats.culled_near += built.counts.culled_near;
+    stats.culled_in_front += built.counts.culled_in_front;
+    stats.culled_normal += built.counts.culled_normal;
+    stats.dropped += built.counts.dropped;
+    LayerImages images;
+    images.size = built.size;
+    images.layers = built.layers;
+    images.depth = std::move(built.depth);
+    images.triangle = std::move(built.triangle);
+    DepthPyramid pyramid = DepthPyramid::from_levels(built.size, built.pyramid);
+    return ClusterLayers{std::move(images), std::move(pyramid)};
+}
 
-RenderResult GlDofSecondary::render(const Scene& scene, const RenderSettings& settings, const GlOptions& gl_options,
-                                    const SecondaryOptions& options, SecondaryStats* stats) const {
-    const PrimaryPass primary = [&](const RenderSettings& primary_settings, std::vector<std::uint32_t>& ids) {
+GlDofSecondary::GlDofSecondary(GlRenderer& rasterizer, const gl::HeadlessContext& trace_context)
+    : rasterizer_(&rasterizer),
+      trace_context_(&trace_context),
+      tracer_(made_current(trace_context)),
+      builder_(trace_context) {}
+
+PrimaryPass GlDofSecondary::primary_pass(const Scene& scene, const GlOptions& gl_options) const {
+    return [this, &scene, gl_options](const RenderSettings& primary_settings, std::vector<std::uint32_t>& ids) {
         GlOptions rasterizer_options = gl_options;
         rasterizer_options.keep_sample_ids = true;
         return rasterizer_->render(scene, primary_settings, rasterizer_options, &ids);
     };
-    const LayerTracer tracer = [&](const kernelf::LayerView& view, const std::vector<float>& depth, int layers,
-                                   float thickness, const std::vector<kernelf::LayerSegment>& segments) {
+}
+
+LayerTracer GlDofSecondary::layer_tracer() const {
+    return [this](const kernelf::LayerView& view, const std::vector<float>& depth, int layers, float thickness,
+                  const std::vector<kernelf::LayerSegment>& segments) {
         trace_context_->make_current();
         return tracer_.trace(view, depth, layers, thickness, segments);
     };
-    return render_dof_secondary(scene, settings, options, stats, &tracer, &primary);
+}
+
+LayerBuilder GlDofSecondary::layer_builder() const {
+    return [this](const WorldTriangles& world, const kernelf::LayerView& view, int layers, const ClusterCulls& culls,
+                  LayerStats& stats) {
+        trace_context_->make_current();
+        const GlLayerInput input{&world.vertices, &world.normals, &culls.own, &culls.origins, culls.normal_threshold};
+        return to_cluster_layers(builder_.build(view, layers, input), stats);
+    };
+}
+
+RenderResult GlDofSecondary::render(const Scene& scene, const RenderSettings& settings, const GlOptions& gl_options,
+                                    const SecondaryOptions& options, SecondaryStats* stats,
+                                    LayerImagesOn layers_on) const {
+    const PrimaryPass primary = primary_pass(scene, gl_options);
+    const LayerTracer tracer = layer_tracer();
+    const LayerBuilder builder = layer_builder();
+    return render_dof_secondary(scene, settings, options, stats, &tracer, &primary,
+                                layers_on == LayerImagesOn::gl ? &builder : nullptr);
 }
 
 }  // namespace blurcull::frontend

@@ -1,13 +1,16 @@
 // --method dof-secondary on the gl backend: the GL rasterizer's per-sample
-// winners as the primary pass and the image-space traces in a compute pass
-// (GlLayerTracer), handed to render_dof_secondary (the rest of the method on
-// the host). `blurcull render --backend gl` and `blurcull view` both render
-// through it (docs/secondary-rays.md, "The renderer").
+// winners as the primary pass, the clusters' layered images and pyramids
+// peeled by the GL rasterizer (GlLayerBuilder) and the image-space traces in
+// a compute pass (GlLayerTracer), handed to render_dof_secondary (clustering,
+// views, interval clipping and shading on the host). `blurcull render
+// --backend gl` and `blurcull view` both render through it
+// (docs/secondary-rays.md, "What the gl backend runs").
 #pragma once
 
 #include "render/common/render_types.hpp"
 #include "render/gl/gl_backend.hpp"
 #include "render/gl/gl_context.hpp"
+#include "render/gl/gl_layer_images.hpp"
 #include "render/gl/gl_layer_trace.hpp"
 #include "render/secondary/dof_secondary.hpp"
 #include "render/secondary/secondary_options.hpp"
@@ -15,24 +18,35 @@
 
 namespace blurcull::frontend {
 
+// render/secondary's layers from the GL build's read-back, its counts added to `stats`.
+ClusterLayers to_cluster_layers(GlClusterLayers&& built, LayerStats& stats);
+
 class GlDofSecondary {
 public:
     // `rasterizer` renders the primary samples on its own context (made
-    // current by its render), `trace_context` runs the trace pass (made
-    // current here, compiling it); both may be one window's context, and the
-    // caller keeps both alive while this object is used.
+    // current by its render), `trace_context` runs the layer and trace passes
+    // (made current here, compiling them); both may be one window's context,
+    // and the caller keeps both alive while this object is used.
     GlDofSecondary(GlRenderer& rasterizer, const gl::HeadlessContext& trace_context);
 
-    // render_dof_secondary of `scene` with the GL passes; `gl_options` are
-    // the rasterizer's (sample ids are kept whatever they say). Throws as
-    // render_dof_secondary and GlRenderer::render do.
+    // render_dof_secondary of `scene` with the GL passes, the layers built
+    // where `layers_on` says; `gl_options` are the rasterizer's (sample ids
+    // are kept whatever they say). Throws as render_dof_secondary and
+    // GlRenderer::render do.
     RenderResult render(const Scene& scene, const RenderSettings& settings, const GlOptions& gl_options,
-                        const SecondaryOptions& options, SecondaryStats* stats = nullptr) const;
+                        const SecondaryOptions& options, SecondaryStats* stats = nullptr,
+                        LayerImagesOn layers_on = LayerImagesOn::gl) const;
+
+    // The passes as render_dof_secondary takes them (for tests that wrap them).
+    PrimaryPass primary_pass(const Scene& scene, const GlOptions& gl_options) const;
+    LayerTracer layer_tracer() const;
+    LayerBuilder layer_builder() const;
 
 private:
     GlRenderer* rasterizer_;
     const gl::HeadlessContext* trace_context_;
     GlLayerTracer tracer_;
+    GlLayerBuilder builder_;
 };
 
 }  // namespace blurcull::frontend

@@ -81,6 +81,7 @@ struct RenderJob {
     GlOptions gl;
     EmbreeOptions embree;
     SecondaryOptions secondary;
+    LayerImagesOn layer_images = LayerImagesOn::gl;  // dof-secondary on gl: where the layers are built
     OutputPattern output;
     ImageFormat format = ImageFormat::png;
     ExrPixelType exr_type = ExrPixelType::half;
@@ -239,6 +240,7 @@ void refuse_unhonoured_options(const RenderCommand& command, Backend backend) {
         {"--precision", command.precision_option, backend_bit(Backend::cpu)},
         {"--gl-cell", command.gl_cell_option, backend_bit(Backend::gl)},
         {"--secondary", command.secondary_option, backend_bit(Backend::embree)},
+        {"--layer-images", command.layer_images_option, backend_bit(Backend::gl)},
     };
     command.refuse_secondary_flags(method.method);
     for (const BackendOption& option : options) {
@@ -315,6 +317,7 @@ RenderJob set_up(const RenderCommand& command) {
     job.embree.secondary = parse_embree_secondary(command.secondary);
 #endif
     job.secondary = command.secondary_options();
+    job.layer_images = command.layer_images == "host" ? LayerImagesOn::host : LayerImagesOn::gl;
     try {
         validate_secondary_options(job.secondary);
     } catch (const std::invalid_argument& error) {
@@ -323,15 +326,16 @@ RenderJob set_up(const RenderCommand& command) {
     return job;
 }
 
-// dof-secondary: on gl its image-space traces run in a compute pass of a
-// headless context (the rest of the method on the host, for now).
+// dof-secondary: on gl the primary samples, the layers (unless --layer-images
+// host) and the image-space traces run on GL (app/gl_dof_secondary.hpp).
 RenderResult render_secondary(const RenderJob& job) {
 #if BLURCULL_HAVE_GL
     if (job.backend == Backend::gl) {
-        // The GL rasterizer on its own context, the trace pass on a second one.
+        // The GL rasterizer on its own context, the layer and trace passes on a second one.
         GlRenderer rasterizer;
         const gl::HeadlessContext context = gl::HeadlessContext::create();
-        return GlDofSecondary(rasterizer, context).render(job.scene, job.settings, job.gl, job.secondary);
+        return GlDofSecondary(rasterizer, context).render(job.scene, job.settings, job.gl, job.secondary, nullptr,
+                                                            job.layer_images);
     }
 #endif
     return render_dof_secondary(job.scene, job.settings, job.secondary);
@@ -566,6 +570,13 @@ void RenderCommand::add_options(CLI::App& app) {
                            ->check(CLI::IsMember({"bounce", "none"}))
                            ->capture_default_str();
     SecondaryFlags::add_options(app);
+    layer_images_option = app.add_option("--layer-images", layer_images,
+                                         "dof-secondary on gl: build the clusters' layered images and depth "
+                                         "pyramids with the GL rasterizer and a compute pass (gl), or on the host "
+                                         "with the cpu backend's code (host)")
+                              ->check(CLI::IsMember({"gl", "host"}))
+                              ->capture_default_str();
+    dof_secondary_options.push_back(layer_images_option);  // refused with the other methods
     app.add_flag("-q,--quiet", quiet, "no progress on stderr");
 }
 

@@ -34,6 +34,7 @@ struct RenderCommand : SceneFlags, SecondaryFlags {
     int gl_cell = GlOptions{}.cell_pixels;
     std::string secondary = "bounce";  // embree: bounce or none (EmbreeSecondary)
     bool quiet = false;
+    std::string layer_images = "gl";  // dof-secondary on gl: where the layers are built, gl or host
 
     // The backend-specific options, to tell whether they were given
     // (count() > 0) when the backend in use cannot honour them.
@@ -42,6 +43,7 @@ struct RenderCommand : SceneFlags, SecondaryFlags {
     CLI::Option* precision_option = nullptr;
     CLI::Option* gl_cell_option = nullptr;
     CLI::Option* secondary_option = nullptr;
+    CLI::Option* layer_images_option = nullptr;  // --layer-images, gl only
     // The sequence's and the EXR's options, refused without --frames or an .exr output.
     CLI::Option* frames_option = nullptr;
     CLI::Option* fps_option = nullptr;

@@ -40,6 +40,7 @@ struct BounceContext {
     float offset;  // rays start this far along their direction, off their own surface
     int spp;
     const LayerTracer* tracer;  // null: the host loop
+    const LayerBuilder* layer_builder;  // null: build_cluster_layers_on_host
 };
 
 // What one ray sees when traced against every triangle.
@@ -82,12 +83,8 @@ ClusterCulls cluster_culls(const BounceContext& c, const K::LayerView& view, con
         culls.own[c.rays[r].triangle] = 1;
         cos_widest = std::min(cos_widest, glm::dot(c.rays[r].direction, view.forward));
     }
-    culls.cluster_depth.assign(static_cast<std::size_t>(view.size) * view.size, -1.0f);
-    if (c.options.cull_in_front) {
-        std::vector<glm::vec3> origins;
-        for (std::uint32_t r : members) origins.push_back(c.rays[r].origin);
-        culls.cluster_depth = cluster_origin_depth(view, origins);
-    }
+    if (c.options.cull_in_front)
+        for (std::uint32_t r : members) culls.origins.push_back(c.rays[r].origin);
     if (c.options.cull_normals && cos_widest > 0.0f)
         culls.normal_threshold = std::sqrt(std::max(0.0f, 1.0f - cos_widest * cos_widest));
     return culls;
@@ -194,8 +191,13 @@ void bounce_cluster(const BounceContext& c, const Cluster<float>& cluster, std::
         if (members.empty()) return;
     }
     const ClusterCulls culls = cluster_culls(c, view, members);
-    const LayerImages images = build_layer_images(c.world, view, c.options.layers, culls, stats.layers);
-    const DepthPyramid pyramid(images);
+    const Clock::time_point build_start = Clock::now();
+    const ClusterLayers built =
+        c.layer_builder != nullptr ? (*c.layer_builder)(c.world, view, c.options.layers, culls, stats.layers)
+                                   : build_cluster_layers_on_host(c.world, view, c.options.layers, culls, stats.layers);
+    stats.layer_build_ms += ms_since(build_start);
+    const LayerImages& images = built.images;
+    const DepthPyramid& pyramid = built.pyramid;
     // Groups: the rays of one pixel and one lens part.
     const auto spp = static_cast<std::uint32_t>(c.spp);
     auto key = [&](std::uint32_t r) { return std::make_pair(c.rays[r].sample / spp, c.rays[r].lens_part); };
@@ -226,6 +228,7 @@ void add_stats(SecondaryStats& into, const SecondaryStats& from) {
     into.layers.culled_in_front += from.layers.culled_in_front;
     into.layers.culled_normal += from.layers.culled_normal;
     into.layers.dropped += from.layers.dropped;
+    into.layer_build_ms += from.layer_build_ms;
 }
 
 // Every ray's radiance by the options' bounce mode, in parallel over
@@ -290,7 +293,8 @@ std::vector<kernelf::LayerHit> trace_layers_on_host(const kernelf::LayerView& vi
 }
 
 RenderResult render_dof_secondary(const Scene& scene, const RenderSettings& settings, const SecondaryOptions& options,
-                                  SecondaryStats* stats_out, const LayerTracer* tracer, const PrimaryPass* primary_pass) {
+                                  SecondaryStats* stats_out, const LayerTracer* tracer, const PrimaryPass* primary_pass,
+                                  const LayerBuilder* layer_builder) {
     validate_secondary_options(options);
     // The bounce resolves a hit with vertices linear over the shutter.
     if (!scene.position_at.empty())
@@ -316,11 +320,11 @@ RenderResult render_dof_secondary(const Scene& scene, const RenderSettings& sett
     const BounceContext context{scene, options, primary.rays, world, colours,
                                 std::tan(0.5f * options.fov_degrees * 3.14159265358979f / 180.0f),
                                 1e-3f * diagonal, options.thickness_fraction * diagonal, 1e-4f * diagonal,
-                                settings.spp, tracer};
+                                settings.spp, tracer, layer_builder};
     SecondaryStats stats;
     stats.reflector_samples = primary.reflector_samples;
     stats.rays = primary.rays.size();
-    const int threads = tracer != nullptr ? 1 : cpu_methods::render_threads(settings);
+    const int threads = tracer != nullptr || layer_builder != nullptr ? 1 : cpu_methods::render_threads(settings);
     const std::vector<glm::vec3> radiance = bounce_all(context, threads, stats);
     for (std::size_t r = 0; r < primary.rays.size(); ++r)
         primary.sample_colour[primary.rays[r].sample] += primary.rays[r].weight * radiance[r];
@@ -347,7 +351,8 @@ RenderResult render_dof_secondary(const Scene& scene, const RenderSettings& sett
                              {"culled_near_triangles", double(stats.layers.culled_near)},
                              {"culled_in_front_fragments", double(stats.layers.culled_in_front)},
                              {"culled_normal_triangles", double(stats.layers.culled_normal)},
-                             {"dropped_fragments", double(stats.layers.dropped)}};
+                             {"dropped_fragments", double(stats.layers.dropped)},
+                             {"layer_build_ms", stats.layer_build_ms}};
     if (stats_out != nullptr) *stats_out = stats;
     return result;
 }

@@ -32,6 +32,7 @@ struct SecondaryStats {
     int clusters_split = 0;                // still some ray outside (FOV < 74.76 deg): those rays traced exactly
     int clusters_unusable = 0;             // empty or non-finite fit: every ray traced exactly
     LayerStats layers;                     // summed over the clusters
+    double layer_build_ms = 0.0;           // building the layers and pyramids, summed over the clusters
 };
 
 // Traces clipped segments through a cluster's layered depth images (depth
@@ -41,6 +42,14 @@ struct SecondaryStats {
 using LayerTracer = std::function<std::vector<kernelf::LayerHit>(
     const kernelf::LayerView& view, const std::vector<float>& depth, int layers, float thickness,
     const std::vector<kernelf::LayerSegment>& segments)>;
+
+// Builds a cluster's layered image and its min/max depth pyramid for `view`
+// with the culls: build_cluster_layers_on_host (the CPU build) by default,
+// the GL rasterizer and a compute pass on the gl backend
+// (render/gl/gl_layer_images.hpp, wired in app/gl_dof_secondary.hpp). Adds
+// its counts to `stats`.
+using LayerBuilder = std::function<ClusterLayers(const WorldTriangles& triangles, const kernelf::LayerView& view,
+                                                 int layers, const ClusterCulls& culls, LayerStats& stats)>;
 
 // The primary visibility: renders settings' samples and fills the winning
 // triangle of each (render_cpu's layout, no_sample_hit for none); render_cpu
@@ -60,11 +69,13 @@ std::vector<kernelf::LayerHit> trace_layers_on_host(const kernelf::LayerView& vi
 // the scene (or hits nothing in its cluster's layers) the environment.
 // Deterministic for any thread count. With `primary` the primary samples come
 // from there, else from render_cpu; with `tracer` the image-space traces
-// run there (one cluster at a time, on the calling thread: a GL context is
-// current on one thread), else on the host. Throws std::invalid_argument for
-// bad settings or options, SceneError for a bad scene.
+// run there, and with `layer_builder` the layered images are built there
+// (either makes the clusters run one at a time, on the calling thread: a GL
+// context is current on one thread), else on the host. Throws
+// std::invalid_argument for bad settings or options, SceneError for a bad scene.
 RenderResult render_dof_secondary(const Scene& scene, const RenderSettings& settings,
                                   const SecondaryOptions& options = {}, SecondaryStats* stats = nullptr,
-                                  const LayerTracer* tracer = nullptr, const PrimaryPass* primary = nullptr);
+                                  const LayerTracer* tracer = nullptr, const PrimaryPass* primary = nullptr,
+                                  const LayerBuilder* layer_builder = nullptr);
 
 }  // namespace blurcull::frontend

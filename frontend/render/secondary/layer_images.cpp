@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 namespace blurcull::frontend {
 namespace {
@@ -32,8 +34,9 @@ LayerImages build_layer_images(const WorldTriangles& triangles, const kernelf::L
     images.depth.assign(static_cast<std::size_t>(layers) * view.size * view.size, no_surface);
     images.triangle.assign(images.depth.size(), 0);
     const std::size_t plane = static_cast<std::size_t>(view.size) * view.size;
+    const std::vector<float> cluster_depth = cluster_origin_depth(view, culls.origins);
     for (std::size_t t = 0; t < triangles.vertices.size(); ++t) {
-        if (glm::dot(triangles.normals[t], view.forward) > culls.normal_threshold) {
+        if (kernelf::bc_dot3(triangles.normals[t], view.forward) > culls.normal_threshold) {
             ++stats.culled_normal;
             continue;
         }
@@ -42,7 +45,7 @@ LayerImages build_layer_images(const WorldTriangles& triangles, const kernelf::L
         const bool in_front_of_near = rasterize_into_view(view, triangles.vertices[t], [&](int x, int y, float z) {
             ++stats.fragments;
             const std::size_t texel = static_cast<std::size_t>(y) * view.size + x;
-            if (own || z <= culls.cluster_depth[texel]) {
+            if (own || z <= cluster_depth[texel]) {
                 ++stats.culled_in_front;
                 return;
             }
@@ -98,6 +101,34 @@ DepthPyramid::DepthPyramid(const LayerImages& images) {
         }
         levels_.push_back(std::move(coarse));
     }
+}
+
+DepthPyramid DepthPyramid::from_levels(int size, const std::vector<float>& lo_hi) {
+    DepthPyramid pyramid;
+    std::size_t at = 0;
+    for (int level_size = size; level_size >= 1; level_size = (level_size + 1) / 2) {
+        const std::size_t cells = static_cast<std::size_t>(level_size) * static_cast<std::size_t>(level_size);
+        if (at + 2 * cells > lo_hi.size()) break;
+        Level level{level_size, std::vector<float>(cells), std::vector<float>(cells)};
+        for (std::size_t cell = 0; cell < cells; ++cell) {
+            level.lo[cell] = lo_hi[at + 2 * cell];
+            level.hi[cell] = lo_hi[at + 2 * cell + 1];
+        }
+        at += 2 * cells;
+        pyramid.levels_.push_back(std::move(level));
+        if (level_size == 1) break;
+    }
+    if (size < 1 || at != lo_hi.size() || pyramid.levels_.empty() || pyramid.levels_.back().size != 1)
+        throw std::invalid_argument("DepthPyramid::from_levels: " + std::to_string(lo_hi.size()) +
+                                    " values are not the levels of a " + std::to_string(size) + "^2 pyramid");
+    return pyramid;
+}
+
+ClusterLayers build_cluster_layers_on_host(const WorldTriangles& triangles, const kernelf::LayerView& view,
+                                           int layers, const ClusterCulls& culls, LayerStats& stats) {
+    LayerImages images = build_layer_images(triangles, view, layers, culls, stats);
+    DepthPyramid pyramid(images);
+    return ClusterLayers{std::move(images), std::move(pyramid)};
 }
 
 glm::vec2 DepthPyramid::interval(int x0, int y0, int x1, int y1) const {

@@ -15,14 +15,14 @@ namespace blurcull::frontend {
 // What no ray of a cluster can reach, culled before peeling (Xie et al.
 // section 3.4): (1) depths before the near plane at the cluster (the view's
 // near, by clipping); (2) the cluster's own triangles and every surface
-// nearer than the cluster's points at the same texel (`cluster_depth`,
-// -infinity where no point of the cluster projects); (3) triangles whose winding
+// nearer than the cluster's points at the same texel (the nearest of
+// `origins` projecting there, cluster_origin_depth); (3) triangles whose winding
 // normal lies inside the cone of the cluster's directions, shrunk by the
 // cone's half-angle (n . forward > sin(half-angle)): every ray of the cluster
 // meets them from behind.
 struct ClusterCulls {
     std::vector<std::uint8_t> own;     // per triangle: hit by a sample of the cluster
-    std::vector<float> cluster_depth;  // size x size
+    std::vector<glm::vec3> origins;    // the cluster's ray origins; empty: no in-front cull but `own`
     float normal_threshold = 2.0f;     // cull when n . forward > this (2: never)
 };
 
@@ -64,19 +64,36 @@ LayerImages build_layer_images(const WorldTriangles& triangles, const kernelf::L
 // Min/max view depth over every layer, per texel, then halved level by level.
 class DepthPyramid {
 public:
+    struct Level {
+        int size;
+        std::vector<float> lo, hi;  // [y][x]; lo = +infinity, hi = -infinity where no surface
+    };
     explicit DepthPyramid(const LayerImages& images);
+    // A pyramid built elsewhere (the GL build's compute pass): `lo_hi` holds
+    // the levels of a base of `size` x `size` cells, finest first, each cell's
+    // (lo, hi) in turn; the level sizes are (size + 1) / 2 down to 1. Throws
+    // std::invalid_argument when the array has another length.
+    static DepthPyramid from_levels(int size, const std::vector<float>& lo_hi);
     // The (min, max) depth of the surfaces in texel box [x0, x1] x [y0, y1]
     // (from at most 2 x 2 cells of the level that covers it); min > max when
     // there is none.
     glm::vec2 interval(int x0, int y0, int x1, int y1) const;
+    const std::vector<Level>& levels() const { return levels_; }
 
 private:
-    struct Level {
-        int size;
-        std::vector<float> lo, hi;
-    };
+    DepthPyramid() = default;
     std::vector<Level> levels_;
 };
+
+// A cluster's layered image and the pyramid the interval clipping reads.
+struct ClusterLayers {
+    LayerImages images;
+    DepthPyramid pyramid;
+};
+
+// The CPU build: build_layer_images, then DepthPyramid of the images.
+ClusterLayers build_cluster_layers_on_host(const WorldTriangles& triangles, const kernelf::LayerView& view,
+                                           int layers, const ClusterCulls& culls, LayerStats& stats);
 
 }  // namespace blurcull::frontend
 

@@ -14,6 +14,11 @@ enum class SecondaryBounces {
     environment_only,  // the primary-only image: every bounce sees the environment
 };
 
+// Where the gl backend builds the clusters' layered images and pyramids: the
+// GL passes (the product, app/gl_dof_secondary.hpp) or the CPU build's code
+// (build_cluster_layers_on_host, the reference; `--layer-images host`).
+enum class LayerImagesOn { gl, host };
+
 struct SecondaryOptions {
     int layers = 8;              // depth-peeled layers per cluster view, 1 .. 8 (BC_LAYERS_MAX)
     int clusters_per_facet = 3;  // k-means clusters per dodecahedron facet at most, 1 .. 3

@@ -1,0 +1,77 @@
+// The arithmetic of rasterizing a triangle into a dof-secondary layer view,
+// written once for C++ and GLSL (like optics_shared.h): the CPU build's scan
+// (render/secondary/layer_raster.inl) and the GL build's passes
+// (render/gl/shaders/render_layers_*) call these, so both store the same
+// view depth at a texel centre they both cover (docs/secondary-rays.md, "The
+// renderer", step 3). Every expression is the one the host evaluated before
+// it was shared (glm::mix's a (1 - t) + b t, the kernel's left-to-right dot),
+// and `precise` in GLSL keeps Mesa from reassociating it.
+#ifndef BLURCULL_LAYER_RASTER_SHARED_H
+#define BLURCULL_LAYER_RASTER_SHARED_H
+
+#ifdef __cplusplus
+#include <blurcull/kernel.hpp>
+
+#include <glm/glm.hpp>
+
+namespace blurcull::frontend::layer_raster {
+using glm::vec2;
+using glm::vec3;
+using glm::max;
+using LayerView = kernelf::LayerView;
+inline float bc_dot3(vec3 a, vec3 b) { return kernelf::bc_dot3(a, b); }
+inline vec2 bc_layer_image(const LayerView& v, float x, float y, float z) { return kernelf::bc_layer_image(v, x, y, z); }
+#define BC_RASTER_FN inline
+#define BC_RASTER_VIEW const LayerView&
+#define BC_RASTER_PRECISE
+#else
+#define BC_RASTER_FN
+#define BC_RASTER_VIEW in LayerView
+#define BC_RASTER_PRECISE precise
+#endif
+
+// View coordinates (along right, up, forward) of world point p.
+BC_RASTER_FN vec3 bc_raster_view_point(BC_RASTER_VIEW v, vec3 p) {
+    vec3 q = p - v.eye;
+    return vec3(bc_dot3(q, v.right), bc_dot3(q, v.up), bc_dot3(q, v.forward));
+}
+
+// Where the edge from a to b (view coordinates, one end on each side of
+// depth `near`) crosses that depth: the Sutherland-Hodgman clip point.
+BC_RASTER_FN vec3 bc_raster_near_crossing(vec3 a, vec3 b, float near) {
+    BC_RASTER_PRECISE float t = (near - a.z) / (b.z - a.z);
+    BC_RASTER_PRECISE vec3 p = a * (1.0f - t) + b * t;
+    return p;
+}
+
+// (image x, image y, view depth) of a clipped view point: the kernel's
+// layer_image at the depth, held at `near` against the clip's rounding.
+BC_RASTER_FN vec3 bc_raster_image_point(BC_RASTER_VIEW v, vec3 p) {
+    float z = max(p.z, v.near);
+    vec2 xy = bc_layer_image(v, p.x, p.y, z);
+    return vec3(xy.x, xy.y, z);
+}
+
+// Twice the signed area of (p, q, r): positive when counter-clockwise.
+BC_RASTER_FN float bc_raster_edge(vec2 p, vec2 q, vec2 r) {
+    BC_RASTER_PRECISE float e = (q.x - p.x) * (r.y - p.y) - (q.y - p.y) * (r.x - p.x);
+    return e;
+}
+
+// The view depth at image point `centre` of the counter-clockwise image
+// triangle (a, b, c) of doubled area `area` = bc_raster_edge(a, b, c) > 0:
+// 1 / depth is linear on the image, interpolated with the edge functions.
+BC_RASTER_FN float bc_raster_depth(vec3 a, vec3 b, vec3 c, float area, vec2 centre) {
+    float wa = bc_raster_edge(vec2(b.x, b.y), vec2(c.x, c.y), centre);
+    float wb = bc_raster_edge(vec2(c.x, c.y), vec2(a.x, a.y), centre);
+    float wc = bc_raster_edge(vec2(a.x, a.y), vec2(b.x, b.y), centre);
+    BC_RASTER_PRECISE float inverse_depth = (wa / a.z + wb / b.z + wc / c.z) / area;
+    BC_RASTER_PRECISE float depth = 1.0f / inverse_depth;
+    return depth;
+}
+
+#ifdef __cplusplus
+}  // namespace blurcull::frontend::layer_raster
+#endif
+
+#endif  // BLURCULL_LAYER_RASTER_SHARED_H

@@ -1,0 +1,252 @@
+#include "render/gl/gl_layer_images.hpp"
+
+#include "render/gl/gl_layer_shared.h"
+#include "render/gl/render_glsl.hpp"
+
+#include <blurcull/glsl/kernel_glsl.hpp>
+
+#include <algorithm>
+#include <array>
+#include <optional>
+#include <cstring>
+#include <string>
+
+namespace blurcull::frontend {
+namespace {
+
+std::string_view embedded(std::string_view name) {
+    std::string_view text = glsl::render_shader_source(name);
+    if (text.empty()) throw gl::GlError("gl: shader '" + std::string(name) + "' was not embedded at build time");
+    return text;
+}
+
+// The kernel's GLSL, the rasterizing arithmetic shared with the host, the
+// passes' std430 structs, then the main.
+gl::ShaderStage layer_stage(GLenum type, std::string_view main_name) {
+    return gl::ShaderStage{type, {glsl::kernel_source(), embedded("layer_raster_shared.h"),
+                                  embedded("gl_layer_shared.h"), embedded(main_name)}};
+}
+
+// SSBO bindings of the passes (the `binding =` of shaders/render_layers_*).
+enum Binding : GLuint {
+    triangles_binding = 0, pass_binding, own_binding, fans_binding, counts_binding,
+    layer_depth_binding, layer_triangle_binding, cluster_depth_binding, origins_binding, pyramid_binding,
+    texel_count_binding
+};
+
+// The shader-storage buffer in `slot`, made anew when it holds fewer than
+// `bytes` bytes (at least 16: a zero-sized one cannot be bound usefully),
+// else kept: the clusters of a render reuse their buffers. `data`: copied in.
+const gl::Buffer& reserve(const gl::Functions& f, std::optional<gl::Buffer>& slot, std::size_t bytes,
+                          const void* data = nullptr) {
+    if (!slot || slot->size() < bytes) {
+        slot.reset();
+        slot.emplace(f, GL_SHADER_STORAGE_BUFFER, std::max<std::size_t>(bytes, 16));
+    }
+    if (data != nullptr && bytes > 0) {
+        f.BindBuffer(GL_SHADER_STORAGE_BUFFER, slot->id());
+        f.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(bytes), data);
+        f.BindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    }
+    return *slot;
+}
+
+void fill_words(const gl::Functions& f, const gl::Buffer& buffer, std::uint32_t value) {
+    f.BindBuffer(GL_SHADER_STORAGE_BUFFER, buffer.id());
+    f.ClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &value);
+    f.BindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+}
+
+GLuint groups_of(std::size_t items, std::size_t group) { return static_cast<GLuint>((items + group - 1) / group); }
+
+gpu::LayerPass pass_of(const kernelf::LayerView& view, int layers, std::size_t triangles, std::size_t origins,
+                       float normal_threshold) {
+    gpu::LayerPass pass;
+    pass.eye = glm::vec4(view.eye, 0.0f);
+    pass.forward = glm::vec4(view.forward, 0.0f);
+    pass.right = glm::vec4(view.right, 0.0f);
+    pass.up = glm::vec4(view.up, 0.0f);
+    pass.frustum = glm::vec4(view.tan_half_fov, view.near, view.far, normal_threshold);
+    pass.sizes = glm::ivec4(view.size, layers, static_cast<int>(triangles), static_cast<int>(origins));
+    return pass;
+}
+
+// The pyramid's level sizes, base first, down to 1.
+std::vector<int> level_sizes(int size) {
+    std::vector<int> sizes{size};
+    while (sizes.back() > 1) sizes.push_back((sizes.back() + 1) / 2);
+    return sizes;
+}
+
+}  // namespace
+
+struct GlLayerBuilder::Passes {
+    gl::Program setup, draw, cluster_depth, pyramid;
+    GLuint vertex_array = 0;
+    // The buffers, by binding (Binding), kept from one cluster to the next.
+    std::array<std::optional<gl::Buffer>, texel_count_binding + 1> buffers;
+
+    // Binding's buffer with room for `bytes` (`data` copied in), bound.
+    const gl::Buffer& buffer(const gl::Functions& f, Binding binding, std::size_t bytes, const void* data = nullptr) {
+        const gl::Buffer& b = reserve(f, buffers[binding], bytes, data);
+        b.bind_base(binding);
+        return b;
+    }
+    const gl::Buffer& at(Binding binding) const { return *buffers[binding]; }
+
+    void upload(const gl::Functions& f, const kernelf::LayerView& view, int layers, const GlLayerInput& input,
+                std::size_t pyramid_floats);
+    std::uint32_t make_fans(const gl::Functions& f, std::size_t triangles, std::size_t origins);
+    void draw_fans(const gl::Functions& f, int size, std::uint32_t fans);
+    void make_pyramid(const gl::Functions& f, int size);
+    GlClusterLayers read_back(const gl::Functions& f, int size, int layers, std::size_t pyramid_floats) const;
+};
+
+// The scene's triangles, the cluster's culls and view into their buffers;
+// the k-buffer, triangle ids, cluster depth and texel counts cleared.
+void GlLayerBuilder::Passes::upload(const gl::Functions& f, const kernelf::LayerView& view, int layers,
+                                    const GlLayerInput& input, std::size_t pyramid_floats) {
+    const std::vector<std::array<glm::vec3, 3>>& vertices = *input.vertices;
+    const std::size_t triangles = vertices.size();
+    const std::size_t origins = input.origins != nullptr ? input.origins->size() : 0;
+    const std::size_t plane = static_cast<std::size_t>(view.size) * static_cast<std::size_t>(view.size);
+    std::vector<gpu::LayerTriangle> packed(triangles);
+    std::vector<std::uint32_t> own_bits((triangles + 31) / 32, 0u);
+    for (std::size_t t = 0; t < triangles; ++t) {
+        packed[t] = gpu::LayerTriangle{glm::vec4(vertices[t][0], 0.0f), glm::vec4(vertices[t][1], 0.0f),
+                                       glm::vec4(vertices[t][2], 0.0f), glm::vec4((*input.normals)[t], 0.0f)};
+        if ((*input.own)[t] != 0) own_bits[t / 32] |= 1u << (t % 32);
+    }
+    std::vector<glm::vec4> origin_points(origins);
+    for (std::size_t i = 0; i < origins; ++i) origin_points[i] = glm::vec4((*input.origins)[i], 0.0f);
+    const gpu::LayerPass pass = pass_of(view, layers, triangles, origins, input.normal_threshold);
+    const std::uint32_t zero_counts[BC_LAYER_COUNTS] = {};
+    buffer(f, triangles_binding, packed.size() * sizeof(gpu::LayerTriangle), packed.data());
+    buffer(f, pass_binding, sizeof pass, &pass);
+    buffer(f, own_binding, own_bits.size() * sizeof(std::uint32_t), own_bits.data());
+    buffer(f, fans_binding, 2 * triangles * sizeof(gpu::LayerFan));
+    buffer(f, counts_binding, sizeof zero_counts, zero_counts);
+    buffer(f, origins_binding, origin_points.size() * sizeof(glm::vec4), origin_points.data());
+    buffer(f, pyramid_binding, pyramid_floats * sizeof(float));
+    const std::size_t texels = plane * static_cast<std::size_t>(layers);
+    fill_words(f, buffer(f, layer_depth_binding, texels * sizeof(std::uint32_t)), BC_LAYER_EMPTY);
+    fill_words(f, buffer(f, layer_triangle_binding, texels * sizeof(std::uint32_t)), 0xFFFFFFFFu);
+    fill_words(f, buffer(f, cluster_depth_binding, plane * sizeof(std::uint32_t)), BC_LAYER_EMPTY);
+    fill_words(f, buffer(f, texel_count_binding, plane * sizeof(std::uint32_t)), 0u);
+}
+
+// The cluster's depth map and the fans; returns the number of fan triangles
+// (the draws' size: a wait for the setup pass, but no culled triangle drawn).
+std::uint32_t GlLayerBuilder::Passes::make_fans(const gl::Functions& f, std::size_t triangles, std::size_t origins) {
+    if (origins > 0) {
+        f.UseProgram(cluster_depth.id());
+        f.DispatchCompute(groups_of(origins, 64), 1, 1);
+    }
+    if (triangles > 0) {
+        f.UseProgram(setup.id());
+        f.DispatchCompute(groups_of(triangles, 64), 1, 1);
+    }
+    f.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::uint32_t fans = 0;
+    at(counts_binding).read(&fans, sizeof fans, BC_LAYER_COUNT_FANS * sizeof(std::uint32_t));
+    return fans;
+}
+
+// The two draws: depths into the k-buffer, then their triangles.
+void GlLayerBuilder::Passes::draw_fans(const gl::Functions& f, int size, std::uint32_t fans) {
+    if (fans == 0) return;
+    const gl::Texture target(f, GL_TEXTURE_2D, GL_R8, size, size);  // never written: the shader has no output
+    const gl::Framebuffer framebuffer(f);
+    f.BindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
+    f.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, target.id(), 0);
+    if (f.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        throw gl::GlError("gl: the layer pass's framebuffer is incomplete");
+    f.Viewport(0, 0, size, size);
+    f.Disable(GL_DEPTH_TEST);
+    f.Disable(GL_CULL_FACE);
+    f.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    f.UseProgram(draw.id());
+    f.BindVertexArray(vertex_array);
+    const GLint peel_pass = f.GetUniformLocation(draw.id(), "peel_pass");
+    for (int peel = 0; peel < 2; ++peel) {
+        f.Uniform1i(peel_pass, peel);
+        f.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(3 * fans));
+        f.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    f.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    f.BindVertexArray(0);
+    f.BindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+// The pyramid: levels 0 and 1 from the layers, then the rest in one workgroup.
+void GlLayerBuilder::Passes::make_pyramid(const gl::Functions& f, int size) {
+    const GLuint program = pyramid.id();
+    f.UseProgram(program);
+    f.Uniform1i(f.GetUniformLocation(program, "base_size"), size);
+    f.Uniform1i(f.GetUniformLocation(program, "from_layers"), 1);
+    const GLuint groups = groups_of(static_cast<std::size_t>((size + 1) / 2), 16);
+    f.DispatchCompute(groups, groups, 1);
+    f.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    f.Uniform1i(f.GetUniformLocation(program, "from_layers"), 0);
+    f.DispatchCompute(1, 1, 1);
+    f.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    f.UseProgram(0);
+}
+
+GlClusterLayers GlLayerBuilder::Passes::read_back(const gl::Functions& f, int size, int layers,
+                                                  std::size_t pyramid_floats) const {
+    gl::check_gl(f, "dof-secondary: the layer passes");
+    const std::size_t texels = static_cast<std::size_t>(size) * static_cast<std::size_t>(size) *
+                               static_cast<std::size_t>(layers);
+    GlClusterLayers out;
+    out.size = size;
+    out.layers = layers;
+    out.depth.resize(texels);
+    at(layer_depth_binding).read(out.depth.data(), texels * sizeof(float));  // the bits are the floats
+    out.triangle.resize(texels);
+    at(layer_triangle_binding).read(out.triangle.data(), texels * sizeof(std::uint32_t));
+    for (std::uint32_t& id : out.triangle)
+        if (id == 0xFFFFFFFFu) id = 0;  // no surface: the host's default
+    out.pyramid.resize(pyramid_floats);
+    at(pyramid_binding).read(out.pyramid.data(), pyramid_floats * sizeof(float));
+    std::uint32_t counts[BC_LAYER_COUNTS];
+    at(counts_binding).read(counts, sizeof counts);
+    out.counts = GlLayerCounts{counts[BC_LAYER_COUNT_FRAGMENTS], counts[BC_LAYER_COUNT_CULLED_NEAR],
+                               counts[BC_LAYER_COUNT_CULLED_IN_FRONT], counts[BC_LAYER_COUNT_CULLED_NORMAL],
+                               counts[BC_LAYER_COUNT_DROPPED]};
+    return out;
+}
+
+GlLayerBuilder::GlLayerBuilder(const gl::HeadlessContext& context)
+    : gl_(&context.gl()),
+      passes_(std::make_unique<Passes>(Passes{
+          gl::Program(context.gl(), {layer_stage(GL_COMPUTE_SHADER, "render_layers_setup.comp")}),
+          gl::Program(context.gl(), {layer_stage(GL_VERTEX_SHADER, "render_layers.vert"),
+                                     layer_stage(GL_FRAGMENT_SHADER, "render_layers.frag")}),
+          gl::Program(context.gl(), {layer_stage(GL_COMPUTE_SHADER, "render_layers_cluster_depth.comp")}),
+          gl::Program(context.gl(), {layer_stage(GL_COMPUTE_SHADER, "render_layers_pyramid.comp")}), 0, {}})) {
+    gl_->GenVertexArrays(1, &passes_->vertex_array);
+}
+
+GlLayerBuilder::~GlLayerBuilder() { gl_->DeleteVertexArrays(1, &passes_->vertex_array); }
+
+GlClusterLayers GlLayerBuilder::build(const kernelf::LayerView& view, int layers, const GlLayerInput& input) const {
+    const gl::Functions& f = *gl_;
+    const int size = view.size;
+    GLint max_texture = 0, max_viewport[2] = {0, 0};
+    f.GetIntegerv(GL_MAX_TEXTURE_SIZE, &max_texture);
+    f.GetIntegerv(GL_MAX_VIEWPORT_DIMS, max_viewport);
+    if (size < 2 || size > std::min({max_texture, max_viewport[0], max_viewport[1]}))
+        throw gl::GlError("gl: layer size " + std::to_string(size) + " is below 2 or exceeds the context's limits");
+    if (layers < 1 || layers > BC_LAYERS_MAX) throw gl::GlError("gl: " + std::to_string(layers) + " layers, not 1 to 8");
+    std::size_t pyramid_floats = 0;
+    for (int s : level_sizes(size)) pyramid_floats += 2 * static_cast<std::size_t>(s) * static_cast<std::size_t>(s);
+    passes_->upload(f, view, layers, input, pyramid_floats);
+    const std::uint32_t fans =
+        passes_->make_fans(f, input.vertices->size(), input.origins != nullptr ? input.origins->size() : 0);
+    passes_->draw_fans(f, size, fans);
+    passes_->make_pyramid(f, size);
+    return passes_->read_back(f, size, layers, pyramid_floats);
+}
+
+}  // namespace blurcull::frontend

@@ -1,0 +1,69 @@
+// The GL build of dof-secondary's layered images and min/max depth pyramid
+// (docs/secondary-rays.md, "What the gl backend runs"): per cluster, a
+// compute pass clips and projects the scene's triangles into the virtual
+// view, the GL rasterizer draws them twice into a k-buffer (per texel the
+// `layers` nearest depths by an atomicMin cascade, then their triangles),
+// and a compute pass per level builds the pyramid. The paper's three culls
+// are applied on the GPU: near plane by clipping, the cluster's own triangles
+// and the depths not beyond its nearest ray origin in the texel, and the
+// normal cone. Same arithmetic as the host's build (layer_raster_shared.h);
+// render/secondary's types are filled from the result in app/gl_dof_secondary.hpp.
+#pragma once
+
+#include "render/gl/gl_context.hpp"
+
+#include <blurcull/kernel.hpp>
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace blurcull::frontend {
+
+// What the passes counted (render/secondary's LayerStats).
+struct GlLayerCounts {
+    std::uint64_t fragments = 0, culled_near = 0, culled_in_front = 0, culled_normal = 0, dropped = 0;
+};
+
+// One cluster's layers as read back.
+struct GlClusterLayers {
+    int size = 0;
+    int layers = 0;
+    std::vector<float> depth;             // [layer][y][x] view depth, +infinity for none, sorted per texel
+    std::vector<std::uint32_t> triangle;  // the scene triangle of each depth (0 where none)
+    std::vector<float> pyramid;           // levels from size^2 down to 1^2, each cell's (lo, hi)
+    GlLayerCounts counts;
+};
+
+// The scene's triangles (world space, mid-shutter) and a cluster's culls.
+struct GlLayerInput {
+    const std::vector<std::array<glm::vec3, 3>>* vertices = nullptr;
+    const std::vector<glm::vec3>* normals = nullptr;  // unit winding normals
+    const std::vector<std::uint8_t>* own = nullptr;   // per triangle: the cluster's own
+    const std::vector<glm::vec3>* origins = nullptr;  // the cluster's ray origins (none: no in-front cull)
+    float normal_threshold = 2.0f;                    // cull n . forward above this
+};
+
+class GlLayerBuilder {
+public:
+    // On `context` (current on the calling thread, kept alive by the caller);
+    // compiles the passes. Throws gl::GlError with the compiler's log.
+    explicit GlLayerBuilder(const gl::HeadlessContext& context);
+    ~GlLayerBuilder();
+    GlLayerBuilder(const GlLayerBuilder&) = delete;
+    GlLayerBuilder& operator=(const GlLayerBuilder&) = delete;
+
+    // The layered image of `view` (view.size^2 texels, 1 <= layers <= 8)
+    // with the culls of `input`, and its pyramid. Throws gl::GlError when GL
+    // reports an error or the image exceeds the context's limits.
+    GlClusterLayers build(const kernelf::LayerView& view, int layers, const GlLayerInput& input) const;
+
+    struct Passes;
+
+private:
+    const gl::Functions* gl_;
+    std::unique_ptr<Passes> passes_;
+};
+
+}  // namespace blurcull::frontend
