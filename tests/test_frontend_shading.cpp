@@ -5,10 +5,13 @@
 // textured Khronos model and on a file with COLOR_0, NORMAL and MASK.
 #include "frontend_test_helpers.hpp"
 
+#include "render/common/method_plan.hpp"
+#include "render/common/render_method.hpp"
 #include "render/common/shading.hpp"
 #include "render/common/surface_shading.hpp"
 #include "render/common/texture_sampling.hpp"
 #include "render/cpu/cpu_backend.hpp"
+#include "render/cpu/methods.hpp"
 #include "render/embree/embree_backend.hpp"
 #include "scene/builtin_scenes.hpp"
 #include "scene/gltf/gltf_loader.hpp"
@@ -18,6 +21,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -296,34 +300,184 @@ TEST_CASE("scene validation refuses attribute arrays and texture indices that do
     CHECK_THROWS_WITH_AS(validate_scene(bad_texels), doctest::Contains("texels for 4x4"), SceneError);
 }
 
+namespace {
+
+// The GL tests' rule: RMSE below 0.001 against the CPU backend's float kernel
+// (whose winners the GL backend's equal), below 0.005 against double, and
+// 99.5% of the pixels within 1/255 of double. Returns the GL render.
+RenderResult check_gl_equals_cpu(GlRenderer& gl, const Scene& scene, const RenderSettings& settings,
+                                 const GlOptions& gl_options = {}) {
+    const RenderResult on_gl = gl.render(scene, settings, gl_options);
+    const RenderResult cpu = render_cpu(scene, settings);
+    CpuOptions float_kernel;
+    float_kernel.precision = KernelPrecision::float32;
+    const RenderResult cpu_float = render_cpu(scene, settings, float_kernel);
+    MESSAGE(scene.name << ": gl vs cpu float RMSE " << rmse(on_gl.image, cpu_float.image) << ", vs cpu double "
+                       << rmse(on_gl.image, cpu.image) << "; samples hit gl " << on_gl.stats.samples_hit
+                       << ", cpu float " << cpu_float.stats.samples_hit);
+    CHECK(rmse(on_gl.image, cpu_float.image) < 0.001);
+    CHECK(rmse(on_gl.image, cpu.image) < 0.005);
+    CHECK(fraction_close(on_gl.image, cpu.image) >= 0.995);
+    return on_gl;
+}
+
+Scene without_mask(const Scene& scene) {
+    Scene opaque = scene;
+    for (Material& material : opaque.materials) material.alpha_mode = AlphaMode::opaque;
+    return opaque;
+}
+
+}  // namespace
+
 TEST_CASE("gl: textures, vertex colours and normals shade as on the cpu backend (the gl tests' tolerances)") {
     GlRenderer* gl = renderer_or_skip();
     if (gl == nullptr) return;
     GltfOptions options;
-    Scene opaque = load("attributes.gltf");
-    opaque.materials[0].alpha_mode = AlphaMode::opaque;
+    const Scene opaque = without_mask(load("attributes.gltf"));
     const Scene cube = load_gltf_scene(std::string(BLURCULL_SHARED_DIR) + "/scenes/khronos/Cube/Cube.gltf", options);
     for (const Scene* scene : std::initializer_list<const Scene*>{&opaque, &cube}) {
         INFO(scene->name);
-        const RenderSettings settings = quiet_settings(96, 72, 8);
-        const RenderResult on_gl = gl->render(*scene, settings);
-        const RenderResult cpu = render_cpu(*scene, settings);
-        CpuOptions float_kernel;
-        float_kernel.precision = KernelPrecision::float32;
-        const RenderResult cpu_float = render_cpu(*scene, settings, float_kernel);
-        std::size_t close = 0;
-        for (std::size_t i = 0; i < cpu.image.pixels.size(); ++i) {
-            const glm::vec3 d = glm::abs(cpu.image.pixels[i] - on_gl.image.pixels[i]);
-            if (d.x <= 1.0f / 255.0f && d.y <= 1.0f / 255.0f && d.z <= 1.0f / 255.0f) ++close;
-        }
-        MESSAGE(scene->name << ": gl vs cpu float RMSE " << rmse(on_gl.image, cpu_float.image) << ", vs cpu double "
-                            << rmse(on_gl.image, cpu.image));
-        CHECK(rmse(on_gl.image, cpu_float.image) < 0.001);
-        CHECK(rmse(on_gl.image, cpu.image) < 0.005);
-        CHECK(double(close) / double(cpu.image.pixels.size()) >= 0.995);
+        check_gl_equals_cpu(*gl, *scene, quiet_settings(96, 72, 8));
     }
-    // The mask is not applied on gl: said, not silent.
-    const RenderResult masked = gl->render(load("attributes.gltf"), quiet_settings(32, 24, 4));
-    REQUIRE(masked.warnings.size() == 1);
-    CHECK(masked.warnings[0].find("alpha-masked triangles are drawn opaque") != std::string::npos);
+}
+
+TEST_CASE("alpha mask from a texture (wrap modes, transform, factor and COLOR_0 alpha): CPU = Embree") {
+    const Scene scene = load("mask_texture.gltf");
+    REQUIRE(scene.textures.size() == 1);
+    CHECK(scene.textures[0].wrap_s == TextureWrap::repeat);
+    CHECK(scene.textures[0].wrap_t == TextureWrap::clamp);
+    const RenderSettings settings = quiet_settings(96, 72, 4);
+    const RenderResult masked = render_cpu(scene, settings);
+    const RenderResult opaque = render_cpu(without_mask(scene), settings);
+    // The holes show the green quad behind.
+    CHECK(masked.stats.samples_hit < opaque.stats.samples_hit);
+    CHECK(rmse(masked.image, opaque.image) > 0.05);
+    check_cpu_equals_embree(scene, 96, 72);
+}
+
+TEST_CASE("gl: alpha masks decide coverage before the depth test, as on the cpu backend") {
+    GlRenderer* gl = renderer_or_skip();
+    if (gl == nullptr) return;
+    for (const char* file : {"attributes.gltf", "mask_texture.gltf"}) {
+        Scene scene = load(file);
+        for (int variant = 0; variant < 4; ++variant) {
+            // The static path drawn per pass (4 spp) and per group of passes
+            // (16 spp), every triangle on the moving path, and defocus (the
+            // moving path for the defocused quad behind).
+            RenderSettings settings = quiet_settings(96, 72, variant == 1 ? 16 : 4);
+            GlOptions gl_options;
+            gl_options.force_full_path = variant == 2;
+            Scene variant_scene = scene;
+            if (variant == 3) {
+                variant_scene.camera.lens_radius = 0.08f;
+                variant_scene.camera.focus_distance = 4.0f;
+            }
+            INFO(file << ", variant " << variant);
+            const RenderResult on_gl = check_gl_equals_cpu(*gl, variant_scene, settings, gl_options);
+            CHECK(on_gl.warnings.empty());
+            // Drawn opaque, the masked-out samples would hide the quad behind.
+            const RenderResult opaque = gl->render(without_mask(variant_scene), settings, gl_options);
+            CHECK(on_gl.stats.samples_hit < opaque.stats.samples_hit);
+            CHECK(rmse(on_gl.image, opaque.image) > 0.05);
+        }
+    }
+}
+
+namespace {
+
+RenderResult render_cpu_method(const Scene& scene, const RenderSettings& settings, std::vector<std::uint32_t>& ids) {
+    switch (settings.method) {
+        case RenderMethod::interleave: return render_interleave(scene, settings, {}, &ids);
+        case RenderMethod::interval: return render_interval(scene, settings, &ids);
+        default: return render_accum(scene, settings, &ids);
+    }
+}
+
+// Every sample the CPU method kept is covered by its winner at method_sample's
+// position (the double test the CPU method decided by): the resolve shades
+// each sample where it was tested, not at the centroid of the fallback.
+void check_samples_where_tested(const Scene& scene, const RenderSettings& settings,
+                                const std::vector<std::uint32_t>& ids) {
+    const MethodPlan plan = make_method_plan(scene, settings);
+    const std::vector<std::int32_t> tuple_of_cell = method_tuple_of_cell(plan, settings.width, settings.height);
+    std::size_t kept = 0, covered = 0;
+    for (int py = 0; py < settings.height; ++py) {
+        for (int px = 0; px < settings.width; ++px) {
+            for (int j = 0; j < settings.spp; ++j) {
+                const std::uint32_t id = ids[(static_cast<std::size_t>(py) * settings.width + px) * settings.spp + j];
+                if (id == no_sample_hit) continue;
+                ++kept;
+                const MethodSample s = method_sample(plan, tuple_of_cell, px, py, j);
+                double depth = 0.0;
+                covered += blurcull::kerneld::covers(plan.triangles[id], blurcull::kerneld::vec2(s.ndc),
+                                                     blurcull::kerneld::vec2(s.lens), double(s.time),
+                                                     double(plan.model.znear), depth)
+                               ? 1
+                               : 0;
+            }
+        }
+    }
+    REQUIRE(kept > 0);
+    CHECK(covered == kept);
+}
+
+}  // namespace
+
+TEST_CASE("interleave, interval, accum: textures, COLOR_0, NORMAL and MASK per sample, cpu = gl") {
+    GlRenderer* gl = renderer_or_skip();
+    const std::string cube_path = std::string(BLURCULL_SHARED_DIR) + "/scenes/khronos/Cube/Cube.gltf";
+    std::vector<Scene> scenes{load("attributes.gltf"), load("mask_texture.gltf")};
+    std::FILE* cube_file = std::fopen(cube_path.c_str(), "rb");
+    if (cube_file != nullptr) {
+        std::fclose(cube_file);
+        GltfOptions options;
+        scenes.push_back(load_gltf_scene(cube_path, options));
+    } else {
+        MESSAGE("SKIPPED the Khronos Cube: " << cube_path << " is absent");
+    }
+    for (const RenderMethod method : {RenderMethod::interleave, RenderMethod::interval, RenderMethod::accum}) {
+        for (const Scene& scene : scenes) {
+            RenderSettings settings = quiet_settings(96, 72, 4);
+            settings.method = method;
+            INFO(std::string(to_string(method)) << " on " << scene.name);
+            std::vector<std::uint32_t> cpu_ids;
+            const RenderResult cpu = render_cpu_method(scene, settings, cpu_ids);
+            CHECK(cpu.warnings.empty());
+            check_samples_where_tested(scene, settings, cpu_ids);
+            // Shaded per sample: more than the few colours of flat facets.
+            Scene flat = without_mask(scene);
+            for (Material& material : flat.materials) material.base_color_texture.texture = -1;
+            flat.vertex_color.clear();
+            flat.normal.clear();
+            std::vector<std::uint32_t> flat_ids;
+            const RenderResult flat_image = render_cpu_method(flat, settings, flat_ids);
+            MESSAGE(std::string(to_string(method)) << " on " << scene.name << ": distinct colours " << distinct_colours(cpu.image)
+                                      << ", flat " << distinct_colours(flat_image.image));
+            CHECK(distinct_colours(cpu.image) > distinct_colours(flat_image.image) + 20);
+            // The mask: the masked-out samples show what is behind.
+            std::vector<std::uint32_t> opaque_ids;
+            const RenderResult opaque = render_cpu_method(without_mask(scene), settings, opaque_ids);
+            const bool masked = scene.name != "Cube";
+            if (masked) {
+                CHECK(cpu.stats.samples_hit < opaque.stats.samples_hit);
+                CHECK(rmse(cpu.image, opaque.image) > 0.05);
+            }
+            if (gl == nullptr) continue;
+            // The GL tests' method rule (test_frontend_gl_methods.cpp).
+            GlOptions gl_options;
+            gl_options.keep_sample_ids = true;
+            std::vector<std::uint32_t> gl_ids;
+            const RenderResult on_gl = gl->render(scene, settings, gl_options, &gl_ids);
+            const double same = fraction_equal(gl_ids, cpu_ids);
+            MESSAGE("  gl: samples identical " << same << ", RMSE " << rmse(on_gl.image, cpu.image) << ", hits gl "
+                                               << on_gl.stats.samples_hit << " cpu " << cpu.stats.samples_hit);
+            CHECK(on_gl.warnings.empty());
+            CHECK(same >= 0.998);
+            CHECK(rmse(on_gl.image, cpu.image) < 0.005);
+            CHECK(fraction_close(on_gl.image, cpu.image) >= 0.995);
+            const double hits_cpu = static_cast<double>(cpu.stats.samples_hit);
+            CHECK(std::abs(static_cast<double>(on_gl.stats.samples_hit) - hits_cpu) <= 0.0001 * hits_cpu + 1.0);
+            if (masked) CHECK(on_gl.stats.samples_hit < opaque.stats.samples_hit);
+        }
+    }
 }

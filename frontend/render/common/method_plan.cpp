@@ -68,20 +68,9 @@ void stratum_interval(int j, int strata, double& t0, double& t1) {
 // The double precision triangles and colours, which triangles some sample may
 // see, and whether the scene has motion and defocus at all.
 void plan_triangles(const Scene& scene, MethodPlan& plan) {
-    plan.colours = shade_all(scene);
+    plan.shader = std::make_shared<const SurfaceShader>(scene, plan.model);
+    plan.colours = plan.shader->flat_colours();
     const std::size_t count = scene.triangles.size();
-    // These methods resolve ids only, without each sample's position: the
-    // per-hit part of the shading contract is the stochastic renderers'.
-    std::size_t per_hit = 0, masked = 0;
-    for (std::size_t i = 0; i < count; ++i) {
-        per_hit += shades_per_hit(scene, i) ? 1 : 0;
-        masked += scene.materials[scene.triangle_material[i]].alpha_mode == AlphaMode::mask ? 1 : 0;
-    }
-    if (per_hit + masked > 0) {
-        plan.warnings.push_back(std::string(render_method_info(plan.method).name) + ": " + std::to_string(per_hit) +
-                                " textured or smooth triangles shaded flat and " + std::to_string(masked) +
-                                " alpha-masked triangles drawn opaque (per-sample shading is the default method's)");
-    }
     plan.triangles.resize(count);
     plan.visible.resize(count);
     std::size_t invalid = 0;
@@ -144,6 +133,7 @@ MethodPlan make_method_plan(const Scene& scene, const RenderSettings& settings, 
     require_valid_scene(scene);
     MethodPlan plan;
     plan.method = settings.method;
+    plan.seed = settings.seed;
     plan.model = CameraModel(scene.camera, settings.width, settings.height);
     plan_triangles(scene, plan);
     plan.per_pixel = settings.spp;
@@ -210,8 +200,48 @@ InterleaveTupleCells interleave_tuple_cells(const MethodPlan& plan, int width, i
     return table;
 }
 
+std::vector<std::int32_t> method_tuple_of_cell(const MethodPlan& plan, int width, int height) {
+    if (plan.method != RenderMethod::interleave) return {};
+    const InterleaveTupleCells table = interleave_tuple_cells(plan, width, height);
+    const std::size_t tile_count = static_cast<std::size_t>(table.tiles_x) * static_cast<std::size_t>(table.tiles_y);
+    std::vector<std::int32_t> tuple_of_cell(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) *
+                                                static_cast<std::size_t>(plan.per_pixel),
+                                            -1);
+    for (std::size_t entry = 0; entry < table.cells.size(); ++entry) {
+        const std::uint32_t cell = table.cells[entry];
+        if (cell != no_sample_hit) tuple_of_cell[cell] = static_cast<std::int32_t>(entry / tile_count);
+    }
+    return tuple_of_cell;
+}
+
+MethodSample method_sample(const MethodPlan& plan, const std::vector<std::int32_t>& tuple_of_cell, int px, int py,
+                           int j) {
+    const CameraModel& model = plan.model;
+    if (plan.method == RenderMethod::interval) {
+        const kernelf::PixelSample s = patternsf::interval_sample(
+            static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py), static_cast<std::uint32_t>(j),
+            static_cast<std::uint32_t>(plan.passes), plan.seed);
+        return MethodSample{model.sample_ndc(px, py, s.offset), s.lens, s.time};
+    }
+    if (plan.method != RenderMethod::interleave) {  // accum: pass j
+        const kernelf::PixelSample& s = plan.pass_samples[static_cast<std::size_t>(j)];
+        return MethodSample{model.sample_ndc(px, py, s.offset), s.lens, s.time};
+    }
+    const int side = plan.scale;
+    const glm::ivec2 cell(px * side + j % side, py * side + j / side);
+    const std::size_t cell_index =
+        static_cast<std::size_t>(cell.y) * static_cast<std::size_t>(model.width * side) + static_cast<std::size_t>(cell.x);
+    const kernelf::PixelSample& tuple = plan.pass_samples[static_cast<std::size_t>(tuple_of_cell[cell_index])];
+    const glm::vec2 jitter =
+        patternsf::interleaved_jitter(static_cast<std::uint32_t>(cell.x), static_cast<std::uint32_t>(cell.y), plan.seed);
+    return MethodSample{kernelf::interleaved_sample_ndc(cell, side, jitter, model.image_size()), tuple.lens, tuple.time};
+}
+
 Image resolve_method_samples(const Scene& scene, const MethodPlan& plan, const std::vector<std::uint32_t>& ids,
                              int width, int height) {
+    const SurfaceShader& shader = *plan.shader;
+    const std::vector<std::int32_t> tuple_of_cell =
+        shader.any_per_hit() ? method_tuple_of_cell(plan, width, height) : std::vector<std::int32_t>{};
     Image image(width, height);
     image.coverage.resize(image.pixels.size());
     const int per_pixel = plan.per_pixel;
@@ -222,8 +252,17 @@ Image resolve_method_samples(const Scene& scene, const MethodPlan& plan, const s
             std::uint32_t covered = 0;
             for (int j = 0; j < per_pixel; ++j) {
                 const std::uint32_t id = ids[base + static_cast<std::size_t>(j)];
-                sum += id == no_sample_hit ? scene.background : plan.colours[id];
-                covered += id != no_sample_hit;
+                if (id == no_sample_hit) {
+                    sum += scene.background;
+                    continue;
+                }
+                ++covered;
+                if (!shader.per_hit(id)) {
+                    sum += plan.colours[id];
+                    continue;
+                }
+                const MethodSample s = method_sample(plan, tuple_of_cell, px, py, j);
+                sum += shader.sample_colour(id, s.ndc, s.lens, s.time);
             }
             image.at(px, py) = resolve_box(sum, per_pixel);
             image.coverage[image.index(px, py)] = resolve_coverage(covered, per_pixel);

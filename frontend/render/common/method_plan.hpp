@@ -15,10 +15,13 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace blurcull::frontend {
+
+class SurfaceShader;
 
 struct InterleaveOptions {
     int tile_width = 6;  // tiles of tile_width^2 lattice cells, N = tile_width^2 tuples (Aqsis: 6)
@@ -39,7 +42,11 @@ struct CellRect {
 struct MethodPlan {
     RenderMethod method = RenderMethod::interleave;
     CameraModel model;
-    std::vector<glm::vec3> colours;
+    std::vector<glm::vec3> colours;  // each triangle's flat colour (shade_all)
+    // The shading contract's per-hit resolve and alpha mask test
+    // (surface_shading.hpp); it refers to the scene the plan was made for.
+    std::shared_ptr<const SurfaceShader> shader;
+    std::uint32_t seed = 0;  // RenderSettings::seed: interval's and interleave's sample positions
     std::vector<kernel<double>::MovingTriangle> triangles;
     std::vector<bool> visible;  // some sample of the screen may see it (its whole-shutter box)
     bool any_motion = false;
@@ -76,7 +83,28 @@ struct InterleaveTupleCells {
 };
 InterleaveTupleCells interleave_tuple_cells(const MethodPlan& plan, int width, int height);
 
-// Pixel (px, py) = mean of the colours of ids[(py W + px) per_pixel + 0 .. per_pixel - 1].
+// One sample as the passes test it: its NDC position, lens position and time.
+struct MethodSample {
+    glm::vec2 ndc;
+    glm::vec2 lens;
+    float time;
+};
+
+// Where sample j of pixel (px, py) of the plan is (the CPU renderers' and
+// the GL shaders' positions): interval, stratum j's interval_sample; accum,
+// pass j's offset, lens and time; interleave, the lattice cell (px s + j % s,
+// py s + j / s) at its jitter, with the lens and time of the tuple its tile
+// holds there (tuple_of_cell, from method_tuple_of_cell).
+MethodSample method_sample(const MethodPlan& plan, const std::vector<std::int32_t>& tuple_of_cell, int px, int py,
+                           int j);
+
+// Interleave: the tuple of each lattice cell (gy * width * scale + gx); empty
+// for the other methods.
+std::vector<std::int32_t> method_tuple_of_cell(const MethodPlan& plan, int width, int height);
+
+// Pixel (px, py) = mean of the colours of ids[(py W + px) per_pixel + 0 .. per_pixel - 1]:
+// each sample's SurfaceShader::sample_colour at its method_sample (the flat
+// colour for a triangle that does not shade per hit), summed in sample order.
 Image resolve_method_samples(const Scene& scene, const MethodPlan& plan, const std::vector<std::uint32_t>& ids,
                              int width, int height);
 

@@ -11,7 +11,16 @@ namespace {
 
 template <class V>
 V interpolate(const std::vector<V>& values, const glm::uvec3& tri, glm::vec3 b) {
-    return b.x * values[tri.x] + b.y * values[tri.y] + b.z * values[tri.z];
+    constexpr int n = V::length();
+    const auto padded = [&](unsigned vertex) {
+        glm::vec4 a(0.0f);
+        for (int c = 0; c < n; ++c) a[c] = values[vertex][c];
+        return a;
+    };
+    const glm::vec4 mixed = surface::bc_interpolate(b, padded(tri.x), padded(tri.y), padded(tri.z));
+    V out;
+    for (int c = 0; c < n; ++c) out[c] = mixed[c];
+    return out;
 }
 
 // The texture's texel at the hit's TEXCOORD_0 (0, 0 without texture coordinates).
@@ -19,8 +28,10 @@ glm::vec4 texture_at(const Scene& scene, const TextureRef& ref, const glm::uvec3
     const glm::vec2 uv = scene.texcoord.empty() ? glm::vec2(0.0f) : interpolate(scene.texcoord, tri, b);
     // glm::mat3 is column-major: row r is (m[0][r], m[1][r], m[2][r]).
     const glm::mat3& m = ref.transform;
-    const glm::vec2 st = surface::bc_transform_uv(glm::vec3(m[0][0], m[1][0], m[2][0]), glm::vec3(m[0][1], m[1][1], m[2][1]), uv);
-    return sample_texture(scene.textures[static_cast<std::size_t>(ref.texture)], st);
+    const Texture& texture = scene.textures[static_cast<std::size_t>(ref.texture)];
+    return surface::bc_transformed_texture(texture, texture.width, texture.height, static_cast<int>(texture.wrap_s),
+                                           static_cast<int>(texture.wrap_t), glm::vec3(m[0][0], m[1][0], m[2][0]),
+                                           glm::vec3(m[0][1], m[1][1], m[2][1]), uv);
 }
 
 bool nonzero(const glm::vec3& v) { return v.x != 0.0f || v.y != 0.0f || v.z != 0.0f; }
@@ -50,10 +61,11 @@ bool shades_per_hit(const Scene& scene, std::size_t triangle) {
 float hit_alpha(const Scene& scene, std::size_t triangle, glm::vec3 barycentric) {
     const Material& material = scene.materials[scene.triangle_material[triangle]];
     const glm::uvec3& tri = scene.triangles[triangle];
-    float alpha = material.base_alpha;
-    if (!scene.vertex_color.empty()) alpha *= interpolate(scene.vertex_color, tri, barycentric).w;
-    if (material.base_color_texture.texture >= 0) alpha *= texture_at(scene, material.base_color_texture, tri, barycentric).w;
-    return alpha;
+    const float vertex_alpha = scene.vertex_color.empty() ? 1.0f : interpolate(scene.vertex_color, tri, barycentric).w;
+    const float texture_alpha = material.base_color_texture.texture < 0
+                                    ? 1.0f
+                                    : texture_at(scene, material.base_color_texture, tri, barycentric).w;
+    return surface::bc_hit_alpha(material.base_alpha, vertex_alpha, texture_alpha);
 }
 
 glm::vec3 shade_hit(const Scene& scene, std::size_t triangle, glm::vec3 barycentric, glm::vec3 incident) {
@@ -97,7 +109,7 @@ glm::vec3 SurfaceShader::barycentrics(std::uint32_t triangle, glm::vec2 ndc, glm
 bool SurfaceShader::sample_kept(std::uint32_t triangle, glm::vec2 ndc, glm::vec2 lens, float time) const {
     if (masked_[triangle] == 0) return true;
     const float cutoff = scene_.materials[scene_.triangle_material[triangle]].alpha_cutoff;
-    return hit_alpha(scene_, triangle, barycentrics(triangle, ndc, lens, time)) >= cutoff;
+    return surface::bc_alpha_kept(hit_alpha(scene_, triangle, barycentrics(triangle, ndc, lens, time)), cutoff);
 }
 
 glm::vec3 SurfaceShader::sample_colour(std::uint32_t triangle, glm::vec2 ndc, glm::vec2 lens, float time) const {

@@ -56,6 +56,8 @@ public:
     bool any_masked() const { return any_masked_; }
     // Whether some triangle shades per hit (shades_per_hit).
     bool any_per_hit() const { return any_per_hit_; }
+    // Whether `triangle` shades per hit: false means sample_colour is its flat colour.
+    bool per_hit(std::uint32_t triangle) const { return per_hit_[triangle] != 0; }
 
     // The raster decision's alpha test: whether a sample that the exact test
     // finds covered by `triangle` stays covered (MASK: hit_alpha >= cutoff;

@@ -1,8 +1,16 @@
 // The per-hit surface formulas of the shading contract (docs/reference-renderer.md,
 // "Shading"): texture wrap and bilinear weights, the sRGB decode, and the lit
-// colour, in float, in one operation order. Written in the C++/GLSL subset of
-// optics_shared.h so a GPU resolve can include it; today every backend,
-// the GL one included, runs it on the host (the texel fetch is the caller's).
+// colour, the texture fetch (transform, wrap, bilinear), the interpolation of
+// vertex attributes and the alpha mask's test, in float, in one operation
+// order. Written in the C++/GLSL subset of optics_shared.h: the host resolve
+// of every backend runs it in C++, the GL backend's alpha mask test
+// (shaders/render_mask.glsl) runs the same text in GLSL.
+//
+// The texel fetch is the includer's: vec4 bc_texel(BC_TEXTURE_IN texture,
+// int x, int y), the linear RGBA of an already wrapped texel. In C++ it is
+// decode_texel of a Texture (texture_sampling.cpp); in GLSL BC_TEXTURE_IN is
+// an ivec4 locating the texture in the includer's buffers, and the includer
+// defines bc_texel after this header.
 #ifndef BLURCULL_SURFACE_SHARED_H
 #define BLURCULL_SURFACE_SHARED_H
 
@@ -26,8 +34,18 @@ using glm::mix;
 using glm::sqrt;
 inline float pow(float a, float b) { return std::pow(a, b); }
 #define BC_SURFACE_FN inline
+}  // namespace blurcull::frontend::surface
+namespace blurcull::frontend {
+struct Texture;
+}
+namespace blurcull::frontend::surface {
+#define BC_TEXTURE_IN const ::blurcull::frontend::Texture&
+// texture_sampling.cpp: decode_texel.
+vec4 bc_texel(BC_TEXTURE_IN tex, int x, int y);
 #else
 #define BC_SURFACE_FN
+#define BC_TEXTURE_IN ivec4
+vec4 bc_texel(BC_TEXTURE_IN tex, int x, int y);  // the includer's (render_mask.glsl)
 #endif
 
 // TextureWrap (scene.hpp) as ints.
@@ -40,17 +58,22 @@ inline float pow(float a, float b) { return std::pow(a, b); }
 // coordinates that far out (docs/reference-renderer.md, "Shading").
 #define BC_TEXEL_LIMIT 16777216.0
 
+// i mod n in [0, n) for any int i and n > 0, with % of non-negative
+// operands only (GLSL leaves % of a negative operand undefined): for i < 0,
+// i mod n = n - 1 - ((-1 - i) mod n).
+BC_SURFACE_FN int bc_floor_mod(int i, int n) {
+    return i >= 0 ? i % n : n - 1 - (-1 - i) % n;
+}
+
 // Integer texel i (any int) folded into [0, n) by wrap mode `mode`.
 BC_SURFACE_FN int bc_wrap_texel(int i, int n, int mode) {
     if (mode == BC_WRAP_CLAMP) return clamp(i, 0, n - 1);
     if (mode == BC_WRAP_MIRROR) {
         int period = 2 * n;
-        int m = i % period;
-        if (m < 0) m = m + period;
+        int m = bc_floor_mod(i, period);
         return m < n ? m : period - 1 - m;
     }
-    int r = i % n;
-    return r < 0 ? r + n : r;
+    return bc_floor_mod(i, n);
 }
 
 // Bilinear filtering along one axis of n texels at texture coordinate c (0
@@ -81,6 +104,47 @@ BC_SURFACE_FN float bc_srgb_to_linear(float encoded) {
 // Texture coordinates transform * (uv, 1) of a 3x3 (KHR_texture_transform).
 BC_SURFACE_FN vec2 bc_transform_uv(vec3 row0, vec3 row1, vec2 uv) {
     return vec2(row0.x * uv.x + row0.y * uv.y + row0.z, row1.x * uv.x + row1.y * uv.y + row1.z);
+}
+
+// The texture's linear RGBA at texture coordinate uv (glTF convention: (0, 0)
+// the top-left corner of the image), bilinearly filtered between the four
+// texels around it, each wrapped by wrap_s / wrap_t (BC_WRAP_*) and fetched
+// with bc_texel; texture is width x height texels.
+BC_SURFACE_FN vec4 bc_sample_texture(BC_TEXTURE_IN tex, int width, int height, int wrap_s, int wrap_t, vec2 uv) {
+    vec2 ax = bc_bilinear_axis(uv.x, width);
+    vec2 ay = bc_bilinear_axis(uv.y, height);
+    int left = int(ax.x);
+    int top = int(ay.x);
+    int x0 = bc_wrap_texel(left, width, wrap_s);
+    int x1 = bc_wrap_texel(left + 1, width, wrap_s);
+    int y0 = bc_wrap_texel(top, height, wrap_t);
+    int y1 = bc_wrap_texel(top + 1, height, wrap_t);
+    return bc_bilinear_mix(bc_texel(tex, x0, y0), bc_texel(tex, x1, y0), bc_texel(tex, x0, y1),
+                           bc_texel(tex, x1, y1), ax.y, ay.y);
+}
+
+// bc_sample_texture at the texture coordinates uv after the texture's
+// transform (rows row0, row1 of its 3x3; KHR_texture_transform).
+BC_SURFACE_FN vec4 bc_transformed_texture(BC_TEXTURE_IN tex, int width, int height, int wrap_s, int wrap_t,
+                                          vec3 row0, vec3 row1, vec2 uv) {
+    return bc_sample_texture(tex, width, height, wrap_s, wrap_t, bc_transform_uv(row0, row1, uv));
+}
+
+// A vertex attribute at barycentric coordinates b (weights of vertices 0, 1,
+// 2); narrower attributes go through it padded, each component alike.
+BC_SURFACE_FN vec4 bc_interpolate(vec3 b, vec4 a0, vec4 a1, vec4 a2) {
+    return b.x * a0 + b.y * a1 + b.z * a2;
+}
+
+// The alpha of a hit: baseColorFactor's alpha x COLOR_0's alpha x the base
+// colour texture's alpha (1 for a part the triangle does not have).
+BC_SURFACE_FN float bc_hit_alpha(float base_alpha, float vertex_alpha, float texture_alpha) {
+    return base_alpha * vertex_alpha * texture_alpha;
+}
+
+// alphaMode MASK: whether a covered sample of alpha `alpha` stays covered.
+BC_SURFACE_FN bool bc_alpha_kept(float alpha, float cutoff) {
+    return alpha >= cutoff;
 }
 
 // The diffuse term's cosine |n . l| / (|n| |l|) of a normal and the light

@@ -22,16 +22,14 @@ glm::vec4 decode_texel(const Texture& texture, int x, int y) {
 }
 
 glm::vec4 sample_texture(const Texture& texture, glm::vec2 uv) {
-    const glm::vec2 ax = surface::bc_bilinear_axis(uv.x, texture.width);
-    const glm::vec2 ay = surface::bc_bilinear_axis(uv.y, texture.height);
-    const int wrap_s = static_cast<int>(texture.wrap_s), wrap_t = static_cast<int>(texture.wrap_t);
-    const int left = static_cast<int>(ax.x), top = static_cast<int>(ay.x);
-    const int x0 = surface::bc_wrap_texel(left, texture.width, wrap_s);
-    const int x1 = surface::bc_wrap_texel(left + 1, texture.width, wrap_s);
-    const int y0 = surface::bc_wrap_texel(top, texture.height, wrap_t);
-    const int y1 = surface::bc_wrap_texel(top + 1, texture.height, wrap_t);
-    return surface::bc_bilinear_mix(decode_texel(texture, x0, y0), decode_texel(texture, x1, y0),
-                                    decode_texel(texture, x0, y1), decode_texel(texture, x1, y1), ax.y, ay.y);
+    return surface::bc_sample_texture(texture, texture.width, texture.height, static_cast<int>(texture.wrap_s),
+                                      static_cast<int>(texture.wrap_t), uv);
 }
 
 }  // namespace blurcull::frontend
+
+namespace blurcull::frontend::surface {
+
+vec4 bc_texel(BC_TEXTURE_IN tex, int x, int y) { return decode_texel(tex, x, y); }
+
+}  // namespace blurcull::frontend::surface

@@ -26,6 +26,7 @@ RenderResult render_accum(const Scene& scene, const RenderSettings& settings, st
     std::vector<std::uint32_t> hits(pixel_count * static_cast<std::size_t>(passes), no_sample_hit);
 
     const double near = model.znear;
+    const SurfaceShader& shader = *plan.shader;
     const Counters counters = render.run_raster(passes, [&](int k, Counters& local) {
         const kernelf::PixelSample& pass_sample = plan.pass_samples[static_cast<std::size_t>(k)];
         const K::vec2 uv(pass_sample.lens);
@@ -40,7 +41,7 @@ RenderResult render_accum(const Scene& scene, const RenderSettings& settings, st
                 for (int px = r.x0; px <= r.x1; ++px) {
                     const K::vec2 ndc(model.sample_ndc(px, py, offset));
                     const std::size_t pixel = static_cast<std::size_t>(py) * width + px;
-                    cpu_methods::test_pass_sample(tri, box.bound, ndc, uv, t, near, triangle, local, depth[pixel],
+                    cpu_methods::test_pass_sample(tri, box.bound, ndc, uv, t, near, triangle, shader, local, depth[pixel],
                                                   pass[pixel]);
                 }
             }

@@ -97,6 +97,7 @@ RenderResult render_interleave(const Scene& scene, const RenderSettings& setting
 
     // One work item per tuple: the samples of different tuples are disjoint.
     const double near = model.znear;
+    const SurfaceShader& shader = *plan.shader;
     const Counters counters = render.run_raster(n, [&](int k, Counters& local) {
         const kernelf::PixelSample& tuple = plan.pass_samples[static_cast<std::size_t>(k)];
         const K::vec2 uv(tuple.lens);
@@ -115,7 +116,7 @@ RenderResult render_interleave(const Scene& scene, const RenderSettings& setting
                     const int px = gx / side, py = gy / side, sx = gx % side, sy = gy % side;
                     const std::size_t sample =
                         (static_cast<std::size_t>(py) * width + px) * spp + static_cast<std::size_t>(sy * side + sx);
-                    cpu_methods::test_pass_sample(tri, box.bound, ndcs[tile], uv, t, near, triangle, local,
+                    cpu_methods::test_pass_sample(tri, box.bound, ndcs[tile], uv, t, near, triangle, shader, local,
                                                   depth[sample], hits[sample]);
                 }
             }

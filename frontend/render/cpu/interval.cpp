@@ -26,6 +26,7 @@ RenderResult render_interval(const Scene& scene, const RenderSettings& settings,
 
     // One work item per stratum: sample j of every pixel belongs to stratum j.
     const double near = model.znear;
+    const SurfaceShader& shader = *plan.shader;
     const Counters counters = render.run_raster(strata, [&](int j, Counters& local) {
         // Sample j of every pixel, computed once per stratum.
         std::vector<cpu_methods::Sample> plane(static_cast<std::size_t>(width) * height);
@@ -46,7 +47,7 @@ RenderResult render_interval(const Scene& scene, const RenderSettings& settings,
                 for (int px = r.x0; px <= r.x1; ++px) {
                     const cpu_methods::Sample& s = plane[static_cast<std::size_t>(py) * width + px];
                     const std::size_t sample = (static_cast<std::size_t>(py) * width + px) * strata + static_cast<std::size_t>(j);
-                    cpu_methods::test_pass_sample(tri, box.bound, s.ndc, s.lens, s.time, near, triangle, local,
+                    cpu_methods::test_pass_sample(tri, box.bound, s.ndc, s.lens, s.time, near, triangle, shader, local,
                                                   depth[sample], hits[sample]);
                 }
             }

@@ -7,6 +7,7 @@
 #include "render/common/method_plan.hpp"
 #include "render/common/progress.hpp"
 #include "render/common/render_types.hpp"
+#include "render/common/surface_shading.hpp"
 #include "scene/scene.hpp"
 
 #include <blurcull/kernel.hpp>
@@ -41,17 +42,22 @@ Counters run_items(const RenderSettings& settings, int items, const std::functio
 // One sample of a pass against triangle `triangle` in its pass box `bound`:
 // the kernel's sample_test (screen bound, then the exact test; the passes
 // bound lens and time by their boxes, so no sample bounds), counted in
-// `local`, then the CPU depth rule (depth_nearer: with triangles in index
-// order the first of equal depths wins, as in render_cpu) on the sample's
-// depth and hit.
+// `local`, the alpha mask (SurfaceShader::sample_kept: a masked-out sample
+// is not a hit), then the CPU depth rule (depth_nearer: with triangles in
+// index order the first of equal depths wins, as in render_cpu) on the
+// sample's depth and hit.
 inline void test_pass_sample(const K::MovingTriangle& tri, const K::ScreenBound& bound, K::vec2 ndc, K::vec2 lens,
-                             double time, double near, std::uint32_t triangle, Counters& local, double& depth,
-                             std::uint32_t& hit) {
+                             double time, double near, std::uint32_t triangle, const SurfaceShader& shader,
+                             Counters& local, double& depth, std::uint32_t& hit) {
     double z = 0.0;
     const int verdict = K::sample_test(tri, bound, true, K::no_sample_bounds(), ndc, lens, time, near, z);
     if (verdict == BC_SAMPLE_CULLED) return;
     ++local.tested;
     if (verdict != BC_SAMPLE_COVERED) return;
+    // The samples' positions are floats (method_sample), so these casts are exact.
+    if (shader.masked(triangle) &&
+        !shader.sample_kept(triangle, glm::vec2(ndc), glm::vec2(lens), static_cast<float>(time)))
+        return;
     ++local.hit;
     if (K::depth_nearer(z, depth)) {
         depth = z;

@@ -7,6 +7,7 @@
 #include "render/common/progress.hpp"
 #include "render/common/shading.hpp"
 #include "render/common/surface_shading.hpp"
+#include "render/gl/gl_alpha_mask.hpp"
 #include "render/gl/gl_context.hpp"
 #include "render/gl/gl_render_targets.hpp"
 #include "render/gl/gl_sampling_methods.hpp"
@@ -67,13 +68,13 @@ struct GlRenderer::State {
           bounds(context.gl(), {kernel_stage(GL_COMPUTE_SHADER, "render_bounds.comp")}),
           samples(context.gl(), {kernel_stage(GL_COMPUTE_SHADER, "render_samples.comp")}),
           draw_static(context.gl(), {kernel_stage(GL_VERTEX_SHADER, "render_static.vert"),
-                                     kernel_stage(GL_FRAGMENT_SHADER, "render_static.frag")}),
+                                     masked_kernel_stage(GL_FRAGMENT_SHADER, "render_static.frag")}),
           draw_static_group(context.gl(), {kernel_stage(GL_VERTEX_SHADER, "render_static.vert"),
-                                           kernel_stage(GL_FRAGMENT_SHADER, "render_static_group.frag")}),
+                                           masked_kernel_stage(GL_FRAGMENT_SHADER, "render_static_group.frag")}),
           static_fill(context.gl(), {kernel_stage(GL_VERTEX_SHADER, "render_static_fill.vert"),
                                      kernel_stage(GL_FRAGMENT_SHADER, "render_static_fill.frag")}),
           draw_moving(context.gl(), {kernel_stage(GL_VERTEX_SHADER, "render_moving.vert"),
-                                     kernel_stage(GL_FRAGMENT_SHADER, "render_moving.frag")}),
+                                     masked_kernel_stage(GL_FRAGMENT_SHADER, "render_moving.frag")}),
           resolve(context.gl(), {kernel_stage(GL_COMPUTE_SHADER, "render_resolve.comp")}) {
         context.gl().GenVertexArrays(1, &vertex_array);
     }
@@ -299,6 +300,7 @@ private:
     SampleCounters counters_;
     gl::Buffer colour_buffer_, sum_buffer_, id_buffer_, cell_buffer_, pass_sample_buffer_, pass_time_buffer_,
         class_buffer_, static_list_buffer_, moving_list_buffer_;
+    const GlAlphaMask mask_;  // alphaMode MASK, tested by the fragment shaders (render_mask.glsl)
     std::optional<IdDepthTarget> id_depth_;  // made by run_setup
 };
 
@@ -336,7 +338,9 @@ StochasticFrame::StochasticFrame(const GlRenderer::State& state, const Scene& sc
       pass_time_buffer_(storage_buffer(gl_, pixels_ * samples_per_pass * sizeof(float))),
       class_buffer_(storage_buffer(gl_, triangles_.classes)),
       static_list_buffer_(storage_buffer(gl_, triangles_.static_list)),
-      moving_list_buffer_(storage_buffer(gl_, triangles_.moving_list)) {
+      moving_list_buffer_(storage_buffer(gl_, triangles_.moving_list)),
+      mask_(gl_, scene) {
+    mask_.bind();
     triangle_buffer_.bind_base(0);
     info_buffer_.bind_base(1);
     counters_.bind_base(2);
@@ -539,12 +543,6 @@ RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settin
     std::vector<std::uint32_t> winners;
     std::vector<std::uint32_t>* kept_ids = shader.any_per_hit() && sample_ids == nullptr ? &winners : sample_ids;
     const bool keep_ids = (options.keep_sample_ids && sample_ids != nullptr) || shader.any_per_hit();
-    if (shader.any_masked()) {
-        std::size_t masked = 0;
-        for (std::uint32_t t = 0; t < scene.triangles.size(); ++t) masked += shader.masked(t) ? 1 : 0;
-        result.warnings.push_back("gl: " + std::to_string(masked) +
-                                  " alpha-masked triangles are drawn opaque (the mask test is the cpu and embree backends')");
-    }
     StochasticFrame frame(*state_, scene, settings, options, keep_ids);
     frame.run_setup();
     stats.ms_per_phase.emplace_back("setup", ms_since(phase));

@@ -4,6 +4,7 @@
 #include "render/common/method_plan.hpp"
 #include "render/common/moving_triangle.hpp"
 #include "render/common/progress.hpp"
+#include "render/gl/gl_alpha_mask.hpp"
 #include "render/gl/gl_render_targets.hpp"
 #include "render/gl/gpu_layout_shared.h"
 
@@ -63,7 +64,7 @@ struct GlMethodPrograms {
         : gl(&functions),
           samples(functions, {kernel_stage(GL_COMPUTE_SHADER, "render_method_samples.comp")}),
           draw(functions, {kernel_stage(GL_VERTEX_SHADER, "render_method.vert"),
-                           kernel_stage(GL_FRAGMENT_SHADER, "render_method.frag")}) {
+                           masked_kernel_stage(GL_FRAGMENT_SHADER, "render_method.frag")}) {
         functions.GenVertexArrays(1, &vertex_array);
     }
     GlMethodPrograms(const GlMethodPrograms&) = delete;
@@ -220,6 +221,7 @@ private:
     gl::Buffer triangle_buffer_;
     SampleCounters counters_;
     gl::Buffer box_buffer_, tuple_buffer_, sample_buffer_, time_buffer_;
+    const GlAlphaMask mask_;  // alphaMode MASK, tested by render_method.frag (render_mask.glsl)
     // The stochastic path's framebuffer and depth rule, single-sampled.
     const IdDepthTarget id_depth_;
     std::vector<std::uint32_t> hits_, pass_ids_;
@@ -250,6 +252,7 @@ MethodFrame::MethodFrame(const gl::Functions& gl, const GlMethodPrograms& progra
                     interleave_ ? table_.cells.data() : nullptr),
       sample_buffer_(gl, GL_SHADER_STORAGE_BUFFER, interval_ ? pixels_ * 4 * sizeof(float) : 16),
       time_buffer_(gl, GL_SHADER_STORAGE_BUFFER, interval_ ? pixels_ * sizeof(float) : 4),
+      mask_(gl, scene),
       id_depth_(gl, target.width, target.height, 0, "the method's id/depth framebuffer"),
       hits_(pixels_ * per_pixel_, no_sample_hit),
       pass_ids_(target.cells) {
@@ -259,6 +262,7 @@ MethodFrame::MethodFrame(const gl::Functions& gl, const GlMethodPrograms& progra
     time_buffer_.bind_base(8);
     box_buffer_.bind_base(9);
     tuple_buffer_.bind_base(10);
+    mask_.bind();
     id_depth_.bind_with_depth_rule();
     gl.BindVertexArray(programs.vertex_array);
     set_uniforms();

@@ -69,6 +69,33 @@ struct MethodBox {
     ivec4 index;  // x: the triangle
 };
 
+// The alpha mask test's buffers (shaders/render_mask.glsl, filled by
+// gl_alpha_mask.cpp): MaskSlots holds per triangle its entry in
+// MaskTriangles, or -1 when its material is not alphaMode MASK; MaskTexels
+// holds BC_GL_ALPHA_CODES floats (code / 255 of every 8-bit alpha, so the
+// GPU reads the host's value), then the masked textures' alpha bytes, four
+// per uint (texel k of a texture at byte texture.x + k, little end first).
+#define BC_GL_MASK_SLOTS_BINDING 16
+#define BC_GL_MASK_TRIANGLES_BINDING 17
+#define BC_GL_MASK_TEXELS_BINDING 18
+#define BC_GL_ALPHA_CODES 256
+
+// MaskTriangle.flags: which of its attributes the mask formula reads (the
+// host's hit_alpha takes 1 for a missing one, not an interpolated 1).
+#define BC_GL_MASK_HAS_TEXCOORD 1
+#define BC_GL_MASK_HAS_COLOR 2
+
+// One triangle of an alphaMode MASK material: what hit_alpha reads.
+struct MaskTriangle {
+    vec4 uv01;           // TEXCOORD_0 of vertices 0 (xy) and 1 (zw)
+    vec4 uv2_alpha;      // vertex 2's (xy); z: baseColorFactor's alpha, w: alphaCutoff
+    vec4 vertex_alpha;   // COLOR_0's alpha of vertices 0, 1, 2 (xyz); w: 0
+    vec4 transform_row0; // the base colour texture's KHR_texture_transform, rows 0
+    vec4 transform_row1; // and 1 (xyz); w: 0
+    ivec4 texture;       // x: its first alpha byte in MaskTexels' bytes (-1: none), y: width, z: height, w: 0
+    ivec4 wrap_flags;    // x: wrap_s, y: wrap_t (BC_WRAP_*), z: BC_GL_MASK_HAS_* bits, w: 0
+};
+
 #ifdef __cplusplus
 // The kernel's MovingTriangle as std430 lays it out (vec3 p[6] at stride 16,
 // then vec2 c[6]): what the Triangles buffer holds.
@@ -101,11 +128,15 @@ static_assert(sizeof(CellBounds) == 6 * 16 && offsetof(CellBounds, lens) == 16 &
 static_assert(sizeof(MethodBox) == 64 && offsetof(MethodBox, rect) == 16 && offsetof(MethodBox, box) == 32 &&
                   offsetof(MethodBox, index) == 48,
               "std430 MethodBox");
+static_assert(sizeof(MaskTriangle) == 7 * 16 && offsetof(MaskTriangle, texture) == 80 &&
+                  offsetof(MaskTriangle, wrap_flags) == 96,
+              "std430 MaskTriangle");
 static_assert(sizeof(GpuMovingTriangle) == 144 && offsetof(GpuMovingTriangle, c) == 96,
               "std430 MovingTriangle (vec3 p[6] at stride 16, vec2 c[6])");
 // A buffer of these is an array: std430 rounds a struct's stride up to its
 // alignment (16, that of its largest member), which every size above is.
 static_assert(sizeof(TriangleInfo) % 16 == 0 && sizeof(CellBounds) % 16 == 0 && sizeof(MethodBox) % 16 == 0 &&
+                  sizeof(MaskTriangle) % 16 == 0 &&
                   sizeof(GpuMovingTriangle) % 16 == 0,
               "std430 array strides");
 

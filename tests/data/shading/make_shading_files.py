@@ -5,6 +5,12 @@ attributes.gltf: a front quad with COLOR_0 (alpha 1 on its left edge, 0 on its
 right), NORMAL (tilted per vertex) and alphaMode MASK (cutoff 0.5), in front of
 a textured back quad (a 4x4 PNG, MIRRORED_REPEAT, KHR_texture_transform scale 3, rotation 90 degrees,
 emissive factor), a directional KHR_lights_punctual light and a camera.
+mask_texture.gltf: a front quad whose MASK comes from its base colour
+texture's alpha (a 4x4 PNG with holes and intermediate alphas, REPEAT in s and
+CLAMP_TO_EDGE in t, KHR_texture_transform scale 2 and offset, nearest filters
+that blurcull ignores: always bilinear), baseColorFactor alpha 0.9 and
+COLOR_0 alphas from 1 to 0.8, cutoff 0.4, in front of a plain back quad that
+shows through the holes.
 bad_*.gltf: one textured quad each, with a broken texture or texture coordinates.
 """
 import base64, json, math, struct, zlib
@@ -91,6 +97,35 @@ def attributes_file():
     }
     write('attributes.gltf', gltf, buf)
 
+def holes():
+    alphas = [[255, 0, 255, 120], [0, 255, 200, 0], [255, 60, 0, 255], [140, 255, 255, 0]]
+    return png(4, 4, [sum(([200, 180 - 40 * x, 40 + 50 * y, alphas[y][x]] for x in range(4)), []) for y in range(4)])
+
+def mask_texture_file():
+    buf = Buffer()
+    front = quad(buf, [(-1.2, -1, 0), (1.2, -1, 0), (1.2, 1, 0), (-1.2, 1, 0)],
+                 uv=[(0, 1), (1, 1), (1, 0), (0, 0)],
+                 colours=[(1, 1, 1, 1), (1, 1, 1, 0.8), (1, 1, 1, 0.8), (1, 1, 1, 1)])
+    front['material'] = 0
+    back = quad(buf, [(-2, -2, -1), (2, -2, -1), (2, 2, -1), (-2, 2, -1)])
+    back['material'] = 1
+    gltf = {
+        'extensionsUsed': ['KHR_texture_transform'],
+        'scene': 0, 'scenes': [{'nodes': [0, 1]}],
+        'nodes': [{'mesh': 0}, {'camera': 0, 'translation': [0, 0, 4]}],
+        'meshes': [{'primitives': [front, back]}],
+        'cameras': [{'type': 'perspective', 'perspective': {'yfov': 0.8, 'znear': 0.1, 'aspectRatio': 1.333}}],
+        'materials': [
+            {'name': 'holes', 'alphaMode': 'MASK', 'alphaCutoff': 0.4,
+             'pbrMetallicRoughness': {'baseColorFactor': [1, 1, 1, 0.9], 'baseColorTexture': {'index': 0, 'extensions': {
+                 'KHR_texture_transform': {'scale': [2, 1.5], 'offset': [0.1, -0.2]}}}}},
+            {'name': 'behind', 'pbrMetallicRoughness': {'baseColorFactor': [0.1, 0.7, 0.2, 1]}}],
+        'textures': [{'source': 0, 'sampler': 0}],
+        'samplers': [{'wrapS': 10497, 'wrapT': 33071, 'magFilter': 9728, 'minFilter': 9728}],
+        'images': [{'uri': data_uri('image/png', holes())}],
+    }
+    write('mask_texture.gltf', gltf, buf)
+
 def textured_quad(name, image, uv=None):
     buf = Buffer()
     prim = quad(buf, [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)],
@@ -104,6 +139,7 @@ def textured_quad(name, image, uv=None):
     write(name, gltf, buf)
 
 attributes_file()
+mask_texture_file()
 textured_quad('bad_texture_missing.gltf', {'uri': 'no_such_texture.png'})
 textured_quad('bad_texture_truncated.gltf', {'uri': data_uri('image/png', checker()[:45])})
 textured_quad('bad_texture_format.gltf', {'uri': data_uri('image/bmp', b'BM' + bytes(60))})

@@ -1,7 +1,8 @@
 // The interleave, interval and accum methods: one invocation per framebuffer
 // cell (one sample each; no MSAA), the pass's sample of that cell, the
-// triangle's box for the pass, then bc_sample_test() and gl_FragDepth =
-// near / w with a strict GREATER depth test, as the stochastic path.
+// triangle's box for the pass, then bc_sample_test(), the alpha mask
+// (mask_keeps) and gl_FragDepth = near / w with a strict GREATER depth test,
+// as the stochastic path.
 //  * interleave (method_kind 0): one framebuffer cell per tile of the
 //    width*s x height*s lattice; in the pass of tuple k, tile t's cell is
 //    the one lattice cell of t holding tuple k (tuple_cell, from the tile
@@ -62,6 +63,7 @@ void main() {
     if (verdict == BC_SAMPLE_CULLED) discard;
     atomicAdd(tested, 1u);
     if (verdict != BC_SAMPLE_COVERED) discard;
+    if (!mask_keeps(triangle, ndc, lens, time)) discard;  // alphaMode MASK, before the depth test
     atomicAdd(hit, 1u);
     gl_FragDepth = bc_depth_key(near_plane, depth);
     out_id = uint(triangle);

@@ -48,6 +48,7 @@ void main() {
     if (verdict == BC_SAMPLE_CULLED) discard;
     atomicAdd(tested, 1u);
     if (verdict != BC_SAMPLE_COVERED) discard;
+    if (!mask_keeps(g_index, ndc_lens.xy, ndc_lens.zw, pass_time[slot])) discard;  // alphaMode MASK, before the depth test
     atomicAdd(hit, 1u);
     gl_FragDepth = bc_depth_key(near_plane, depth);
     gl_SampleMask[0] = 1 << gl_SampleID;

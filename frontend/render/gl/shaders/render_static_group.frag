@@ -41,6 +41,7 @@ void main() {
         if (verdict == BC_SAMPLE_CULLED) continue;
         ++tested_here;
         if (verdict != BC_SAMPLE_COVERED) continue;
+        if (!mask_keeps(g_index, ndc_lens.xy, ndc_lens.zw, group_time[slot])) continue;  // alphaMode MASK
         ++hit_here;
         float key = bc_depth_key(near_plane, depth);
         if (!(key > 0.0)) continue;  // the depth test against the cleared 0 would drop it
