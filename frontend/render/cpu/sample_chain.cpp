@@ -112,7 +112,8 @@ __attribute__((target("avx"))) inline int culled4(const kernel<double>::ScreenBo
 // holds for every lens in [-1, 1]^2 and time in [0, 1], since t < 0 + 0 u
 // and t > 1 + 0 u are false there, as are the range tests.
 bool passes_unit_range(const kernel<double>::SampleBounds& b) {
-    const kernel<double>::SampleBounds none = kernel<double>::no_sample_bounds();
+    // Built once: no_sample_bounds() fills a large struct, and this runs per 32 samples.
+    static const kernel<double>::SampleBounds none = kernel<double>::no_sample_bounds();
     return !b.empty && b.u_range == none.u_range && b.v_range == none.v_range && b.u_time_a == none.u_time_a &&
            b.u_time_b == none.u_time_b && b.v_time_a == none.v_time_a && b.v_time_b == none.v_time_b;
 }
