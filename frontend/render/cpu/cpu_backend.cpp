@@ -529,7 +529,9 @@ private:
         for (std::size_t done = 0; done < count; done += 32) {
             const std::size_t at = first + done;
             const int n = static_cast<int>(std::min<std::size_t>(32, count - done));
-            std::uint32_t passed = samples_passing<Real>(current.bound, current.check_screen, sb, lanes, at, n);
+            std::uint32_t passed =
+                current.needs_bounds ? samples_passing<Real>(current.bound, current.check_screen, sb, lanes, at, n)
+                                     : samples_passing_screen<Real>(current.bound, current.check_screen, lanes, at, n);
             if (window_segments_ > 1) {
                 // Another motion segment's time: culled.
                 for (std::uint32_t bits = passed; bits != 0; bits &= bits - 1) {
