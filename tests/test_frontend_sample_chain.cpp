@@ -58,6 +58,11 @@ void check_config(const Config& cfg, int method, Rng& rng, Counts& counts) {
         counts.samples += static_cast<std::uint64_t>(count);
         counts.passed += static_cast<std::uint64_t>(__builtin_popcount(one));
         if (fast != one) ++counts.mismatches;
+        // The screen-only chain against the kernel with no lens or time bounds.
+        const std::uint32_t screen_only = frontend::samples_passing_screen<Real>(screen, check_screen, lanes, 0, count);
+        const std::uint32_t unbounded =
+            frontend::samples_passing_scalar<Real>(screen, check_screen, K::no_sample_bounds(), lanes, 0, count);
+        if (screen_only != unbounded) ++counts.mismatches;
     }
 }
 

@@ -9,8 +9,14 @@
 // phases, and whether the image equals the bbox render (every cull must give
 // the same image) and its RMSE against Embree's.
 //
-//   bench_cpu_embree [--scenes hand,car,dragonfly,forest] [--size 1024x768] [--spp 16]
-//                    [--blur 1,2] [--repeat 3] [--threads 0] [--culls bbox,hull,dualspace,twostage]
+// --size, --spp and --threads take lists too (every combination runs, the
+// sweeps behind docs/benchmarks.md's plots of time against spp, resolution
+// and threads); --csv FILE also writes every row, with the phases as
+// columns, for bench/cpu/plot_cpu_embree.py.
+//
+//   bench_cpu_embree [--scenes hand,car,dragonfly,forest] [--size 1024x768[,WxH...]] [--spp 16[,N...]]
+//                    [--blur 1,2] [--repeat 3] [--threads 0[,N...]] [--culls bbox,hull,dualspace,twostage]
+//                    [--csv FILE]
 #include "render/cpu/cpu_backend.hpp"
 #include "render/embree/embree_backend.hpp"
 #include "scene/builtin_scenes.hpp"
@@ -68,8 +74,23 @@ std::string phases(const RenderStats& stats) {
     return out;
 }
 
+// The CPU backend's phases as CSV columns (setup, binning, raster, resolve);
+// Embree's are summed into "raster" apart from its BVH build ("setup").
+std::string phase_columns(const RenderStats& stats, bool cpu) {
+    double setup = 0.0, binning = 0.0, raster = 0.0, resolve = 0.0;
+    for (const auto& [name, ms] : stats.ms_per_phase) {
+        if (name == "setup" || name == "build BVH") setup += ms;
+        else if (name == "binning") binning += ms;
+        else if (name == "resolve" && cpu) resolve += ms;
+        else raster += ms;
+    }
+    char out[128];
+    std::snprintf(out, sizeof out, "%.1f,%.1f,%.1f,%.1f", setup, binning, raster, resolve);
+    return out;
+}
+
 void run_scene(const std::string& name, float blur, const RenderSettings& base, int repeat,
-               const std::vector<std::string>& culls) {
+               const std::vector<std::string>& culls, std::FILE* csv) {
     SceneOptions scene_options;
     scene_options.blur_scale = blur;
     scene_options.aspect = float(base.width) / float(base.height);
@@ -104,8 +125,19 @@ void run_scene(const std::string& name, float blur, const RenderSettings& base, 
                     median(c.cpu_s) / embree_cpu, cpu ? double(s.samples_visited) / pixels : 0.0,
                     double(s.samples_tested) / pixels, double(s.samples_hit) / pixels, same.c_str(),
                     rmse(c.last.image, all[0].last.image), phases(s).c_str());
+        if (csv != nullptr)
+            std::fprintf(csv, "%s,%g,%d,%d,%d,%d,%s,%.1f,%.3f,%.4f,%.4f,%.2f,%.2f,%.2f,%s,%s\n", name.c_str(),
+                         double(blur), base.width, base.height, base.spp, base.threads, c.label.c_str(),
+                         median(c.wall_ms), median(c.cpu_s), median(c.wall_ms) / embree_wall,
+                         median(c.cpu_s) / embree_cpu, cpu ? double(s.samples_visited) / pixels : 0.0,
+                         double(s.samples_tested) / pixels, double(s.samples_hit) / pixels, same.c_str(),
+                         phase_columns(s, cpu).c_str());
     }
 }
+
+struct Size {
+    int width, height;
+};
 
 }  // namespace
 
@@ -115,6 +147,9 @@ int main(int argc, char** argv) {
     std::vector<float> blurs = {1.0f, 2.0f};
     RenderSettings settings;
     settings.progress = false;
+    std::vector<Size> sizes = {{settings.width, settings.height}};
+    std::vector<int> spps = {settings.spp}, thread_counts = {settings.threads};
+    std::string csv_path;
     int repeat = 3;
     try {
         for (int i = 1; i < argc; ++i) {
@@ -126,23 +161,52 @@ int main(int argc, char** argv) {
             if (arg == "--scenes") scenes = split(value());
             else if (arg == "--culls") culls = split(value());
             else if (arg == "--size") {
-                const std::string v = value();
-                if (std::sscanf(v.c_str(), "%dx%d", &settings.width, &settings.height) != 2)
-                    throw std::invalid_argument("--size WxH");
-            } else if (arg == "--spp") settings.spp = std::atoi(value().c_str());
-            else if (arg == "--threads") settings.threads = std::max(0, std::atoi(value().c_str()));
+                sizes.clear();
+                for (const std::string& v : split(value())) {
+                    Size size{};
+                    if (std::sscanf(v.c_str(), "%dx%d", &size.width, &size.height) != 2 || size.width < 1 ||
+                        size.height < 1)
+                        throw std::invalid_argument("--size: '" + v + "' is not WxH");
+                    sizes.push_back(size);
+                }
+            } else if (arg == "--spp" || arg == "--threads") {
+                std::vector<int>& list = arg == "--spp" ? spps : thread_counts;
+                list.clear();
+                for (const std::string& v : split(value())) list.push_back(std::max(0, std::atoi(v.c_str())));
+            } else if (arg == "--csv") csv_path = value();
             else if (arg == "--repeat") repeat = std::max(1, std::atoi(value().c_str()));
             else if (arg == "--blur") {
                 blurs.clear();
                 for (const std::string& b : split(value())) blurs.push_back(std::stof(b));
             } else throw std::invalid_argument("unknown option '" + arg + "'");
         }
-        std::printf("%dx%d, %d spp, threads %d (0 = all), median of %d; ratios against embree in the same run\n",
-                    settings.width, settings.height, settings.spp, settings.threads, repeat);
-        std::printf("%-7s %4s %-14s %9s %7s %6s %6s %8s %8s %7s %-7s %9s  %s\n", "scene", "blur", "renderer", "wall ms",
-                    "cpu s", "xwall", "xcpu", "visit/px", "test/px", "hit/px", "image", "rmse emb", "phases (ms)");
-        for (const std::string& scene : scenes)
-            for (float blur : blurs) run_scene(scene, blur, settings, repeat, culls);
+        std::FILE* csv = nullptr;
+        if (!csv_path.empty()) {
+            csv = std::fopen(csv_path.c_str(), "w");
+            if (csv == nullptr) throw std::invalid_argument("--csv: cannot write '" + csv_path + "'");
+            std::fprintf(csv, "scene,blur,width,height,spp,threads,renderer,wall_ms,cpu_s,xwall,xcpu,visited_px,"
+                              "tested_px,hit_px,image,setup_ms,binning_ms,raster_ms,resolve_ms\n");
+        }
+        for (const Size& size : sizes) {
+            for (int spp : spps) {
+                for (int threads : thread_counts) {
+                    settings.width = size.width;
+                    settings.height = size.height;
+                    settings.spp = spp;
+                    settings.threads = threads;
+                    std::printf("%dx%d, %d spp, threads %d (0 = all), median of %d; ratios against embree in the "
+                                "same run\n",
+                                settings.width, settings.height, settings.spp, settings.threads, repeat);
+                    std::printf("%-7s %4s %-14s %9s %7s %6s %6s %8s %8s %7s %-7s %9s  %s\n", "scene", "blur",
+                                "renderer", "wall ms", "cpu s", "xwall", "xcpu", "visit/px", "test/px", "hit/px",
+                                "image", "rmse emb", "phases (ms)");
+                    for (const std::string& scene : scenes)
+                        for (float blur : blurs) run_scene(scene, blur, settings, repeat, culls, csv);
+                    std::fflush(stdout);
+                }
+            }
+        }
+        if (csv != nullptr) std::fclose(csv);
     } catch (const std::exception& error) {
         std::fprintf(stderr, "bench_cpu_embree: %s\n", error.what());
         return 1;

@@ -3,6 +3,7 @@
 #include "render/common/camera_model.hpp"
 #include "render/common/method_plan.hpp"
 #include "render/cpu/coverage_test.hpp"
+#include "render/cpu/exact_test.hpp"
 #include "render/common/moving_triangle.hpp"
 #include "render/common/motion_segments.hpp"
 #include "render/common/progress.hpp"
@@ -15,12 +16,15 @@
 #include <blurcull/kernel.hpp>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <limits>
+#include <mutex>
 #include <string>
 #include <thread>
+#include <type_traits>
 #include <vector>
 
 namespace blurcull::frontend {
@@ -34,6 +38,16 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 constexpr int tile_size = 16;  // pixels per side of a binning and work tile
+
+// The set bits of x, inline (the x86-64 baseline has no POPCNT, and
+// __builtin_popcount then calls libgcc once per 32 samples).
+constexpr std::uint64_t bit_count(std::uint32_t x) {
+    x = x - ((x >> 1) & 0x55555555u);
+    x = (x & 0x33333333u) + ((x >> 2) & 0x33333333u);
+    x = (x + (x >> 4)) & 0x0F0F0F0Fu;
+    return (x * 0x01010101u) >> 24;
+}
+static_assert(bit_count(0u) == 0 && bit_count(0xFFFFFFFFu) == 32 && bit_count(0x80000001u) == 2);
 
 
 struct PixelRect {
@@ -222,6 +236,7 @@ public:
 
     // Rasterizes work tile `tile` (row-major over the tiles) into its pixels of `image`.
     void render_tile(int tile, Image& image) {
+        const Clock::time_point started = Clock::now();
         const int tx = tile % frame_.setup.tiles_x, ty = tile / frame_.setup.tiles_x;
         window_segment_ = 0;
         window_segments_ = 1;
@@ -239,11 +254,17 @@ public:
             if (piece.segment != window_segment_ || piece.segments != window_segments_) enter_window(piece);
             rasterize_triangle(index);
         }
+        const Clock::time_point rasterized = Clock::now();
         resolve(image);
+        const Clock::time_point resolved = Clock::now();
+        raster_seconds += std::chrono::duration<double>(rasterized - started).count();
+        resolve_seconds += std::chrono::duration<double>(resolved - rasterized).count();
     }
 
     // This worker's counts: exact tests, hits, sample bounds set up, and empty ones.
     std::uint64_t tested = 0, hits = 0, bounded = 0, bounded_empty = 0, visited = 0;
+    // This worker's time in its tiles' raster (samples, triangles) and resolve steps.
+    double raster_seconds = 0.0, resolve_seconds = 0.0;
 
 private:
     static constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
@@ -446,6 +467,7 @@ private:
                 }
             }
         }
+        flush_exact(current);
     }
 
     // Tests a footprint's samples that may pass `sb`.
@@ -507,7 +529,9 @@ private:
         for (std::size_t done = 0; done < count; done += 32) {
             const std::size_t at = first + done;
             const int n = static_cast<int>(std::min<std::size_t>(32, count - done));
-            std::uint32_t passed = samples_passing<Real>(current.bound, current.check_screen, sb, lanes, at, n);
+            std::uint32_t passed =
+                current.needs_bounds ? samples_passing<Real>(current.bound, current.check_screen, sb, lanes, at, n)
+                                     : samples_passing_screen<Real>(current.bound, current.check_screen, lanes, at, n);
             if (window_segments_ > 1) {
                 // Another motion segment's time: culled.
                 for (std::uint32_t bits = passed; bits != 0; bits &= bits - 1) {
@@ -516,7 +540,7 @@ private:
                 }
             }
             if (passed == 0) continue;
-            tested += static_cast<std::uint64_t>(__builtin_popcount(passed));
+            tested += bit_count(passed);
             const std::uint32_t kept = may_cover32(*current.fast, lanes.fsx() + at, lanes.fsy() + at, lanes.fu() + at,
                                                    lanes.fv() + at, lanes.ft() + at, passed);
             for (std::uint32_t maybe = passed & kept; maybe != 0; maybe &= maybe - 1)
@@ -525,11 +549,46 @@ private:
     }
 
     // The exact test of a sample the fast test kept (sample_test's last
-    // step), and the depth rule.
+    // step), and the depth rule. In double the samples wait in `pending_`
+    // and go through covers four at a time (covers4: covers' verdicts and
+    // depths bit for bit); flush_exact at the end of each triangle keeps the
+    // triangle order of the depth rule.
     void test_exactly(const Current& current, std::size_t k) {
+        if constexpr (std::is_same_v<Real, double>) {
+            pending_[pending_count_++] = k;
+            if (pending_count_ == pending_.size()) flush_exact(current);
+        } else {
+            const Sample& s = samples_[k];
+            Real z = Real(0);
+            if (K::covers(*current.tri, s.ndc, s.lens, s.time, frame_.near, z)) record_hit(current, k, z);
+        }
+    }
+
+    // covers4 on the pending samples (the last one repeated into unused lanes).
+    void flush_exact(const Current& current) {
+        if constexpr (std::is_same_v<Real, double>) {
+            if (pending_count_ == 0) return;
+            double sx[4], sy[4], u[4], v[4], t[4], z[4];
+            for (std::size_t i = 0; i < 4; ++i) {
+                const Sample& s = samples_[pending_[std::min(i, pending_count_ - 1)]];
+                sx[i] = s.ndc.x;
+                sy[i] = s.ndc.y;
+                u[i] = s.lens.x;
+                v[i] = s.lens.y;
+                t[i] = s.time;
+            }
+            const std::uint32_t covered = covers4(*current.tri, sx, sy, u, v, t, frame_.near, z);
+            for (std::size_t i = 0; i < pending_count_; ++i)
+                if ((covered >> i) & 1u) record_hit(current, pending_[i], z[i]);
+            pending_count_ = 0;
+        } else {
+            (void)current;
+        }
+    }
+
+    // A covered sample at depth z: the alpha mask, the count, the depth rule.
+    void record_hit(const Current& current, std::size_t k, Real z) {
         const Sample& s = samples_[k];
-        Real z = Real(0);
-        if (!K::covers(*current.tri, s.ndc, s.lens, s.time, frame_.near, z)) return;
         // The scene triangle wins, lowest index on equal depths also across
         // the motion-segment groups (within one group the order does it).
         const std::uint32_t source = frame_.setup.pieces[current.index].source;
@@ -586,6 +645,8 @@ private:
     AxisCache columns_, rows_;  // the current triangle's axis bounds (share_axes)
     std::vector<float> shutter_time_;  // each sample's own time (samples_ hold the window's local time)
     std::vector<char> in_window_;      // whether the current motion-segment window holds the sample
+    std::array<std::size_t, 4> pending_{};  // samples waiting for covers4 (double only)
+    std::size_t pending_count_ = 0;
     int window_segment_ = 0, window_segments_ = 1;  // the window samples_ are loaded for
     glm::vec2 window_{0.0f, 1.0f};
     int x0_ = 0, y0_ = 0, x1_ = -1, y1_ = -1, tw_ = 0, footprints_x_ = 0;
@@ -594,10 +655,18 @@ private:
 // Rasterization: tiles are handed out dynamically; within a tile the
 // triangles run in index order and the depth test is strict, so the result
 // does not depend on the schedule.
+// The workers' summed time in the raster and the resolve steps of their tiles.
+struct RasterSplit {
+    double raster_seconds, resolve_seconds;
+};
+
 template <class Real>
-void rasterize_tiles(const FrameContext<Real>& frame, int threads, Clock::time_point start, RenderResult& result) {
+RasterSplit rasterize_tiles(const FrameContext<Real>& frame, int threads, Clock::time_point start,
+                            RenderResult& result) {
     std::atomic<std::uint64_t> total_tested{0}, total_hit{0}, total_bounded{0}, total_bounded_empty{0},
         total_visited{0};
+    std::mutex seconds_lock;
+    double raster_seconds = 0.0, resolve_seconds = 0.0;
     const int tile_count = frame.setup.tiles_x * frame.setup.tiles_y;
     Progress progress(frame.settings.progress, start, tile_count);
     cpu_methods::run_parallel_items(
@@ -613,6 +682,9 @@ void rasterize_tiles(const FrameContext<Real>& frame, int threads, Clock::time_p
             total_bounded.fetch_add(rasterizer.bounded);
             total_bounded_empty.fetch_add(rasterizer.bounded_empty);
             total_visited.fetch_add(rasterizer.visited);
+            const std::lock_guard<std::mutex> lock(seconds_lock);
+            raster_seconds += rasterizer.raster_seconds;
+            resolve_seconds += rasterizer.resolve_seconds;
         });
     progress.finish();
     if (frame.cancel != nullptr && frame.cancel->load()) throw RenderCancelled();
@@ -622,6 +694,7 @@ void rasterize_tiles(const FrameContext<Real>& frame, int threads, Clock::time_p
     stats.bounds_computed = total_bounded.load();
     stats.bounds_empty = total_bounded_empty.load();
     stats.samples_visited = total_visited.load();
+    return RasterSplit{raster_seconds, resolve_seconds};
 }
 
 template <class Real>
@@ -646,12 +719,14 @@ RenderResult render_cpu_in(const Scene& scene, const RenderSettings& settings, c
     const SurfaceShader shader(scene, model);
     FrameSetup<Real> setup;
     set_up_triangles(scene, model, cull.kernel_method, threads, setup);
-    bin_triangles(settings.width, settings.height, setup);
     if (setup.invalid > 0) {
         result.warnings.push_back("cpu: skipped " + std::to_string(setup.invalid) +
                                   " triangles whose clip coordinates overflow");
     }
     result.stats.ms_per_phase.emplace_back("setup", ms_since(phase));
+    phase = Clock::now();
+    bin_triangles(settings.width, settings.height, setup);
+    result.stats.ms_per_phase.emplace_back("binning", ms_since(phase));
 
     phase = Clock::now();
     result.image = Image(settings.width, settings.height);
@@ -676,9 +751,14 @@ RenderResult render_cpu_in(const Scene& scene, const RenderSettings& settings, c
                                    options.cancel};
     if (sample_ids != nullptr)
         sample_ids->assign(static_cast<std::size_t>(settings.width) * settings.height * frame.spp, no_sample_hit);
-    rasterize_tiles(frame, threads, start, result);
+    const RasterSplit split = rasterize_tiles(frame, threads, start, result);
     if (options.sums != nullptr) options.sums->samples += options.pass_samples;
-    result.stats.ms_per_phase.emplace_back("raster+resolve", ms_since(phase));
+    // The tiles' phase in wall time, split into raster and resolve by the
+    // workers' shares of their time (the two interleave tile by tile).
+    const double tiles_ms = ms_since(phase), worker_seconds = split.raster_seconds + split.resolve_seconds;
+    const double resolve_share = worker_seconds > 0.0 ? split.resolve_seconds / worker_seconds : 0.0;
+    result.stats.ms_per_phase.emplace_back("raster", tiles_ms * (1.0 - resolve_share));
+    result.stats.ms_per_phase.emplace_back("resolve", tiles_ms * resolve_share);
     result.stats.ms_total = ms_since(start);
     return result;
 }

@@ -112,16 +112,17 @@ __attribute__((target("avx"))) inline int culled4(const kernel<double>::ScreenBo
 // holds for every lens in [-1, 1]^2 and time in [0, 1], since t < 0 + 0 u
 // and t > 1 + 0 u are false there, as are the range tests.
 bool passes_unit_range(const kernel<double>::SampleBounds& b) {
-    const kernel<double>::SampleBounds none = kernel<double>::no_sample_bounds();
+    // Built once: no_sample_bounds() fills a large struct, and this runs per 32 samples.
+    static const kernel<double>::SampleBounds none = kernel<double>::no_sample_bounds();
     return !b.empty && b.u_range == none.u_range && b.v_range == none.v_range && b.u_time_a == none.u_time_a &&
            b.u_time_b == none.u_time_b && b.v_time_a == none.v_time_a && b.v_time_b == none.v_time_b;
 }
 
+// check_bounds false: `bounds` is known to pass every lane (passes_unit_range).
 __attribute__((target("avx"))) std::uint32_t passing_avx(const kernel<double>::ScreenBound& screen, bool check_screen,
-                          const kernel<double>::SampleBounds& bounds, const SampleLanes& lanes, std::size_t first,
-                          int count) {
+                          bool check_bounds, const kernel<double>::SampleBounds& bounds, const SampleLanes& lanes,
+                          std::size_t first, int count) {
     const std::uint32_t wanted = count >= 32 ? ~0u : (1u << count) - 1u;
-    const bool check_bounds = !(lanes.in_unit_range() && passes_unit_range(bounds));
     if (!check_bounds && !check_screen) return wanted;
     std::uint32_t culled = 0;
     for (int i = 0; i < count; i += 4) {
@@ -141,12 +142,33 @@ std::uint32_t samples_passing(const typename kernel<Real>::ScreenBound& screen, 
     if (bounds.empty || (check_screen && screen.empty)) return 0;
 #if BLURCULL_CHAIN_X86
     if constexpr (std::is_same_v<Real, double>) {
-        if (has_avx && bounds.edges.piece[0].mode == BC_EDGE_NONE)
-            return passing_avx(screen, check_screen, bounds, lanes, first, count);
+        if (has_avx && bounds.edges.piece[0].mode == BC_EDGE_NONE) {
+            const bool check_bounds = !(lanes.in_unit_range() && passes_unit_range(bounds));
+            return passing_avx(screen, check_screen, check_bounds, bounds, lanes, first, count);
+        }
     }
 #endif
     return samples_passing_scalar<Real>(screen, check_screen, bounds, lanes, first, count);
 }
+
+template <class Real>
+std::uint32_t samples_passing_screen(const typename kernel<Real>::ScreenBound& screen, bool check_screen,
+                                     const SampleLanes& lanes, std::size_t first, int count) {
+#if BLURCULL_CHAIN_X86
+    if constexpr (std::is_same_v<Real, double>) {
+        if (has_avx && !(check_screen && screen.empty)) {
+            static const kernel<double>::SampleBounds none = kernel<double>::no_sample_bounds();
+            return passing_avx(screen, check_screen, !lanes.in_unit_range(), none, lanes, first, count);
+        }
+    }
+#endif
+    return samples_passing<Real>(screen, check_screen, kernel<Real>::no_sample_bounds(), lanes, first, count);
+}
+
+template std::uint32_t samples_passing_screen<float>(const kernel<float>::ScreenBound&, bool, const SampleLanes&,
+                                                     std::size_t, int);
+template std::uint32_t samples_passing_screen<double>(const kernel<double>::ScreenBound&, bool, const SampleLanes&,
+                                                      std::size_t, int);
 
 template std::uint32_t samples_passing<float>(const kernel<float>::ScreenBound&, bool,
                                               const kernel<float>::SampleBounds&, const SampleLanes&, std::size_t,

@@ -53,6 +53,13 @@ std::uint32_t samples_passing(const typename kernel<Real>::ScreenBound& screen, 
                               const typename kernel<Real>::SampleBounds& bounds, const SampleLanes& lanes,
                               std::size_t first, int count);
 
+// samples_passing with bounds = kernel<Real>::no_sample_bounds() (no lens or
+// time to cull: bbox, hull, static in-focus triangles), without comparing
+// the bounds with it per call: the same mask.
+template <class Real>
+std::uint32_t samples_passing_screen(const typename kernel<Real>::ScreenBound& screen, bool check_screen,
+                                     const SampleLanes& lanes, std::size_t first, int count);
+
 // samples_passing one sample at a time through the kernel whatever the CPU
 // (the reference the four-lane path is tested against).
 template <class Real>

@@ -1,0 +1,121 @@
+#include "render/cpu/exact_test.hpp"
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#define BLURCULL_EXACT_X86 1
+#else
+#define BLURCULL_EXACT_X86 0
+#endif
+
+namespace blurcull::frontend {
+
+std::uint32_t covers4_scalar(const kerneld::MovingTriangle& tri, const double* sx, const double* sy, const double* u,
+                             const double* v, const double* t, double near, double* depth) {
+    std::uint32_t covered = 0;
+    for (int i = 0; i < 4; ++i) {
+        if (kerneld::covers(tri, kerneld::vec2(sx[i], sy[i]), kerneld::vec2(u[i], v[i]), t[i], near, depth[i]))
+            covered |= 1u << i;
+    }
+    return covered;
+}
+
+namespace {
+
+#if BLURCULL_EXACT_X86
+bool cpu_has_avx() {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx");
+}
+const bool has_avx = cpu_has_avx();
+
+// A sheared vertex on four lanes, as vertex_at computes it.
+struct Vertex4 {
+    __m256d x, y, w;
+};
+
+// (1 - t) a + t b: vertex_at's interpolation, a product each, then the sum.
+__attribute__((target("avx"))) inline __m256d lerp4(__m256d one_minus_t, __m256d t, double a, double b) {
+    return _mm256_add_pd(_mm256_mul_pd(one_minus_t, _mm256_set1_pd(a)), _mm256_mul_pd(t, _mm256_set1_pd(b)));
+}
+
+// vertex_at(tri, i, t, (u, v)): (p.x + u c.x, p.y + v c.y, p.z).
+__attribute__((target("avx"))) inline Vertex4 vertex4(const kerneld::MovingTriangle& tri, int i, __m256d one_minus_t,
+                                                      __m256d t, __m256d u, __m256d v) {
+    const glm::dvec3& p0 = tri.p[i];
+    const glm::dvec3& p1 = tri.p[i + 3];
+    const glm::dvec2& c0 = tri.c[i];
+    const glm::dvec2& c1 = tri.c[i + 3];
+    const __m256d cx = lerp4(one_minus_t, t, c0.x, c1.x), cy = lerp4(one_minus_t, t, c0.y, c1.y);
+    return Vertex4{_mm256_add_pd(lerp4(one_minus_t, t, p0.x, p1.x), _mm256_mul_pd(u, cx)),
+                   _mm256_add_pd(lerp4(one_minus_t, t, p0.y, p1.y), _mm256_mul_pd(v, cy)),
+                   lerp4(one_minus_t, t, p0.z, p1.z)};
+}
+
+// GLM's cross(a, b): (a.y b.z - b.y a.z, a.z b.x - b.z a.x, a.x b.y - b.x a.y).
+__attribute__((target("avx"))) inline Vertex4 cross4(const Vertex4& a, const Vertex4& b) {
+    return Vertex4{_mm256_sub_pd(_mm256_mul_pd(a.y, b.w), _mm256_mul_pd(b.y, a.w)),
+                   _mm256_sub_pd(_mm256_mul_pd(a.w, b.x), _mm256_mul_pd(b.w, a.x)),
+                   _mm256_sub_pd(_mm256_mul_pd(a.x, b.y), _mm256_mul_pd(b.x, a.y))};
+}
+
+// bc_dot3(a, b), summed left to right.
+__attribute__((target("avx"))) inline __m256d dot4(const Vertex4& a, __m256d bx, __m256d by, __m256d bz) {
+    return _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(a.x, bx), _mm256_mul_pd(a.y, by)), _mm256_mul_pd(a.w, bz));
+}
+
+// covers_hit's verdict and depth on four lanes. Where covers returns early
+// (det zero or NaN, an edge value negative, the sum not positive) the lane's
+// mask is cleared instead; the values computed on such lanes are discarded.
+__attribute__((target("avx"))) std::uint32_t covers4_avx(const kerneld::MovingTriangle& tri, const double* sx,
+                                                         const double* sy, const double* u, const double* v,
+                                                         const double* t, double near, double* depth) {
+    const __m256d T = _mm256_loadu_pd(t), U = _mm256_loadu_pd(u), V = _mm256_loadu_pd(v);
+    const __m256d SX = _mm256_loadu_pd(sx), SY = _mm256_loadu_pd(sy), one = _mm256_set1_pd(1.0);
+    const __m256d one_minus_t = _mm256_sub_pd(one, T);
+    const Vertex4 v0 = vertex4(tri, 0, one_minus_t, T, U, V);
+    const Vertex4 v1 = vertex4(tri, 1, one_minus_t, T, U, V);
+    const Vertex4 v2 = vertex4(tri, 2, one_minus_t, T, U, V);
+    const Vertex4 n12 = cross4(v1, v2);
+    __m256d e0 = dot4(n12, SX, SY, one);
+    __m256d e1 = dot4(cross4(v2, v0), SX, SY, one);
+    __m256d e2 = dot4(cross4(v0, v1), SX, SY, one);
+    __m256d det = dot4(v0, n12.x, n12.y, n12.w);
+    const __m256d zero = _mm256_setzero_pd();
+    // !(det != 0): rejected; det != 0 holds for NaN too (unordered, as in C++).
+    __m256d ok = _mm256_cmp_pd(det, zero, _CMP_NEQ_UQ);
+    // det < 0: all four negated (a sign flip, exact).
+    const __m256d flip = _mm256_and_pd(_mm256_cmp_pd(det, zero, _CMP_LT_OQ), _mm256_set1_pd(-0.0));
+    e0 = _mm256_xor_pd(e0, flip);
+    e1 = _mm256_xor_pd(e1, flip);
+    e2 = _mm256_xor_pd(e2, flip);
+    det = _mm256_xor_pd(det, flip);
+    ok = _mm256_and_pd(ok, _mm256_cmp_pd(e0, zero, _CMP_GE_OQ));
+    ok = _mm256_and_pd(ok, _mm256_cmp_pd(e1, zero, _CMP_GE_OQ));
+    ok = _mm256_and_pd(ok, _mm256_cmp_pd(e2, zero, _CMP_GE_OQ));
+    const __m256d sum = _mm256_add_pd(_mm256_add_pd(e0, e1), e2);
+    ok = _mm256_and_pd(ok, _mm256_cmp_pd(sum, zero, _CMP_GT_OQ));
+    const __m256d z = _mm256_div_pd(det, sum);
+    ok = _mm256_and_pd(ok, _mm256_cmp_pd(z, _mm256_set1_pd(near), _CMP_GE_OQ));
+    _mm256_storeu_pd(depth, z);
+    return static_cast<std::uint32_t>(_mm256_movemask_pd(ok));
+}
+#endif
+
+}  // namespace
+
+std::uint32_t covers4(const kerneld::MovingTriangle& tri, const double* sx, const double* sy, const double* u,
+                      const double* v, const double* t, double near, double* depth) {
+#if BLURCULL_EXACT_X86
+    if (has_avx) return covers4_avx(tri, sx, sy, u, v, t, near, depth);
+#endif
+    return covers4_scalar(tri, sx, sy, u, v, t, near, depth);
+}
+
+const char* exact_test_isa() {
+#if BLURCULL_EXACT_X86
+    if (has_avx) return "avx";
+#endif
+    return "scalar";
+}
+
+}  // namespace blurcull::frontend
