@@ -390,6 +390,7 @@ struct kernel {
 #include "detail/dual_space_body.inl"
 #include "detail/two_stage_body.inl"
 #include "detail/edge_bounds_body.inl"
+#include "detail/hyperplane_body.inl"
 #include "detail/sample_bounds_body.inl"
 #include "detail/raster_body.inl"
 #include "detail/dodecahedron_body.inl"
