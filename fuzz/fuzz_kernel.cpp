@@ -22,7 +22,8 @@ namespace {
 using Kf = blurcull::kernelf;
 using Kd = blurcull::kerneld;
 
-constexpr int kMethods[] = {BC_CULL_BBOX, BC_CULL_HULL, BC_CULL_DUALSPACE, BC_CULL_TWO_STAGE, BC_CULL_EDGES};
+constexpr int kMethods[] = {BC_CULL_BBOX,      BC_CULL_HULL,  BC_CULL_DUALSPACE,
+                            BC_CULL_TWO_STAGE, BC_CULL_EDGES, BC_CULL_HYPERPLANE};
 constexpr int kMethodCount = sizeof kMethods / sizeof kMethods[0];
 constexpr std::size_t kHeaderFloats = 36 + 1 + 4;
 

@@ -287,12 +287,13 @@ inline const char* method_name(int method) {
         case BC_CULL_DUALSPACE: return "dualspace";
         case BC_CULL_TWO_STAGE: return "clip2";
         case BC_CULL_EDGES: return "edges";
+        case BC_CULL_HYPERPLANE: return "hyperplane";
     }
     return "?";
 }
 
-constexpr int method_count = 5;  // BC_CULL_* are 0 .. method_count - 1
-constexpr std::array<int, method_count> all_methods{BC_CULL_BBOX, BC_CULL_HULL, BC_CULL_DUALSPACE, BC_CULL_TWO_STAGE,
-                                                    BC_CULL_EDGES};
+constexpr int method_count = 6;  // BC_CULL_* are 0 .. method_count - 1
+constexpr std::array<int, method_count> all_methods{BC_CULL_BBOX, BC_CULL_HULL,  BC_CULL_DUALSPACE,
+                                                    BC_CULL_TWO_STAGE, BC_CULL_EDGES, BC_CULL_HYPERPLANE};
 
 }  // namespace blurcull::testing

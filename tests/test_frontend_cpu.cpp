@@ -56,7 +56,8 @@ TEST_CASE("every culling method renders the same image, on every built-in scene,
                 settings.cull = CullMethod::bbox;
                 RenderResult reference = render_cpu(scene, settings, options);
                 CHECK(reference.stats.samples_hit > 0);
-                for (CullMethod method : {CullMethod::hull, CullMethod::dualspace, CullMethod::two_stage, CullMethod::edges}) {
+                for (CullMethod method : {CullMethod::hull, CullMethod::dualspace, CullMethod::two_stage, CullMethod::edges,
+                                  CullMethod::hyperplane}) {
                     settings.cull = method;
                     RenderResult result = render_cpu(scene, settings, options);
                     INFO(name, " x", blur, " ", to_string(method),
@@ -92,7 +93,8 @@ TEST_CASE("near-plane crossings: same image for every method") {
     settings.cull = CullMethod::bbox;
     RenderResult reference = render_cpu(scene, settings);
     CHECK(reference.stats.samples_hit > 1000);
-    for (CullMethod method : {CullMethod::hull, CullMethod::dualspace, CullMethod::two_stage, CullMethod::edges}) {
+    for (CullMethod method : {CullMethod::hull, CullMethod::dualspace, CullMethod::two_stage, CullMethod::edges,
+                                  CullMethod::hyperplane}) {
         settings.cull = method;
         RenderResult result = render_cpu(scene, settings);
         INFO(to_string(method));

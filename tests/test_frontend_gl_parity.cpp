@@ -52,7 +52,7 @@ constexpr int kInputKeys = 4;  // px, py, index, spp
 // lens, time).
 constexpr int kScreenUints = 1 + 2 + 2 + 1 + 3 * BC_HULL_MAX;
 constexpr int kSampleUints = 1 + 2 + 2 + 4 * 4;
-constexpr int kMethods = 5;  // BC_CULL_BBOX .. BC_CULL_EDGES
+constexpr int kMethods = 6;  // BC_CULL_BBOX .. BC_CULL_HYPERPLANE
 constexpr int kConfigUints = kMethods * (kScreenUints + kSampleUints) + 1;
 constexpr int kInputUints = 2 + 5;
 
@@ -71,7 +71,7 @@ const int CONFIG_FLOATS = 36;
 const int INPUT_FLOATS = 5;
 const int SCREEN_UINTS = 6 + 3 * BC_HULL_MAX;
 const int SAMPLE_UINTS = 21;
-const int METHODS = 5;
+const int METHODS = 6;
 const int CONFIG_UINTS = METHODS * (SCREEN_UINTS + SAMPLE_UINTS) + 1;
 const int INPUT_UINTS = 7;
 
@@ -103,6 +103,7 @@ void main() {
         if (bc_screen_contains(sb, s)) decisions |= 1u << (1 + method);
         if (bc_sample_passes(b, uv, t)) decisions |= 1u << (1 + METHODS + method);
         if (method == BC_CULL_EDGES && bc_sample_passes_at(b, s, uv, t)) decisions |= 1u << (1 + 2 * METHODS);
+        if (method == BC_CULL_HYPERPLANE && bc_sample_passes_at(b, s, uv, t)) decisions |= 1u << (2 + 2 * METHODS);
         if (!first) continue;
         int o = config * CONFIG_UINTS + method * (SCREEN_UINTS + SAMPLE_UINTS);
         config_out[o] = sb.empty ? 1u : 0u;
@@ -145,10 +146,10 @@ constexpr std::uint32_t kPixelSeed = 0x5eedu;
 const char* const kDecisionNames[] = {
     "covers",
     "screen_contains bbox", "screen_contains hull", "screen_contains dualspace", "screen_contains clip2",
-    "screen_contains edges",
+    "screen_contains edges", "screen_contains hyperplane",
     "sample_passes bbox", "sample_passes hull", "sample_passes dualspace", "sample_passes clip2",
-    "sample_passes edges", "sample_passes_at edges"};
-constexpr int kDecisionBits = 2 + 2 * kMethods;
+    "sample_passes edges", "sample_passes hyperplane", "sample_passes_at edges", "sample_passes_at hyperplane"};
+constexpr int kDecisionBits = 3 + 2 * kMethods;
 
 // The sample-bound values in output order, two uints per name.
 const char* const kSampleFieldNames[] = {"u_range",  "v_range",  "u_time_a", "u_time_a", "u_time_b",
@@ -298,6 +299,7 @@ HostResults run_host(const Inputs& in) {
                     decisions |= 1u << (1 + kMethods + method);
             }
             if (Kf::sample_passes_at(bounds[BC_CULL_EDGES], pos, uv, t)) decisions |= 1u << (1 + 2 * kMethods);
+            if (Kf::sample_passes_at(bounds[BC_CULL_HYPERPLANE], pos, uv, t)) decisions |= 1u << (2 + 2 * kMethods);
             float depth = 0.0f;
             if (Kf::covers(tri, pos, uv, t, near, depth)) decisions |= 1u;
             const std::uint32_t* key = &in.keys[id * kInputKeys];
@@ -371,7 +373,7 @@ void note_value(Comparison& cmp, std::uint32_t host, std::uint32_t gpu, const st
 
 Comparison compare(const Inputs& in, const HostResults& host, const GpuResults& gpu) {
     Comparison cmp;
-    const char* methods[] = {"bbox", "hull", "dualspace", "clip2", "edges"};
+    const char* methods[] = {"bbox", "hull", "dualspace", "clip2", "edges", "hyperplane"};
     for (int n = 0; n < in.config_count; ++n) {
         const std::uint32_t* h = &host.configs[static_cast<std::size_t>(n) * kConfigUints];
         const std::uint32_t* g = &gpu.configs[static_cast<std::size_t>(n) * kConfigUints];

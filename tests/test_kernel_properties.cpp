@@ -27,7 +27,14 @@ struct Tally {
     MethodTally edges_anywhere;         // BC_CULL_EDGES by sample_passes: the planes over the whole footprint
     MethodTally edges_in_tile;          // BC_CULL_EDGES on the sample's quarter of the footprint, the footprint
                                         // taken as its tile (sample_bounds_in_tile)
+    MethodTally hyperplane_anywhere;    // BC_CULL_HYPERPLANE likewise
+    MethodTally hyperplane_in_tile;
 };
+
+void add_tally(MethodTally& total, const MethodTally& part) {
+    total.passed += part.passed;
+    total.false_culls += part.false_culls;
+}
 
 template <class Real>
 struct Judge {
@@ -61,19 +68,29 @@ struct Judge {
                 judge(tally.methods[method], pass, covered, family, method, tri, near, lo, hi, s, uv, t,
                       screen[method], bounds[method]);
             }
-            const int edges = BC_CULL_EDGES;
-            bool anywhere = K::screen_contains(screen[edges], s) && K::sample_passes(bounds[edges], uv, t);
-            judge(tally.edges_anywhere, anywhere, covered, family, edges, tri, near, lo, hi, s, uv, t, screen[edges],
-                  bounds[edges]);
-            // The quarter of the footprint that holds s, bounded inside the footprint as its tile.
-            const typename K::vec2 mid = lo + (hi - lo) * Real(0.5);
-            const typename K::vec2 q_lo(s.x <= mid.x ? lo.x : mid.x, s.y <= mid.y ? lo.y : mid.y);
-            const typename K::vec2 q_hi(s.x <= mid.x ? mid.x : hi.x, s.y <= mid.y ? mid.y : hi.y);
-            const typename K::SampleBounds quarter = K::sample_bounds_in_tile(tri, q_lo, q_hi, edges, bounds[edges]);
-            bool in_tile = K::screen_contains(screen[edges], s) && K::sample_passes_at(quarter, s, uv, t);
-            judge(tally.edges_in_tile, in_tile, covered, family, edges, tri, near, q_lo, q_hi, s, uv, t, screen[edges],
-                  quarter);
+            judge_planes(BC_CULL_EDGES, tally.edges_anywhere, tally.edges_in_tile, covered, family, tri, near, lo, hi,
+                         s, uv, t, screen, bounds);
+            judge_planes(BC_CULL_HYPERPLANE, tally.hyperplane_anywhere, tally.hyperplane_in_tile, covered, family,
+                         tri, near, lo, hi, s, uv, t, screen, bounds);
         }
+    }
+
+    // The two other forms of a method with edge planes: sample_passes (the
+    // planes over the whole footprint) and, on the quarter of the footprint
+    // that holds s, sample_bounds_in_tile with the footprint as its tile.
+    static void judge_planes(int method, MethodTally& anywhere_tally, MethodTally& tile_tally, bool covered,
+                             Family family, const typename K::MovingTriangle& tri, Real near, typename K::vec2 lo,
+                             typename K::vec2 hi, typename K::vec2 s, typename K::vec2 uv, Real t,
+                             const typename K::ScreenBound* screen, const typename K::SampleBounds* bounds) {
+        bool anywhere = K::screen_contains(screen[method], s) && K::sample_passes(bounds[method], uv, t);
+        judge(anywhere_tally, anywhere, covered, family, method, tri, near, lo, hi, s, uv, t, screen[method],
+              bounds[method]);
+        const typename K::vec2 mid = lo + (hi - lo) * Real(0.5);
+        const typename K::vec2 q_lo(s.x <= mid.x ? lo.x : mid.x, s.y <= mid.y ? lo.y : mid.y);
+        const typename K::vec2 q_hi(s.x <= mid.x ? mid.x : hi.x, s.y <= mid.y ? mid.y : hi.y);
+        const typename K::SampleBounds quarter = K::sample_bounds_in_tile(tri, q_lo, q_hi, method, bounds[method]);
+        bool in_tile = K::screen_contains(screen[method], s) && K::sample_passes_at(quarter, s, uv, t);
+        judge(tile_tally, in_tile, covered, family, method, tri, near, q_lo, q_hi, s, uv, t, screen[method], quarter);
     }
 
     static void judge(MethodTally& m, bool pass, bool covered, Family family, int method,
@@ -132,8 +149,14 @@ void print_row(const char* precision, const char* family, const Tally& t) {
     std::printf(" | edges over the footprint %" PRIu64 " fc, STE %5.1f%%", m.false_culls,
                 m.passed ? 100.0 * double(t.covered) / double(m.passed) : 0.0);
     const MethodTally& q = t.edges_in_tile;
-    std::printf(" | edges on a quarter in its tile %" PRIu64 " fc, STE %5.1f%%\n", q.false_culls,
+    std::printf(" | edges on a quarter in its tile %" PRIu64 " fc, STE %5.1f%%", q.false_culls,
                 q.passed ? 100.0 * double(t.covered) / double(q.passed) : 0.0);
+    const MethodTally& ha = t.hyperplane_anywhere;
+    const MethodTally& hq = t.hyperplane_in_tile;
+    std::printf(" | hyperplane over the footprint %" PRIu64 " fc, STE %5.1f%%, on a quarter %" PRIu64
+                " fc, STE %5.1f%%\n",
+                ha.false_culls, ha.passed ? 100.0 * double(t.covered) / double(ha.passed) : 0.0, hq.false_culls,
+                hq.passed ? 100.0 * double(t.covered) / double(hq.passed) : 0.0);
 }
 
 template <class Real>
@@ -165,6 +188,8 @@ void check_conservative(const char* precision) {
         total.edges_anywhere.false_culls += t.edges_anywhere.false_culls;
         total.edges_in_tile.passed += t.edges_in_tile.passed;
         total.edges_in_tile.false_culls += t.edges_in_tile.false_culls;
+        add_tally(total.hyperplane_anywhere, t.hyperplane_anywhere);
+        add_tally(total.hyperplane_in_tile, t.hyperplane_in_tile);
     }
     print_row(precision, "ALL", total);
     std::printf("%s: %" PRIu64 " configurations, %" PRIu64 " samples, %" PRIu64 " covered samples checked per method\n",
@@ -177,6 +202,8 @@ void check_conservative(const char* precision) {
     }
     CHECK(total.edges_anywhere.false_culls == 0);
     CHECK(total.edges_in_tile.false_culls == 0);
+    CHECK(total.hyperplane_anywhere.false_culls == 0);
+    CHECK(total.hyperplane_in_tile.false_culls == 0);
 }
 
 }  // namespace
@@ -209,6 +236,8 @@ void check_every_family_long(const char* precision) {
         }
         CHECK(t.edges_anywhere.false_culls == 0);
         CHECK(t.edges_in_tile.false_culls == 0);
+        CHECK(t.hyperplane_anywhere.false_culls == 0);
+        CHECK(t.hyperplane_in_tile.false_culls == 0);
     }
 }
 
@@ -240,5 +269,7 @@ TEST_CASE_TEMPLATE("tightness: STE per method on fixed seeded sets", Real, float
         CHECK(ste[f][BC_CULL_HULL] >= ste[f][BC_CULL_BBOX]);
         // The edge bound is the two-stage bounds with planes on top.
         CHECK(ste[f][BC_CULL_EDGES] >= ste[f][BC_CULL_TWO_STAGE]);
+        // So is hyperplane culling, with one plane per edge over the whole box.
+        CHECK(ste[f][BC_CULL_HYPERPLANE] >= ste[f][BC_CULL_TWO_STAGE]);
     }
 }

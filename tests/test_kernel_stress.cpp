@@ -296,6 +296,8 @@ void run_config(const Config& cfg, Rng& rng, Stress stress, int sample_count, Co
     const typename K::vec2 mid = lo + (hi - lo) * Real(0.5);
     const typename K::SampleBounds quarter =
         K::sample_bounds_in_tile(tri, lo, mid, BC_CULL_EDGES, bounds[BC_CULL_EDGES]);
+    const typename K::SampleBounds hyperplane_quarter =
+        K::sample_bounds_in_tile(tri, lo, mid, BC_CULL_HYPERPLANE, bounds[BC_CULL_HYPERPLANE]);
 
     // Samples: a point of the triangle (likely covered), the footprint's
     // corners, and range ends; most of them exactly on a range end.
@@ -332,7 +334,9 @@ void run_config(const Config& cfg, Rng& rng, Stress stress, int sample_count, Co
                               K::sample_passes_at(bounds[method], sr, uvr, tr) &&
                               K::sample_passes(bounds[method], uvr, tr) &&
                               (method != BC_CULL_EDGES || sr.x > mid.x || sr.y > mid.y ||
-                               K::sample_passes_at(quarter, sr, uvr, tr));
+                               K::sample_passes_at(quarter, sr, uvr, tr)) &&
+                              (method != BC_CULL_HYPERPLANE || sr.x > mid.x || sr.y > mid.y ||
+                               K::sample_passes_at(hyperplane_quarter, sr, uvr, tr));
             if (covered && !pass) {
                 if (counts.false_culls[method] < 3) {
                     std::printf("FALSE CULL [%s, %s, %s] s (%a, %a) uv (%a, %a) t %a near %a\n",
@@ -375,11 +379,12 @@ void check_stress(const char* precision) {
                     " samples %7" PRIu64 " covered (%7" PRIu64 " bounded) | non-finite bounds %" PRIu64
                     ", bad fallbacks %" PRIu64
                     " | false culls bbox %" PRIu64 " hull %" PRIu64 " dualspace %" PRIu64 " clip2 %" PRIu64
-                    " edges %" PRIu64 "\n",
+                    " edges %" PRIu64 " hyperplane %" PRIu64 "\n",
                     precision, stress_name(stress), c.configs, c.invalid, c.swamped, c.samples, c.covered,
                     c.covered_bounded, c.nonfinite_bounds,
                     c.bad_fallbacks, c.false_culls[BC_CULL_BBOX], c.false_culls[BC_CULL_HULL],
-                    c.false_culls[BC_CULL_DUALSPACE], c.false_culls[BC_CULL_TWO_STAGE], c.false_culls[BC_CULL_EDGES]);
+                    c.false_culls[BC_CULL_DUALSPACE], c.false_culls[BC_CULL_TWO_STAGE], c.false_culls[BC_CULL_EDGES],
+                    c.false_culls[BC_CULL_HYPERPLANE]);
         CAPTURE(stress_name(stress));
         CHECK(c.nonfinite_bounds == 0);
         CHECK(c.bad_fallbacks == 0);

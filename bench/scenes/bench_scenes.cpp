@@ -51,7 +51,7 @@ const Published published[] = {
 };
 
 const CullMethod methods[] = {CullMethod::bbox, CullMethod::hull, CullMethod::dualspace, CullMethod::two_stage,
-                              CullMethod::edges};
+                              CullMethod::edges, CullMethod::hyperplane};
 constexpr int kMethods = static_cast<int>(std::size(methods));
 
 struct Row {
@@ -91,9 +91,9 @@ std::string markdown(const std::vector<Row>& rows, int width, int height, int sp
        << " --repeat " << repeat << " --footprint " << footprint << " --markdown docs/benchmarks.md --csv docs/ste_table.csv`.\n"
        << "The thesis columns are Table 4.1 of the clip-space sample culling thesis (GTX 580, its own scenes);\n"
        << "our scenes mirror its workloads procedurally, so compare trends, not digits.\n\n";
-    md << "| scene | blur | STE bbox | STE hull | STE dualspace | STE clip2 | STE edges | time bbox | hull | dualspace |"
-          " clip2 | edges | thesis STE bbox / dual-space / thesis |\n";
-    md << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    md << "| scene | blur | STE bbox | STE hull | STE dualspace | STE clip2 | STE edges | STE hyperplane | time bbox |"
+          " hull | dualspace | clip2 | edges | hyperplane | thesis STE bbox / dual-space / thesis |\n";
+    md << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const Row& r : rows) {
         const Published* p = nullptr;
         for (const Published& q : published)
@@ -105,20 +105,20 @@ std::string markdown(const std::vector<Row>& rows, int width, int height, int sp
             thesis = line;
         }
         std::snprintf(line, sizeof line,
-                      "| %s (%zu) | x%g | %.1f%% | %.1f%% | %.1f%% | %.1f%% | %.1f%% | %.0f ms | %.2f | %.2f | %.2f | "
-                      "%.2f | %s |\n",
+                      "| %s (%zu) | x%g | %.1f%% | %.1f%% | %.1f%% | %.1f%% | %.1f%% | %.1f%% | %.0f ms | %.2f | %.2f | "
+                      "%.2f | %.2f | %.2f | %s |\n",
                       r.scene.c_str(), r.triangles, r.blur, 100 * r.ste[0], 100 * r.ste[1], 100 * r.ste[2],
-                      100 * r.ste[3], 100 * r.ste[4], r.ms[0], r.ms[1] / r.ms[0], r.ms[2] / r.ms[0], r.ms[3] / r.ms[0],
-                      r.ms[4] / r.ms[0], thesis.c_str());
+                      100 * r.ste[3], 100 * r.ste[4], 100 * r.ste[5], r.ms[0], r.ms[1] / r.ms[0], r.ms[2] / r.ms[0],
+                      r.ms[3] / r.ms[0], r.ms[4] / r.ms[0], r.ms[5] / r.ms[0], thesis.c_str());
         md << line;
     }
     md << "\nCPU time of the process (all threads) over each render, median, as a ratio to bbox's (less "
-          "sensitive to other load than wall time):\n\n| scene | blur | bbox | hull | dualspace | clip2 | edges |\n"
-          "|---|---|---|---|---|---|---|\n";
+          "sensitive to other load than wall time):\n\n| scene | blur | bbox | hull | dualspace | clip2 | edges | hyperplane |\n"
+          "|---|---|---|---|---|---|---|---|\n";
     for (const Row& r : rows) {
-        std::snprintf(line, sizeof line, "| %s | x%g | %.0f ms | %.2f | %.2f | %.2f | %.2f |\n", r.scene.c_str(),
+        std::snprintf(line, sizeof line, "| %s | x%g | %.0f ms | %.2f | %.2f | %.2f | %.2f | %.2f |\n", r.scene.c_str(),
                       r.blur, r.cpu_ms[0], r.cpu_ms[1] / r.cpu_ms[0], r.cpu_ms[2] / r.cpu_ms[0],
-                      r.cpu_ms[3] / r.cpu_ms[0], r.cpu_ms[4] / r.cpu_ms[0]);
+                      r.cpu_ms[3] / r.cpu_ms[0], r.cpu_ms[4] / r.cpu_ms[0], r.cpu_ms[5] / r.cpu_ms[0]);
         md << line;
     }
     md << "\nSamples visited per pixel (looked at by the per-sample cull; only a footprint's shutter interval when\n"
@@ -219,10 +219,11 @@ int main(int argc, char** argv) {
                     row.ms[m] = median(times[m]);
                     row.cpu_ms[m] = median(cpu_times[m]);
                 }
-                std::fprintf(stderr, "%s x%g: STE %.1f/%.1f/%.1f/%.1f/%.1f%%, time %.0f ms, ratios %.2f/%.2f/%.2f/%.2f\n",
+                std::fprintf(stderr,
+                             "%s x%g: STE %.1f/%.1f/%.1f/%.1f/%.1f/%.1f%%, time %.0f ms, ratios %.2f/%.2f/%.2f/%.2f/%.2f\n",
                              name.c_str(), blur, 100 * row.ste[0], 100 * row.ste[1], 100 * row.ste[2],
-                             100 * row.ste[3], 100 * row.ste[4], row.ms[0], row.ms[1] / row.ms[0],
-                             row.ms[2] / row.ms[0], row.ms[3] / row.ms[0], row.ms[4] / row.ms[0]);
+                             100 * row.ste[3], 100 * row.ste[4], 100 * row.ste[5], row.ms[0], row.ms[1] / row.ms[0],
+                             row.ms[2] / row.ms[0], row.ms[3] / row.ms[0], row.ms[4] / row.ms[0], row.ms[5] / row.ms[0]);
                 std::fprintf(stderr, "  cpu time %.0f ms, ratios %.2f/%.2f/%.2f/%.2f\n", row.cpu_ms[0],
                              row.cpu_ms[1] / row.cpu_ms[0], row.cpu_ms[2] / row.cpu_ms[0],
                              row.cpu_ms[3] / row.cpu_ms[0], row.cpu_ms[4] / row.cpu_ms[0]);

@@ -32,7 +32,10 @@
 //           BC_CULL_TWO_STAGE 3 (box and hull, plus the clip-space two-stage
 //           lens and time bounds of Wu et al. 2015), BC_CULL_EDGES 4 (two-stage,
 //           plus a plane in (u, v, t) per triangle edge; docs/kernel.md, "Edge
-//           bounds"). Switching is this one value.
+//           bounds"), BC_CULL_HYPERPLANE 5 (two-stage, plus one hyperplane in
+//           (x, y, u, v, t) per edge and footprint and the tile test, after
+//           Munkberg and Akenine-Moller 2012; docs/kernel.md, "Hyperplane
+//           culling"). Switching is this one value.
 //
 // Types
 //   MovingTriangle  p[6]: clip (x, y, w) of vertex i at shutter open (p[i]) and
@@ -107,7 +110,8 @@
 // ScreenBound screen_bound(MovingTriangle tri, real near, int cull)
 //   Where on the screen the triangle can cover anything, over every t and uv:
 //   the box of its part in front of the near plane, grown by the CoC and the
-//   rounding margins, and with cull BC_CULL_HULL, BC_CULL_TWO_STAGE or BC_CULL_EDGES also the
+//   rounding margins, and with cull BC_CULL_HULL, BC_CULL_TWO_STAGE, BC_CULL_EDGES or
+//   BC_CULL_HYPERPLANE also the
 //   convex hull of the lens-shifted vertices (McGuire et al. 2010) when every
 //   vertex is in front of the near plane (else hull_count = 0, the box alone).
 //   empty = true: never in front of the near plane. Fallback, the whole screen
@@ -136,7 +140,9 @@
 //   BC_CULL_TWO_STAGE as in detail/two_stage_body.inl, BC_CULL_EDGES as
 //   two-stage plus the edge planes of detail/edge_bounds_body.inl over the
 //   lens ranges and shutter interval two-stage leaves (none when a plane is not
-//   finite). empty = true: no sample
+//   finite), BC_CULL_HYPERPLANE as two-stage plus one plane per edge over that
+//   box (detail/hyperplane_body.inl), empty also when a plane leaves nothing
+//   of the box. empty = true: no sample
 //   of the footprint can be covered. Fallback, no_sample_bounds(): cull
 //   BC_CULL_BBOX or BC_CULL_HULL (they bound only the screen), non-finite input,
 //   a swamped triangle (as for screen_bound). An axis whose bound cannot be
@@ -147,7 +153,8 @@
 //   The bounds of footprint [s_lo, s_hi] inside a tile whose bounds `tile`
 //   sample_bounds gave with the same cull (tile then footprint): for
 //   BC_CULL_EDGES the footprint's two-stage bounds with the tile's edge planes
-//   (their setup paid once per tile); otherwise sample_bounds of the
+//   (their setup paid once per tile), for BC_CULL_HYPERPLANE the same with the
+//   tile test on the footprint's own box; otherwise sample_bounds of the
 //   footprint. Empty when tile is.
 //
 // SampleAxisBounds sample_axis_bounds(MovingTriangle tri, int axis, real s0, real s1, int cull)
@@ -390,6 +397,7 @@ struct kernel {
 #include "detail/dual_space_body.inl"
 #include "detail/two_stage_body.inl"
 #include "detail/edge_bounds_body.inl"
+#include "detail/hyperplane_body.inl"
 #include "detail/sample_bounds_body.inl"
 #include "detail/raster_body.inl"
 #include "detail/dodecahedron_body.inl"

@@ -12,7 +12,7 @@ const std::vector<CullMethodInfo>& cull_methods() {
     // sample_bounds (include/blurcull/detail/sample_bounds_body.inl) runs
     // screen_bound (screen_bound_body.inl: bbox, hull) and, for the methods
     // that bound samples, dual_space_body.inl or two_stage_body.inl (and for
-    // edges edge_bounds_body.inl after it).
+    // edges edge_bounds_body.inl after it, for hyperplane hyperplane_body.inl).
     static const std::vector<CullMethodInfo> methods = {
         {CullMethod::bbox, "bbox", {}, "the clipped screen box of the triangle over shutter and lens", BC_CULL_BBOX, false,
          rasterizers},
@@ -25,6 +25,11 @@ const std::vector<CullMethodInfo>& cull_methods() {
         // The GL backend's per-cell bounds carry the two-stage part, not the edge planes.
         {CullMethod::edges, "edges", {}, "two-stage, then a plane per triangle edge in lens and time per footprint",
          BC_CULL_EDGES, true, rasterizers},
+        // Munkberg and Akenine-Moller 2012 (hyperplane_body.inl); on GL its planes cull whole cells only.
+        {CullMethod::hyperplane, "hyperplane", {},
+         "two-stage, then one hyperplane per triangle edge per tile in (x, y, u, v, t) (Munkberg and "
+         "Akenine-Moller 2012)",
+         BC_CULL_HYPERPLANE, true, rasterizers},
     };
     return methods;
 }

@@ -11,7 +11,7 @@
 
 namespace blurcull::frontend {
 
-enum class CullMethod { bbox, hull, dualspace, two_stage, edges };
+enum class CullMethod { bbox, hull, dualspace, two_stage, edges, hyperplane };
 
 struct CullMethodInfo {
     CullMethod method;
@@ -31,7 +31,7 @@ const std::vector<CullMethodInfo>& cull_methods();
 // The registry entry of `method`.
 const CullMethodInfo& cull_method_info(CullMethod method);
 
-// The method's name: "bbox", "hull", "dualspace", "twostage", "edges".
+// The method's name: "bbox", "hull", "dualspace", "twostage", "edges", "hyperplane".
 const char* to_string(CullMethod method);
 
 // The kernel's BC_CULL_* constant for a method.

@@ -448,7 +448,7 @@ private:
                 // for edges it also carries the planes its footprints share
                 // (sample_bounds_in_tile: their setup once per block).
                 const int spanned = (bx1 / footprint - bx0 / footprint + 1) + (by1 / footprint - by0 / footprint + 1);
-                const bool edges = frame_.method == BC_CULL_EDGES;
+                const bool edges = frame_.method == BC_CULL_EDGES || frame_.method == BC_CULL_HYPERPLANE;
                 typename K::SampleBounds block_bounds = K::no_sample_bounds();
                 const bool block_bounded = block > footprint && (spanned > 4 || edges);
                 if (block_bounded) {

@@ -1,8 +1,8 @@
 // Shared C++/GLSL text (see dialect.hpp): the per-footprint sample bounds
 // that a renderer tests each sample against, dispatched by cull mode to
 // dual_space_body.inl, two_stage_body.inl or (two-stage plus edge planes)
-// edge_bounds_body.inl, and the shutter interval they
-// leave. Needs every other kernel body.
+// edge_bounds_body.inl (hyperplane_body.inl for BC_CULL_HYPERPLANE), and the
+// shutter interval they leave. Needs every other kernel body.
 
 struct SampleBounds {
     bool empty;    // no sample of the footprint can be covered
@@ -126,12 +126,21 @@ BC_FN SampleBounds combine_axis_bounds(BC_IN(SampleAxisBounds) x, BC_IN(SampleAx
     return r;
 }
 
+// How far the caller's rounded sample positions can stray outside the
+// footprint [s_lo, s_hi], per axis.
+BC_FN vec2 bc_footprint_pad(vec2 s_lo, vec2 s_hi) {
+    return vec2(bc_err(max(real(1), max(abs(s_lo.x), abs(s_hi.x)))),
+                bc_err(max(real(1), max(abs(s_lo.y), abs(s_hi.y)))));
+}
+
 // Bounds on the lens and time of every sample in the screen footprint
 // [s_lo, s_hi] (a pixel or a tile) that the triangle can cover.
 // BC_CULL_BBOX and BC_CULL_HULL bound only the screen (see screen_bound).
 BC_FN SampleBounds sample_bounds(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi, int cull) {
     SampleBounds r = no_sample_bounds();
-    if (cull != BC_CULL_DUALSPACE && cull != BC_CULL_TWO_STAGE && cull != BC_CULL_EDGES) return r;
+    if (cull != BC_CULL_DUALSPACE && cull != BC_CULL_TWO_STAGE && cull != BC_CULL_EDGES &&
+        cull != BC_CULL_HYPERPLANE)
+        return r;
     if (!bc_triangle_boundable(tri)) return r;
     SampleAxisBounds x = sample_axis_bounds(tri, 0, s_lo.x, s_hi.x, cull);
     if (x.empty) {
@@ -140,18 +149,34 @@ BC_FN SampleBounds sample_bounds(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi
     }
     SampleAxisBounds y = sample_axis_bounds(tri, 1, s_lo.y, s_hi.y, cull);
     r = combine_axis_bounds(x, y);
-    if (r.empty || cull != BC_CULL_EDGES) return r;
+    if (r.empty || (cull != BC_CULL_EDGES && cull != BC_CULL_HYPERPLANE)) return r;
     // The edge planes over the box the two-stage bounds leave (on the padded footprint).
-    vec2 pad = vec2(bc_err(max(real(1), max(abs(s_lo.x), abs(s_hi.x)))),
-                    bc_err(max(real(1), max(abs(s_lo.y), abs(s_hi.y)))));
+    vec2 pad = bc_footprint_pad(s_lo, s_hi);
     vec2 times = sample_time_range(r);
     if (times.x > times.y) {
         r.empty = true;
         return r;
     }
-    r.edges = bc_edge_bounds(tri, s_lo - pad, s_hi + pad, r.u_range, r.v_range, times);
+    if (cull == BC_CULL_HYPERPLANE) {
+        // One plane per edge over the whole box, and the box culled whole when a plane leaves nothing.
+        r.edges = bc_hyperplane_bounds(tri, s_lo - pad, s_hi + pad, r.u_range, r.v_range, times);
+        r.empty = bc_hyperplane_box_empty(r.edges.piece[0], r.u_range, r.v_range, times, s_lo - pad, s_hi + pad);
+    } else {
+        r.edges = bc_edge_bounds(tri, s_lo - pad, s_hi + pad, r.u_range, r.v_range, times);
+    }
     r.centre = vec2(bc_box_axis(s_lo.x - pad.x, s_hi.x + pad.x).x, bc_box_axis(s_lo.y - pad.y, s_hi.y + pad.y).x);
     return r;
+}
+
+// BC_CULL_HYPERPLANE's tile test on a footprint [s_lo, s_hi] inside the
+// tile whose planes r carries: those planes hold at every covered sample of
+// the tile, and every covered sample of the footprint lies in the
+// footprint's own box (its two-stage bounds r, its padded screen box).
+BC_FN bool bc_hyperplane_footprint_empty(BC_IN(SampleBounds) r, vec2 s_lo, vec2 s_hi) {
+    vec2 times = sample_time_range(r);
+    if (times.x > times.y) return true;
+    vec2 pad = bc_footprint_pad(s_lo, s_hi);
+    return bc_hyperplane_box_empty(r.edges.piece[0], r.u_range, r.v_range, times, s_lo - pad, s_hi + pad);
 }
 
 // Bounds of a footprint [s_lo, s_hi] inside a tile whose bounds `tile` came
@@ -160,16 +185,18 @@ BC_FN SampleBounds sample_bounds(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi
 // planes, which hold for every sample of the tile inside the tile's bounds
 // (and a sample outside those cannot be covered: docs/kernel.md, "Edge
 // bounds", tile then footprint), so the planes' setup is paid once per tile;
-// for every other cull the footprint's own bounds. An empty tile gives
-// empty bounds.
+// for BC_CULL_HYPERPLANE the same, and the footprint culled whole when a
+// tile plane leaves nothing of the footprint's own box; for every other
+// cull the footprint's own bounds. An empty tile gives empty bounds.
 BC_FN SampleBounds sample_bounds_in_tile(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi, int cull,
                                          BC_IN(SampleBounds) tile) {
     if (tile.empty) return tile;
-    if (cull != BC_CULL_EDGES) return sample_bounds(tri, s_lo, s_hi, cull);
+    if (cull != BC_CULL_EDGES && cull != BC_CULL_HYPERPLANE) return sample_bounds(tri, s_lo, s_hi, cull);
     SampleBounds r = sample_bounds(tri, s_lo, s_hi, BC_CULL_TWO_STAGE);
     if (r.empty) return r;
     r.edges = tile.edges;
     r.centre = tile.centre;
+    if (cull == BC_CULL_HYPERPLANE) r.empty = bc_hyperplane_footprint_empty(r, s_lo, s_hi);
     return r;
 }
 

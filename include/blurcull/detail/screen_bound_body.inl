@@ -9,6 +9,7 @@
 #define BC_CULL_DUALSPACE 2
 #define BC_CULL_TWO_STAGE 3
 #define BC_CULL_EDGES 4  // the two-stage bounds and a plane per edge in (u, v, t) (edge_bounds_body.inl)
+#define BC_CULL_HYPERPLANE 5  // the two-stage bounds and one hyperplane per edge per tile (hyperplane_body.inl)
 
 #define BC_HULL_MAX 24
 
@@ -164,7 +165,8 @@ BC_FN ScreenBound screen_bound(BC_IN(MovingTriangle) tri, real near, int cull) {
     b.lo = vec2(ex.x, ey.x);
     b.hi = vec2(ex.y, ey.y);
     b.empty = ex.x > ex.y || ey.x > ey.y;
-    if ((cull == BC_CULL_HULL || cull == BC_CULL_TWO_STAGE || cull == BC_CULL_EDGES) && !b.empty)
+    if ((cull == BC_CULL_HULL || cull == BC_CULL_TWO_STAGE || cull == BC_CULL_EDGES || cull == BC_CULL_HYPERPLANE) &&
+        !b.empty)
         bc_build_hull(tri, near, b);
     return b;
 }
