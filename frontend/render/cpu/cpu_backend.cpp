@@ -196,6 +196,9 @@ struct FrameContext {
     SampleSums* sums = nullptr;
     std::uint32_t first_sample = 0;
     const std::atomic<bool>* cancel = nullptr;
+    // edges: a block gets its edge planes only where it leaves at least this
+    // many samples to visit (CpuOptions::edge_min_samples).
+    double edge_min_samples = 0;
 };
 
 // One worker's rasterization of work tiles: its sample, depth and hit
@@ -374,6 +377,25 @@ private:
         return sb;
     }
 
+    // edges' bounds of a block: its two-stage bounds, and the edge planes
+    // only where the samples it leaves to visit (its pixels' samples in its
+    // shutter interval) are enough to repay their setup; elsewhere the
+    // block's footprints are culled as clip2's (fewer culls, never a wrong one).
+    typename K::SampleBounds edge_block_bounds(const Current& current, int px0, int py0, int px1, int py1) {
+        const typename K::vec4 box = footprint(px0, py0, px1, py1);
+        const typename K::vec2 lo(box.x, box.y), hi(box.z, box.w);
+        typename K::SampleBounds sb = K::sample_bounds(*current.tri, lo, hi, BC_CULL_TWO_STAGE);
+        ++bounded;
+        if (!sb.empty) {
+            const typename K::vec2 range = K::sample_time_range(sb);
+            const double share = std::clamp(double(range.y) - double(range.x), 0.0, 1.0);
+            const double visits = double((px1 - px0 + 1) * (py1 - py0 + 1)) * double(frame_.spp) * share;
+            if (visits >= frame_.edge_min_samples) sb = K::bc_add_edge_planes(*current.tri, lo, hi, sb);
+        }
+        if (sb.empty) ++bounded_empty;
+        return sb;
+    }
+
     // The sample bounds of a footprint, counted: with share_axes from its
     // column's and its row's axis bounds (the kernel's sample_bounds split
     // in two: the same bounds, each axis computed once per column or row).
@@ -406,8 +428,12 @@ private:
                         frame_.cull_bounds && frame_.setup.classes[index] != 0, true, false};
         const int rx0 = std::max(r.x0, x0_), rx1 = std::min(r.x1, x1_);
         const int ry0 = std::max(r.y0, y0_), ry1 = std::min(r.y1, y1_);
+        // edges shares its footprints' two-stage axes too where the planes
+        // come from the block (bc_with_tile_edges adds them).
+        const bool edges_in_blocks = frame_.method == BC_CULL_EDGES && frame_.block > frame_.footprint;
         current.share_axes = current.needs_bounds &&
-                             (frame_.method == BC_CULL_DUALSPACE || frame_.method == BC_CULL_TWO_STAGE) &&
+                             (frame_.method == BC_CULL_DUALSPACE || frame_.method == BC_CULL_TWO_STAGE ||
+                              edges_in_blocks) &&
                              K::bc_triangle_boundable(*current.tri);
         if (current.share_axes) {
             columns_.reset(rx0, rx1, frame_.footprint);
@@ -427,20 +453,36 @@ private:
                 // for edges it also carries the planes its footprints share
                 // (sample_bounds_in_tile: their setup once per block).
                 const int spanned = (bx1 / footprint - bx0 / footprint + 1) + (by1 / footprint - by0 / footprint + 1);
-                const bool edges = frame_.method == BC_CULL_EDGES;
+                // edges: a block with too few samples for its planes to pay
+                // (even all of them visited) is culled as clip2 culls it.
+                const bool edges_method = frame_.method == BC_CULL_EDGES;
+                const double block_samples = double((bx1 - bx0 + 1) * (by1 - by0 + 1)) * double(frame_.spp);
+                const bool edges = edges_method && block_samples >= frame_.edge_min_samples;
                 typename K::SampleBounds block_bounds = K::no_sample_bounds();
                 const bool block_bounded = block > footprint && (spanned > 4 || edges);
                 if (block_bounded) {
-                    block_bounds = bounds_of(current, bx0, by0, bx1, by1);
+                    block_bounds = edges_method ? edge_block_bounds(current, bx0, by0, bx1, by1)
+                                                : bounds_of(current, bx0, by0, bx1, by1);
                     if (block_bounds.empty) continue;
+                    // edges, the block's part of the triangle inside one
+                    // footprint: the block's bounds are that footprint's.
+                    if (edges && spanned == 2) {
+                        test_samples(current, bx0, by0, bx1, by1, block_bounds);
+                        continue;
+                    }
                 }
+                const bool planes = edges_method && block_bounds.edges.piece[0].mode != BC_EDGE_NONE;
                 for (int fy = by0 - (by0 % footprint); fy <= by1; fy += footprint) {
                     for (int fx = bx0 - (bx0 % footprint); fx <= bx1; fx += footprint) {
                         const int px0 = std::max(fx, bx0), px1 = std::min(fx + footprint - 1, bx1);
                         const int py0 = std::max(fy, by0), py1 = std::min(fy + footprint - 1, by1);
+                        // edges: the footprint's two-stage bounds (from the
+                        // shared axes) with the block's planes.
                         const typename K::SampleBounds sb =
-                            edges && block_bounded ? bounds_of(current, px0, py0, px1, py1, &block_bounds)
-                                                   : footprint_bounds(current, px0, py0, px1, py1);
+                            !planes ? footprint_bounds(current, px0, py0, px1, py1)
+                            : current.share_axes
+                                ? K::bc_with_tile_edges(footprint_bounds(current, px0, py0, px1, py1), block_bounds)
+                                : bounds_of(current, px0, py0, px1, py1, &block_bounds);
                         if (!sb.empty) test_samples(current, px0, py0, px1, py1, sb);
                     }
                 }
@@ -673,7 +715,8 @@ RenderResult render_cpu_in(const Scene& scene, const RenderSettings& settings, c
                                    sample_ids,
                                    options.sums,
                                    options.sums != nullptr ? static_cast<std::uint32_t>(options.sums->samples) : 0u,
-                                   options.cancel};
+                                   options.cancel,
+                                   double(options.edge_min_samples)};
     if (sample_ids != nullptr)
         sample_ids->assign(static_cast<std::size_t>(settings.width) * settings.height * frame.spp, no_sample_hit);
     rasterize_tiles(frame, threads, start, result);
