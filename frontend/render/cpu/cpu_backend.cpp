@@ -498,6 +498,7 @@ private:
         const int state =
             K::screen_footprint(current.bound, typename K::vec2(box.x, box.y), typename K::vec2(box.z, box.w));
         if (state == BC_FOOTPRINT_OUTSIDE) return;
+        if (edge_planes_cull_footprint(sb, px0, py0, px1, py1)) return;
         current.check_screen = state != BC_FOOTPRINT_INSIDE;
         if (frame_.time_sorted && current.needs_bounds && test_time_run(current, px0, py0, px1, py1, sb)) return;
         for (int py = py0; py <= py1; ++py) {
@@ -533,10 +534,49 @@ private:
         const double* lo = std::lower_bound(begin, end, double(range.x));
         const double* hi = std::upper_bound(lo, end, double(range.y));
         current.check_screen = current.check_screen || cx0 != px0 || cy0 != py0 || cx1 != px1 || cy1 != py1;
-        const std::size_t first = static_cast<std::size_t>(lo - times);
-        test_run(current, sb, time_lanes_, first, static_cast<std::size_t>(hi - lo),
-                 [this](std::size_t i) { return static_cast<std::size_t>(by_time_[i]); });
+        const auto slot_of = [this](std::size_t i) { return static_cast<std::size_t>(by_time_[i]); };
+        // edges: the runs of the shutter pieces whose planes cull the whole
+        // footprint are skipped (not visited).
+        if (sb.edges.piece[0].mode != BC_EDGE_NONE && window_segments_ == 1) {
+            const typename K::vec4 pad_box = padded_footprint(px0, py0, px1, py1);
+            const typename K::vec2 s_lo(pad_box.x, pad_box.y), s_hi(pad_box.z, pad_box.w);
+            for (int q = 0; q < sb.edges.pieces; ++q) {
+                const typename K::BcEdgePlanes& piece = sb.edges.piece[q];
+                if (!K::bc_edge_piece_culls_box(piece, s_lo, s_hi, sb.u_range, sb.v_range)) continue;
+                // The piece's samples: after the previous piece's end (which
+                // holds its own end), up to its own end.
+                const double* from = q == 0 ? std::lower_bound(lo, hi, double(piece.time.x))
+                                            : std::upper_bound(lo, hi, double(piece.time.x));
+                const double* to = std::max(from, std::upper_bound(lo, hi, double(piece.time.y)));
+                test_run(current, sb, time_lanes_, static_cast<std::size_t>(lo - times),
+                         static_cast<std::size_t>(from - lo), slot_of);
+                lo = to;
+            }
+        }
+        test_run(current, sb, time_lanes_, static_cast<std::size_t>(lo - times), static_cast<std::size_t>(hi - lo),
+                 slot_of);
         return true;
+    }
+
+    // edges: whether every shutter piece's planes cull the whole footprint
+    // (then none of its samples can pass; not visited).
+    bool edge_planes_cull_footprint(const typename K::SampleBounds& sb, int px0, int py0, int px1, int py1) const {
+        if (sb.edges.piece[0].mode == BC_EDGE_NONE) return false;
+        const typename K::vec4 box = padded_footprint(px0, py0, px1, py1);
+        const typename K::vec2 s_lo(box.x, box.y), s_hi(box.z, box.w);
+        for (int q = 0; q < sb.edges.pieces; ++q)
+            if (!K::bc_edge_piece_culls_box(sb.edges.piece[q], s_lo, s_hi, sb.u_range, sb.v_range)) return false;
+        return true;
+    }
+
+    // The NDC box of a footprint grown by a few float roundings: it holds
+    // every sample position of its pixels (floats), with room to spare.
+    typename K::vec4 padded_footprint(int px0, int py0, int px1, int py1) const {
+        const typename K::vec4 box = footprint(px0, py0, px1, py1);
+        const Real ulps = Real(8) * Real(std::numeric_limits<float>::epsilon());
+        const Real pad_x = ulps * std::max(Real(1), std::max(std::abs(box.x), std::abs(box.z)));
+        const Real pad_y = ulps * std::max(Real(1), std::max(std::abs(box.y), std::abs(box.w)));
+        return typename K::vec4(box.x - pad_x, box.y - pad_y, box.z + pad_x, box.w + pad_y);
     }
 
     // Samples first .. first + count - 1 of `lanes` (slot_of(i) the slot of
