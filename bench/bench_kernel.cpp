@@ -5,6 +5,8 @@
 // per operation:
 //   screen_bound/<precision>/<method>/<workload>   per-triangle setup
 //   sample_bounds/<precision>/<method>/<workload>  per-footprint setup (one pixel)
+//   (fixed mode only) tile_bounds/..., footprint_in_tile/...: a 16x16 block's bounds
+//   and a 4x4 footprint's from them, as the CPU backend bounds (fixed_tile_setup)
 //   sample_test/<precision>/<method>/<workload>    screen_contains + sample_passes_at, one sample
 //   covers/<precision>/<workload>                  the exact test, one sample
 //   pixel/<precision>/<method>/<workload>          one pixel of 16 samples: the per-footprint
@@ -378,6 +380,35 @@ void fixed_run(const std::string& name, std::size_t ops, Body body) {
     std::printf("\n");
 }
 
+// The CPU backend's two levels (docs/cpu-renderer.md): a 16x16-pixel block's
+// bounds (tile_bounds) and, from them, a 4x4-pixel footprint's
+// (footprint_in_tile: sample_bounds_in_tile, which for edges reuses the
+// block's planes), both around each configuration's pixel, so the setup per
+// pixel of every method is tile / 256 + footprint / 16.
+template <class Real>
+void fixed_tile_setup(const Batch<Real>& b, int m, const std::string& name) {
+    using K = kernel<Real>;
+    const Real pixel = static_cast<Real>(kPixelWidth);
+    std::vector<typename K::SampleBounds> tiles(b.configs());
+    fixed_run("tile_bounds/" + name, b.configs(), [&] {
+        std::int64_t nonempty = 0;
+        for (std::size_t i = 0; i < b.configs(); ++i) {
+            tiles[i] = K::sample_bounds(b.tris[i], b.lo[i] - Real(7) * pixel, b.hi[i] + Real(8) * pixel, m);
+            nonempty += tiles[i].empty ? 0 : 1;
+        }
+        return FixedResult{"nonempty", nonempty};
+    });
+    fixed_run("footprint_in_tile/" + name, b.configs(), [&] {
+        std::int64_t nonempty = 0;
+        for (std::size_t i = 0; i < b.configs(); ++i) {
+            const typename K::SampleBounds f = K::sample_bounds_in_tile(
+                b.tris[i], b.lo[i] - Real(1) * pixel, b.hi[i] + Real(2) * pixel, m, tiles[i]);
+            nonempty += f.empty ? 0 : 1;
+        }
+        return FixedResult{"nonempty", nonempty};
+    });
+}
+
 template <class Real>
 void fixed_precision() {
     const std::string precision = precision_name<Real>();
@@ -396,6 +427,7 @@ void fixed_precision() {
                 for (std::size_t i = 0; i < b.configs(); ++i) sum += Ops<Real>::sample_bounds(b, m, i);
                 return FixedResult{"nonempty", sum};
             });
+            fixed_tile_setup(b, m, precision + method + suffix);
             const Prepared<Real> p(b, m);
             fixed_run("sample_test/" + precision + method + suffix, b.samples(), [&] {
                 std::int64_t sum = 0;

@@ -71,6 +71,28 @@ TEST_CASE("every culling method renders the same image, on every built-in scene,
     }
 }
 
+TEST_CASE("edges: the blocks that get edge planes (edge_min_samples) change nothing in the image") {
+    Scene scene = small_scene("forest", 2.0f, 96, 72);
+    RenderSettings settings = quiet_settings(96, 72, 8);
+    settings.cull = CullMethod::two_stage;
+    const RenderResult clip2 = render_cpu(scene, settings);
+    settings.cull = CullMethod::edges;
+    std::uint64_t tested_before = 0;
+    for (int min_samples : {0, 64, 512, 1 << 20}) {
+        CpuOptions options;
+        options.edge_min_samples = min_samples;
+        const RenderResult result = render_cpu(scene, settings, options);
+        INFO("edge_min_samples ", min_samples);
+        CHECK(result.stats.samples_hit == clip2.stats.samples_hit);
+        CHECK(same_pixels(result.image, clip2.image));
+        // Fewer blocks with planes: never fewer exact tests; none at all: clip2's.
+        CHECK(result.stats.samples_tested >= tested_before);
+        CHECK(result.stats.samples_tested <= clip2.stats.samples_tested);
+        tested_before = result.stats.samples_tested;
+    }
+    CHECK(tested_before == clip2.stats.samples_tested);
+}
+
 TEST_CASE("culling footprints larger than a pixel change nothing in the image") {
     Scene scene = small_scene("forest", 2.0f, 64, 48);
     RenderSettings settings = quiet_settings(64, 48, 8);

@@ -8,6 +8,7 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -22,6 +23,32 @@ float near_edge(Rng& rng, double edge) {
     const int steps = static_cast<int>(rng.uniform(0.0, 3.0)) - 1;
     for (int i = 0; i < std::abs(steps); ++i) f = std::nextafter(f, steps > 0 ? 2.0f : -2.0f);
     return f;
+}
+
+// edges: a time next to the end of one of the planes' shutter pieces
+// (where the piece lookup changes), else t.
+template <class Bounds>
+float near_piece_end(Rng& rng, const Bounds& edges, float t) {
+    if (edges.piece[0].mode == BC_EDGE_NONE) return t;
+    const int q = static_cast<int>(rng.uniform(0.0, double(edges.pieces) + 1.0));
+    if (q == 0) return near_edge(rng, double(edges.piece[0].time.x));
+    return near_edge(rng, double(edges.piece[std::min(q, edges.pieces) - 1].time.y));
+}
+
+// edges: the lens u (next to the value) where one edge plane of t's piece
+// is zero at the sample (its hi or, two-sided, its lo side), else u.
+template <class Bounds>
+float on_edge_plane(Rng& rng, const Bounds& edges, float sx, float sy, float u, float v, float t) {
+    if (edges.piece[0].mode == BC_EDGE_NONE) return u;
+    int q = 0;
+    while (q + 1 < edges.pieces && double(t) > double(edges.piece[q].time.y)) ++q;
+    const auto& p = edges.piece[q];
+    const int e = static_cast<int>(rng.uniform(0.0, 3.0)) % 3;
+    if (p.du[e] == 0) return u;
+    const double side = rng.uniform(0.0, 1.0) < 0.5 ? double(p.hi[e]) : double(p.lo[e]);
+    const double rest = double(p.dv[e]) * v + double(p.dt[e]) * t + double(p.dx[e]) * sx + double(p.dy[e]) * sy + side;
+    const double at = -rest / double(p.du[e]);
+    return std::isfinite(at) && std::abs(at) <= 1.0 ? near_edge(rng, at) : u;
 }
 
 struct Counts {
@@ -39,14 +66,17 @@ void check_config(const Config& cfg, int method, Rng& rng, Counts& counts) {
     for (int i = 0; i < 32; ++i) {
         const Sample5 s = make_sample(rng, cfg);
         float sx = float(s.s.x), sy = float(s.s.y), u = float(s.uv.x), v = float(s.uv.y), t = float(s.t);
-        // A third of the samples sit on an edge of the bounds.
-        switch (static_cast<int>(rng.uniform(0.0, 9.0))) {
+        // Two thirds of the samples sit on an edge of the bounds (edges: on a
+        // plane or at a piece's end).
+        switch (static_cast<int>(rng.uniform(0.0, 12.0))) {
             case 0: u = near_edge(rng, double(bounds.u_range.x)); break;
             case 1: v = near_edge(rng, double(bounds.v_range.y)); break;
             case 2: t = near_edge(rng, double(bounds.u_time_a.x + bounds.u_time_a.y * Real(u))); break;
             case 3: t = near_edge(rng, double(bounds.v_time_b.z + bounds.v_time_b.w * Real(v))); break;
             case 4: sx = near_edge(rng, double(screen.lo.x)); break;
             case 5: sy = near_edge(rng, double(screen.hi.y)); break;
+            case 6: t = near_piece_end(rng, bounds.edges, t); break;
+            case 7: u = on_edge_plane(rng, bounds.edges, sx, sy, u, v, t); break;
             default: break;
         }
         lanes.set(static_cast<std::size_t>(i), sx, sy, u, v, t);

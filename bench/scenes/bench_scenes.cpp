@@ -4,7 +4,13 @@
 //
 //   bench_scenes [--size 1024x768] [--spp 16] [--repeat 3] [--footprint 4]
 //                [--scenes hand,car,dragonfly,forest] [--blurs 1,2] [--csv out.csv]
-//                [--markdown docs/benchmarks.md]
+//                [--markdown docs/benchmarks.md] [--methods bbox,hull,dualspace,clip2,edges]
+//                [--edge-min-samples N]
+//
+// --methods renders only those (the others' columns stay 0; ratios to bbox
+// need bbox); with clip2 and edges both, each render's edges / clip2 CPU
+// time is printed. --edge-min-samples sets CpuOptions::edge_min_samples
+// (which blocks get edges' planes).
 //
 // --blurs takes any blur scales (the sweep of docs/benchmarks.md uses
 // 0.25,0.5,1,2,4: a scene's blur scale must be > 0); the thesis's columns
@@ -143,6 +149,9 @@ std::string markdown(const std::vector<Row>& rows, int width, int height, int sp
 
 int main(int argc, char** argv) {
     int width = 1024, height = 768, spp = 16, repeat = 3, footprint = 4;
+    int edge_min_samples = CpuOptions{}.edge_min_samples;
+    bool selected[kMethods];
+    std::fill(selected, selected + kMethods, true);
     std::vector<std::string> scenes = builtin_scene_names();
     std::string csv_path, md_path;
     std::vector<double> blurs = {1, 2};
@@ -174,6 +183,15 @@ int main(int argc, char** argv) {
                 if (blurs.empty()) throw std::invalid_argument("--blurs: no scale given");
             } else if (arg == "--scenes") {
                 scenes = split(value());
+            } else if (arg == "--methods") {
+                std::vector<CullMethod> wanted;
+                for (const std::string& name : split(value())) wanted.push_back(parse_cull_method(name));
+                for (int m = 0; m < kMethods; ++m)
+                    selected[m] = std::find(wanted.begin(), wanted.end(), methods[m]) != wanted.end();
+                if (std::find(selected, selected + kMethods, true) == selected + kMethods)
+                    throw std::invalid_argument("--methods: none of bbox, hull, dualspace, clip2, edges given");
+            } else if (arg == "--edge-min-samples") {
+                edge_min_samples = std::max(0, std::atoi(value().c_str()));
             } else if (arg == "--csv") {
                 csv_path = value();
             } else if (arg == "--markdown") {
@@ -196,6 +214,7 @@ int main(int argc, char** argv) {
                 settings.progress = false;
                 CpuOptions cpu;
                 cpu.footprint = footprint;
+                cpu.edge_min_samples = edge_min_samples;
                 Row row;
                 row.scene = name;
                 row.blur = blur;
@@ -204,6 +223,7 @@ int main(int argc, char** argv) {
                 // Interleave the methods across repeats so drifting load hits all alike.
                 for (int r = 0; r < repeat; ++r) {
                     for (int m = 0; m < kMethods; ++m) {
+                        if (!selected[m]) continue;
                         settings.cull = methods[m];
                         const double cpu_start = process_cpu_ms();
                         RenderResult result = render_cpu(scene, settings, cpu);
@@ -216,20 +236,27 @@ int main(int argc, char** argv) {
                     }
                 }
                 for (int m = 0; m < kMethods; ++m) {
+                    if (!selected[m]) continue;
                     row.ms[m] = median(times[m]);
                     row.cpu_ms[m] = median(cpu_times[m]);
+                }
+                // The time target: edges' CPU time against clip2's, each render.
+                if (selected[3] && selected[4]) {
+                    std::fprintf(stderr, "  cpu time edges / clip2 %.3f (renders:", row.cpu_ms[4] / row.cpu_ms[3]);
+                    for (int r = 0; r < repeat; ++r) std::fprintf(stderr, " %.3f", cpu_times[4][r] / cpu_times[3][r]);
+                    std::fprintf(stderr, ")\n");
                 }
                 std::fprintf(stderr,
                              "%s x%g: STE %.1f/%.1f/%.1f/%.1f/%.1f/%.1f%%, time %.0f ms, ratios %.2f/%.2f/%.2f/%.2f/%.2f\n",
                              name.c_str(), blur, 100 * row.ste[0], 100 * row.ste[1], 100 * row.ste[2],
                              100 * row.ste[3], 100 * row.ste[4], 100 * row.ste[5], row.ms[0], row.ms[1] / row.ms[0],
                              row.ms[2] / row.ms[0], row.ms[3] / row.ms[0], row.ms[4] / row.ms[0], row.ms[5] / row.ms[0]);
-                std::fprintf(stderr, "  cpu time %.0f ms, ratios %.2f/%.2f/%.2f/%.2f\n", row.cpu_ms[0],
+                std::fprintf(stderr, "  cpu time %.0f ms, ratios %.2f/%.2f/%.2f/%.2f/%.2f\n", row.cpu_ms[0],
                              row.cpu_ms[1] / row.cpu_ms[0], row.cpu_ms[2] / row.cpu_ms[0],
-                             row.cpu_ms[3] / row.cpu_ms[0], row.cpu_ms[4] / row.cpu_ms[0]);
-                std::fprintf(stderr, "  visited/tested per pixel %.1f/%.1f %.1f/%.1f %.1f/%.1f %.1f/%.1f %.1f/%.1f\n",
-                             row.visited[0], row.tested[0], row.visited[1], row.tested[1], row.visited[2],
-                             row.tested[2], row.visited[3], row.tested[3], row.visited[4], row.tested[4]);
+                             row.cpu_ms[3] / row.cpu_ms[0], row.cpu_ms[4] / row.cpu_ms[0], row.cpu_ms[5] / row.cpu_ms[0]);
+                std::fprintf(stderr, "  visited/tested per pixel");
+                for (int m = 0; m < kMethods; ++m) std::fprintf(stderr, " %.1f/%.1f", row.visited[m], row.tested[m]);
+                std::fprintf(stderr, "\n");
                 rows.push_back(row);
             }
         }
@@ -240,13 +267,15 @@ int main(int argc, char** argv) {
             std::ofstream csv(csv_path);
             if (!csv) throw std::runtime_error("cannot write '" + csv_path + "'");
             csv << "scene,blur,triangles,method,ste,ms_median,time_ratio_to_bbox,width,height,spp,footprint,"
-                   "visited_per_pixel,tested_per_pixel,cpu_ms_median,cpu_ratio_to_bbox\n";
+                   "visited_per_pixel,tested_per_pixel,cpu_ms_median,cpu_ratio_to_bbox,cpu_ratio_to_clip2,edge_min_samples\n";
             for (const Row& r : rows)
                 for (int m = 0; m < kMethods; ++m)
+                    if (selected[m])
                     csv << r.scene << "," << r.blur << "," << r.triangles << "," << to_string(methods[m]) << ","
                         << r.ste[m] << "," << r.ms[m] << "," << r.ms[m] / r.ms[0] << "," << width << "," << height
                         << "," << spp << "," << footprint << "," << r.visited[m] << "," << r.tested[m] << "," << r.cpu_ms[m] << ","
-                        << r.cpu_ms[m] / r.cpu_ms[0] << "\n";
+                        << r.cpu_ms[m] / r.cpu_ms[0] << "," << r.cpu_ms[m] / r.cpu_ms[3] << "," << edge_min_samples
+                        << "\n";
         }
     } catch (const std::exception& error) {
         std::fprintf(stderr, "bench_scenes: error: %s\n", error.what());

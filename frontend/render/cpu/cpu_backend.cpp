@@ -210,6 +210,9 @@ struct FrameContext {
     SampleSums* sums = nullptr;
     std::uint32_t first_sample = 0;
     const std::atomic<bool>* cancel = nullptr;
+    // edges: a block gets its edge planes only where it leaves at least this
+    // many samples to visit (CpuOptions::edge_min_samples).
+    double edge_min_samples = 0;
 };
 
 // One worker's rasterization of work tiles: its sample, depth and hit
@@ -395,6 +398,25 @@ private:
         return sb;
     }
 
+    // edges' bounds of a block: its two-stage bounds, and the edge planes
+    // only where the samples it leaves to visit (its pixels' samples in its
+    // shutter interval) are enough to repay their setup; elsewhere the
+    // block's footprints are culled as clip2's (fewer culls, never a wrong one).
+    typename K::SampleBounds edge_block_bounds(const Current& current, int px0, int py0, int px1, int py1) {
+        const typename K::vec4 box = footprint(px0, py0, px1, py1);
+        const typename K::vec2 lo(box.x, box.y), hi(box.z, box.w);
+        typename K::SampleBounds sb = K::sample_bounds(*current.tri, lo, hi, BC_CULL_TWO_STAGE);
+        ++bounded;
+        if (!sb.empty) {
+            const typename K::vec2 range = K::sample_time_range(sb);
+            const double share = std::clamp(double(range.y) - double(range.x), 0.0, 1.0);
+            const double visits = double((px1 - px0 + 1) * (py1 - py0 + 1)) * double(frame_.spp) * share;
+            if (visits >= frame_.edge_min_samples) sb = K::bc_add_edge_planes(*current.tri, lo, hi, sb);
+        }
+        if (sb.empty) ++bounded_empty;
+        return sb;
+    }
+
     // The sample bounds of a footprint, counted: with share_axes from its
     // column's and its row's axis bounds (the kernel's sample_bounds split
     // in two: the same bounds, each axis computed once per column or row).
@@ -427,8 +449,12 @@ private:
                         frame_.cull_bounds && frame_.setup.classes[index] != 0, true, false};
         const int rx0 = std::max(r.x0, x0_), rx1 = std::min(r.x1, x1_);
         const int ry0 = std::max(r.y0, y0_), ry1 = std::min(r.y1, y1_);
+        // edges shares its footprints' two-stage axes too where the planes
+        // come from the block (bc_with_tile_edges adds them).
+        const bool edges_in_blocks = frame_.method == BC_CULL_EDGES && frame_.block > frame_.footprint;
         current.share_axes = current.needs_bounds &&
-                             (frame_.method == BC_CULL_DUALSPACE || frame_.method == BC_CULL_TWO_STAGE) &&
+                             (frame_.method == BC_CULL_DUALSPACE || frame_.method == BC_CULL_TWO_STAGE ||
+                              edges_in_blocks) &&
                              K::bc_triangle_boundable(*current.tri);
         if (current.share_axes) {
             columns_.reset(rx0, rx1, frame_.footprint);
@@ -448,20 +474,38 @@ private:
                 // for edges it also carries the planes its footprints share
                 // (sample_bounds_in_tile: their setup once per block).
                 const int spanned = (bx1 / footprint - bx0 / footprint + 1) + (by1 / footprint - by0 / footprint + 1);
-                const bool edges = frame_.method == BC_CULL_EDGES || frame_.method == BC_CULL_HYPERPLANE;
+                // edges: a block with too few samples for its planes to pay
+                // (even all of them visited) is culled as clip2 culls it.
+                // hyperplane: its planes always come from the block.
+                const bool edges_method = frame_.method == BC_CULL_EDGES;
+                const bool hyperplane = frame_.method == BC_CULL_HYPERPLANE;
+                const double block_samples = double((bx1 - bx0 + 1) * (by1 - by0 + 1)) * double(frame_.spp);
+                const bool edges = (edges_method && block_samples >= frame_.edge_min_samples) || hyperplane;
                 typename K::SampleBounds block_bounds = K::no_sample_bounds();
                 const bool block_bounded = block > footprint && (spanned > 4 || edges);
                 if (block_bounded) {
-                    block_bounds = bounds_of(current, bx0, by0, bx1, by1);
+                    block_bounds = edges_method ? edge_block_bounds(current, bx0, by0, bx1, by1)
+                                                : bounds_of(current, bx0, by0, bx1, by1);
                     if (block_bounds.empty) continue;
+                    // edges, the block's part of the triangle inside one
+                    // footprint: the block's bounds are that footprint's.
+                    if (edges && spanned == 2) {
+                        test_samples(current, bx0, by0, bx1, by1, block_bounds);
+                        continue;
+                    }
                 }
+                const bool planes = (edges_method || hyperplane) && block_bounds.edges.piece[0].mode != BC_EDGE_NONE;
                 for (int fy = by0 - (by0 % footprint); fy <= by1; fy += footprint) {
                     for (int fx = bx0 - (bx0 % footprint); fx <= bx1; fx += footprint) {
                         const int px0 = std::max(fx, bx0), px1 = std::min(fx + footprint - 1, bx1);
                         const int py0 = std::max(fy, by0), py1 = std::min(fy + footprint - 1, by1);
+                        // edges: the footprint's two-stage bounds (from the
+                        // shared axes) with the block's planes.
                         const typename K::SampleBounds sb =
-                            edges && block_bounded ? bounds_of(current, px0, py0, px1, py1, &block_bounds)
-                                                   : footprint_bounds(current, px0, py0, px1, py1);
+                            !planes ? footprint_bounds(current, px0, py0, px1, py1)
+                            : current.share_axes
+                                ? K::bc_with_tile_edges(footprint_bounds(current, px0, py0, px1, py1), block_bounds)
+                                : bounds_of(current, px0, py0, px1, py1, &block_bounds);
                         if (!sb.empty) test_samples(current, px0, py0, px1, py1, sb);
                     }
                 }
@@ -478,6 +522,7 @@ private:
         const int state =
             K::screen_footprint(current.bound, typename K::vec2(box.x, box.y), typename K::vec2(box.z, box.w));
         if (state == BC_FOOTPRINT_OUTSIDE) return;
+        if (edge_planes_cull_footprint(sb, px0, py0, px1, py1)) return;
         current.check_screen = state != BC_FOOTPRINT_INSIDE;
         if (frame_.time_sorted && current.needs_bounds && test_time_run(current, px0, py0, px1, py1, sb)) return;
         for (int py = py0; py <= py1; ++py) {
@@ -513,10 +558,49 @@ private:
         const double* lo = std::lower_bound(begin, end, double(range.x));
         const double* hi = std::upper_bound(lo, end, double(range.y));
         current.check_screen = current.check_screen || cx0 != px0 || cy0 != py0 || cx1 != px1 || cy1 != py1;
-        const std::size_t first = static_cast<std::size_t>(lo - times);
-        test_run(current, sb, time_lanes_, first, static_cast<std::size_t>(hi - lo),
-                 [this](std::size_t i) { return static_cast<std::size_t>(by_time_[i]); });
+        const auto slot_of = [this](std::size_t i) { return static_cast<std::size_t>(by_time_[i]); };
+        // edges: the runs of the shutter pieces whose planes cull the whole
+        // footprint are skipped (not visited).
+        if (sb.edges.piece[0].mode != BC_EDGE_NONE && window_segments_ == 1) {
+            const typename K::vec4 pad_box = padded_footprint(px0, py0, px1, py1);
+            const typename K::vec2 s_lo(pad_box.x, pad_box.y), s_hi(pad_box.z, pad_box.w);
+            for (int q = 0; q < sb.edges.pieces; ++q) {
+                const typename K::BcEdgePlanes& piece = sb.edges.piece[q];
+                if (!K::bc_edge_piece_culls_box(piece, s_lo, s_hi, sb.u_range, sb.v_range)) continue;
+                // The piece's samples: after the previous piece's end (which
+                // holds its own end), up to its own end.
+                const double* from = q == 0 ? std::lower_bound(lo, hi, double(piece.time.x))
+                                            : std::upper_bound(lo, hi, double(piece.time.x));
+                const double* to = std::max(from, std::upper_bound(lo, hi, double(piece.time.y)));
+                test_run(current, sb, time_lanes_, static_cast<std::size_t>(lo - times),
+                         static_cast<std::size_t>(from - lo), slot_of);
+                lo = to;
+            }
+        }
+        test_run(current, sb, time_lanes_, static_cast<std::size_t>(lo - times), static_cast<std::size_t>(hi - lo),
+                 slot_of);
         return true;
+    }
+
+    // edges: whether every shutter piece's planes cull the whole footprint
+    // (then none of its samples can pass; not visited).
+    bool edge_planes_cull_footprint(const typename K::SampleBounds& sb, int px0, int py0, int px1, int py1) const {
+        if (sb.edges.piece[0].mode == BC_EDGE_NONE) return false;
+        const typename K::vec4 box = padded_footprint(px0, py0, px1, py1);
+        const typename K::vec2 s_lo(box.x, box.y), s_hi(box.z, box.w);
+        for (int q = 0; q < sb.edges.pieces; ++q)
+            if (!K::bc_edge_piece_culls_box(sb.edges.piece[q], s_lo, s_hi, sb.u_range, sb.v_range)) return false;
+        return true;
+    }
+
+    // The NDC box of a footprint grown by a few float roundings: it holds
+    // every sample position of its pixels (floats), with room to spare.
+    typename K::vec4 padded_footprint(int px0, int py0, int px1, int py1) const {
+        const typename K::vec4 box = footprint(px0, py0, px1, py1);
+        const Real ulps = Real(8) * Real(std::numeric_limits<float>::epsilon());
+        const Real pad_x = ulps * std::max(Real(1), std::max(std::abs(box.x), std::abs(box.z)));
+        const Real pad_y = ulps * std::max(Real(1), std::max(std::abs(box.y), std::abs(box.w)));
+        return typename K::vec4(box.x - pad_x, box.y - pad_y, box.z + pad_x, box.w + pad_y);
     }
 
     // Samples first .. first + count - 1 of `lanes` (slot_of(i) the slot of
@@ -748,7 +832,8 @@ RenderResult render_cpu_in(const Scene& scene, const RenderSettings& settings, c
                                    sample_ids,
                                    options.sums,
                                    options.sums != nullptr ? static_cast<std::uint32_t>(options.sums->samples) : 0u,
-                                   options.cancel};
+                                   options.cancel,
+                                   double(options.edge_min_samples)};
     if (sample_ids != nullptr)
         sample_ids->assign(static_cast<std::size_t>(settings.width) * settings.height * frame.spp, no_sample_hit);
     const RasterSplit split = rasterize_tiles(frame, threads, start, result);

@@ -82,6 +82,13 @@ struct CpuOptions {
     // When set, checked before each work tile: once true, render_cpu throws
     // RenderCancelled (and *sums is left part-updated: reset it).
     const std::atomic<bool>* cancel = nullptr;
+    // edges: a block gets the edge planes (their setup, about 5,000 to 9,000
+    // instructions more than clip2's) only where its two-stage bounds leave
+    // at least this many samples to visit; the other blocks are culled as
+    // with clip2. 0: planes on every block. The default is the break-even of
+    // docs/benchmarks.md ("edges' CPU time"): about 18 instructions saved per
+    // visited sample against the planes' setup.
+    int edge_min_samples = 512;
 };
 
 // Renders with settings.spp samples per pixel, sample j of pixel (px, py)

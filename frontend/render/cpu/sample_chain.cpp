@@ -2,6 +2,8 @@
 
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
+
+#include "render/cpu/edge_plane_lanes.hpp"
 #define BLURCULL_CHAIN_X86 1
 #else
 #define BLURCULL_CHAIN_X86 0
@@ -77,12 +79,14 @@ __attribute__((target("avx"))) inline __m256d outside(__m256d x, double lo, doub
                         _mm256_cmp_pd(x, _mm256_set1_pd(hi), _CMP_GT_OQ));
 }
 
-// kernel<double>::sample_culled (sample_passes without edge planes, then
-// screen_contains) on four lanes: the lanes culled, as a 4-bit mask.
-// check_bounds false: sample_passes is known to pass every lane.
+// kernel<double>::sample_culled (sample_passes_at, then screen_contains) on
+// four lanes: the lanes culled, as a 4-bit mask. check_bounds false:
+// sample_passes is known to pass every lane; check_edges: the bounds carry
+// edge planes (edge_plane_lanes.hpp), tested on the lanes still open.
 __attribute__((target("avx"))) inline int culled4(const kernel<double>::ScreenBound& screen, bool check_screen,
-                                                  bool check_bounds, const kernel<double>::SampleBounds& b,
-                                                  const SampleLanes& lanes, std::size_t k) {
+                                                  bool check_bounds, bool check_edges,
+                                                  const kernel<double>::SampleBounds& b, const SampleLanes& lanes,
+                                                  std::size_t k) {
     __m256d culled = _mm256_setzero_pd();
     if (check_bounds) {
         const __m256d u = _mm256_loadu_pd(lanes.u() + k), v = _mm256_loadu_pd(lanes.v() + k);
@@ -105,6 +109,12 @@ __attribute__((target("avx"))) inline int culled4(const kernel<double>::ScreenBo
             culled = _mm256_or_pd(culled, _mm256_cmp_pd(value, _mm256_setzero_pd(), _CMP_LT_OQ));
         }
     }
+    if (check_edges && _mm256_movemask_pd(culled) != 0xf) {
+        const edge_lanes::Lanes5 at{_mm256_loadu_pd(lanes.sx() + k), _mm256_loadu_pd(lanes.sy() + k),
+                                    _mm256_loadu_pd(lanes.u() + k), _mm256_loadu_pd(lanes.v() + k),
+                                    _mm256_loadu_pd(lanes.t() + k)};
+        culled = edge_lanes::culled_by_edges(b.edges, at, culled);
+    }
     return _mm256_movemask_pd(culled);
 }
 
@@ -123,11 +133,13 @@ __attribute__((target("avx"))) std::uint32_t passing_avx(const kernel<double>::S
                           bool check_bounds, const kernel<double>::SampleBounds& bounds, const SampleLanes& lanes,
                           std::size_t first, int count) {
     const std::uint32_t wanted = count >= 32 ? ~0u : (1u << count) - 1u;
-    if (!check_bounds && !check_screen) return wanted;
+    const bool check_edges = bounds.edges.piece[0].mode != BC_EDGE_NONE;
+    if (!check_bounds && !check_screen && !check_edges) return wanted;
     std::uint32_t culled = 0;
     for (int i = 0; i < count; i += 4) {
         const std::size_t k = first + static_cast<std::size_t>(i);
-        culled |= static_cast<std::uint32_t>(culled4(screen, check_screen, check_bounds, bounds, lanes, k)) << i;
+        culled |= static_cast<std::uint32_t>(culled4(screen, check_screen, check_bounds, check_edges, bounds, lanes, k))
+                  << i;
     }
     return ~culled & wanted;
 }
@@ -142,7 +154,7 @@ std::uint32_t samples_passing(const typename kernel<Real>::ScreenBound& screen, 
     if (bounds.empty || (check_screen && screen.empty)) return 0;
 #if BLURCULL_CHAIN_X86
     if constexpr (std::is_same_v<Real, double>) {
-        if (has_avx && bounds.edges.piece[0].mode == BC_EDGE_NONE) {
+        if (has_avx) {
             const bool check_bounds = !(lanes.in_unit_range() && passes_unit_range(bounds));
             return passing_avx(screen, check_screen, check_bounds, bounds, lanes, first, count);
         }

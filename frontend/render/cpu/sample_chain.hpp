@@ -46,8 +46,8 @@ private:
 
 // Bit i (i < count <= 32) set when sample first + i of `lanes` is NOT culled
 // by kernel<Real>::sample_culled(screen, check_screen, bounds, ...): the
-// kernel's own decision (the four-lane path runs for Real = double without
-// edge planes; the rest call the kernel one sample at a time).
+// kernel's own decision (the four-lane path runs for Real = double with AVX, edge
+// planes included; the rest call the kernel one sample at a time).
 template <class Real>
 std::uint32_t samples_passing(const typename kernel<Real>::ScreenBound& screen, bool check_screen,
                               const typename kernel<Real>::SampleBounds& bounds, const SampleLanes& lanes,

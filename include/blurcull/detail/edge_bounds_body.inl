@@ -451,3 +451,44 @@ BC_FN bool bc_edge_bounds_pass_at(BC_IN(BcEdgeBounds) b, vec2 s, vec2 uv, real t
     vec3 lo = value + (b.piece[k].lo - reach);
     return !(max(lo.x, max(lo.y, lo.z)) > real(0));
 }
+
+// Edge e's plane value du u + dv v + dt t + dx s.x + dy s.y summed as
+// bc_edge_bounds_pass_at sums it, at one point.
+BC_FN real bc_edge_plane_value(BC_IN(BcEdgePlanes) p, int e, vec2 s, vec2 uv, real t) {
+    return p.du[e] * uv.x + p.dv[e] * uv.y + p.dt[e] * t + p.dx[e] * s.x + p.dy[e] * s.y;
+}
+
+// Whether bc_edge_bounds_pass_at (widen 0) fails for every sample whose
+// piece is p, whose screen position lies in [s_lo, s_hi] and whose lens lies
+// in u_range x v_range: then a renderer whose samples are sorted by time may
+// skip the piece's run of them. Rounding is monotone, so each edge's value,
+// summed in the same order, is largest and smallest at the corners of the box
+// (lens, footprint, the piece's time range) its coefficients' signs choose;
+// with those finite, no sample's sums overflow into a NaN. One-sided: some
+// edge below 0 at its largest; two-sided also some edge's lo side above 0 at
+// its smallest (docs/kernel.md, "Edge bounds").
+BC_FN bool bc_edge_piece_culls_box(BC_IN(BcEdgePlanes) p, vec2 s_lo, vec2 s_hi, vec2 u_range, vec2 v_range) {
+    if (p.mode == BC_EDGE_NONE) return false;
+    bool below = false;
+    bool above = false;
+    for (int e = 0; e < 3; ++e) {
+        vec2 s_top = vec2(p.dx[e] >= real(0) ? s_hi.x : s_lo.x, p.dy[e] >= real(0) ? s_hi.y : s_lo.y);
+        vec2 s_bottom = vec2(p.dx[e] >= real(0) ? s_lo.x : s_hi.x, p.dy[e] >= real(0) ? s_lo.y : s_hi.y);
+        vec2 uv_top = vec2(p.du[e] >= real(0) ? u_range.y : u_range.x, p.dv[e] >= real(0) ? v_range.y : v_range.x);
+        vec2 uv_bottom = vec2(p.du[e] >= real(0) ? u_range.x : u_range.y, p.dv[e] >= real(0) ? v_range.x : v_range.y);
+        real t_top = p.dt[e] >= real(0) ? p.time.y : p.time.x;
+        real t_bottom = p.dt[e] >= real(0) ? p.time.x : p.time.y;
+        real top = bc_edge_plane_value(p, e, s_top, uv_top, t_top);
+        real bottom = bc_edge_plane_value(p, e, s_bottom, uv_bottom, t_bottom);
+        if (!bc_finite(top) || !bc_finite(bottom)) return false;
+        // The reach at widen 0 (+0) added as the per-sample test adds it.
+        real reach = real(0) * p.spread[e];
+        real hi = top + (p.hi[e] + reach);
+        real lo = bottom + (p.lo[e] - reach);
+        if (!bc_finite(hi) || !bc_finite(lo)) return false;
+        if (hi < real(0)) below = true;
+        if (lo > real(0)) above = true;
+    }
+    if (p.mode == BC_EDGE_ONE_SIDED) return below;
+    return below && above;
+}

@@ -133,6 +133,26 @@ BC_FN vec2 bc_footprint_pad(vec2 s_lo, vec2 s_hi) {
                 bc_err(max(real(1), max(abs(s_lo.y), abs(s_hi.y)))));
 }
 
+// The edge planes over the box the two-stage bounds r of the footprint
+// [s_lo, s_hi] leave (on the padded footprint), added to r: sample_bounds
+// with BC_CULL_EDGES is this of its BC_CULL_TWO_STAGE bounds. A renderer
+// may bound first and add the planes only where their setup pays (skipping
+// them loses culling, never a covered sample).
+BC_FN SampleBounds bc_add_edge_planes(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi,
+                                      BC_IN(SampleBounds) two_stage) {
+    SampleBounds r = two_stage;
+    if (r.empty) return r;
+    vec2 pad = bc_footprint_pad(s_lo, s_hi);
+    vec2 times = sample_time_range(r);
+    if (times.x > times.y) {
+        r.empty = true;
+        return r;
+    }
+    r.edges = bc_edge_bounds(tri, s_lo - pad, s_hi + pad, r.u_range, r.v_range, times);
+    r.centre = vec2(bc_box_axis(s_lo.x - pad.x, s_hi.x + pad.x).x, bc_box_axis(s_lo.y - pad.y, s_hi.y + pad.y).x);
+    return r;
+}
+
 // Bounds on the lens and time of every sample in the screen footprint
 // [s_lo, s_hi] (a pixel or a tile) that the triangle can cover.
 // BC_CULL_BBOX and BC_CULL_HULL bound only the screen (see screen_bound).
@@ -150,21 +170,32 @@ BC_FN SampleBounds sample_bounds(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi
     SampleAxisBounds y = sample_axis_bounds(tri, 1, s_lo.y, s_hi.y, cull);
     r = combine_axis_bounds(x, y);
     if (r.empty || (cull != BC_CULL_EDGES && cull != BC_CULL_HYPERPLANE)) return r;
-    // The edge planes over the box the two-stage bounds leave (on the padded footprint).
+    if (cull == BC_CULL_EDGES) return bc_add_edge_planes(tri, s_lo, s_hi, r);
+    // Hyperplane: one plane per edge over the whole box, and the box culled
+    // whole when a plane leaves nothing (on the padded footprint).
     vec2 pad = bc_footprint_pad(s_lo, s_hi);
     vec2 times = sample_time_range(r);
     if (times.x > times.y) {
         r.empty = true;
         return r;
     }
-    if (cull == BC_CULL_HYPERPLANE) {
-        // One plane per edge over the whole box, and the box culled whole when a plane leaves nothing.
-        r.edges = bc_hyperplane_bounds(tri, s_lo - pad, s_hi + pad, r.u_range, r.v_range, times);
-        r.empty = bc_hyperplane_box_empty(r.edges.piece[0], r.u_range, r.v_range, times, s_lo - pad, s_hi + pad);
-    } else {
-        r.edges = bc_edge_bounds(tri, s_lo - pad, s_hi + pad, r.u_range, r.v_range, times);
-    }
+    r.edges = bc_hyperplane_bounds(tri, s_lo - pad, s_hi + pad, r.u_range, r.v_range, times);
+    r.empty = bc_hyperplane_box_empty(r.edges.piece[0], r.u_range, r.v_range, times, s_lo - pad, s_hi + pad);
     r.centre = vec2(bc_box_axis(s_lo.x - pad.x, s_hi.x + pad.x).x, bc_box_axis(s_lo.y - pad.y, s_hi.y + pad.y).x);
+    return r;
+}
+
+// A footprint's two-stage bounds (sample_bounds with BC_CULL_TWO_STAGE, or
+// combine_axis_bounds of its axes) with the edge planes of its tile's
+// BC_CULL_EDGES (or BC_CULL_HYPERPLANE) bounds: sample_bounds_in_tile's
+// result without the hyperplane's footprint test, for a renderer that shares
+// the footprints' axis bounds along rows and columns.
+BC_FN SampleBounds bc_with_tile_edges(BC_IN(SampleBounds) footprint, BC_IN(SampleBounds) tile) {
+    if (tile.empty) return tile;
+    SampleBounds r = footprint;
+    if (r.empty) return r;
+    r.edges = tile.edges;
+    r.centre = tile.centre;
     return r;
 }
 
@@ -192,11 +223,8 @@ BC_FN SampleBounds sample_bounds_in_tile(BC_IN(MovingTriangle) tri, vec2 s_lo, v
                                          BC_IN(SampleBounds) tile) {
     if (tile.empty) return tile;
     if (cull != BC_CULL_EDGES && cull != BC_CULL_HYPERPLANE) return sample_bounds(tri, s_lo, s_hi, cull);
-    SampleBounds r = sample_bounds(tri, s_lo, s_hi, BC_CULL_TWO_STAGE);
-    if (r.empty) return r;
-    r.edges = tile.edges;
-    r.centre = tile.centre;
-    if (cull == BC_CULL_HYPERPLANE) r.empty = bc_hyperplane_footprint_empty(r, s_lo, s_hi);
+    SampleBounds r = bc_with_tile_edges(sample_bounds(tri, s_lo, s_hi, BC_CULL_TWO_STAGE), tile);
+    if (cull == BC_CULL_HYPERPLANE && !r.empty) r.empty = bc_hyperplane_footprint_empty(r, s_lo, s_hi);
     return r;
 }
 
