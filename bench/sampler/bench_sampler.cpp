@@ -15,7 +15,7 @@
 //
 //   bench_sampler [--scenes hand,car,dragonfly,forest] [--size 128x96] [--ref-spp 4096]
 //                 [--spp 4,16,64,256] [--samplers hashed,jittered,sobol,padded-sobol]
-//                 [--seeds 2] [--noise 1024] [--threads 0]
+//                 [--seeds 2] [--noise 1024] [--error-table 1|0] [--threads 0]
 #include "render/embree/embree_backend.hpp"
 #include "scene/load_scene.hpp"
 
@@ -62,6 +62,7 @@ struct Options {
     std::vector<int> spps{4, 16, 64, 256};
     std::vector<std::string> samplers{"hashed", "jittered", "sobol", "padded-sobol"};
     int width = 128, height = 96, ref_spp = 4096, seeds = 2, noise_spp = 0, threads = 0;
+    bool error_table = true;  // --error-table 0: only the noise table
 };
 
 Options parse(int argc, char** argv) {
@@ -79,6 +80,7 @@ Options parse(int argc, char** argv) {
         else if (flag == "--seeds") o.seeds = std::stoi(value);
         else if (flag == "--noise") o.noise_spp = std::stoi(value);
         else if (flag == "--threads") o.threads = std::stoi(value);
+        else if (flag == "--error-table") o.error_table = value != "0";
         else throw std::invalid_argument("unknown flag " + flag);
     }
     for (const std::string& s : o.samplers) blurcull::parse_sample_pattern(s);  // one-line error for a bad name
@@ -158,10 +160,12 @@ int main(int argc, char** argv) {
         base.height = o.height;
         base.threads = o.threads;
         base.progress = false;
-        std::printf("RMSE against the reference (%dx%d, reference %d + %d spp), mean over %d seeds; "
-                    "in brackets with the reference's noise removed\n\n",
-                    o.width, o.height, o.ref_spp, o.ref_spp, o.seeds);
-        error_table(o, base);
+        if (o.error_table) {
+            std::printf("RMSE against the reference (%dx%d, reference %d + %d spp), mean over %d seeds; "
+                        "in brackets with the reference's noise removed\n\n",
+                        o.width, o.height, o.ref_spp, o.ref_spp, o.seeds);
+            error_table(o, base);
+        }
         if (o.noise_spp > 0) noise_table(o, base);
         return 0;
     } catch (const std::exception& error) {
