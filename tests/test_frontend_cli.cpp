@@ -142,6 +142,8 @@ TEST_CASE("bad input: one line naming the problem, non-zero exit, no output file
         {"render --backend embree --method accum", "--method"},
         {"render --gl-cell 0 --backend gl", "--gl-cell"},
         {"render --method clip2", "--method"},
+        {"render --sampler halton", "--sampler"},
+        {"render --method interleave --spp 4 --sampler sobol", "--sampler: method interleave draws its own samples"},
         {"render --bogus", "bogus"},
         {"render --scene '" + data_dir + "/bad_json.gltf'", "bad_json.gltf"},
         {"render --scene '" + data_dir + "/bad_accessor_past_end.gltf'", "bad_accessor_past_end.gltf"},

@@ -7,6 +7,8 @@
 #include "render/common/render_types.hpp"
 #include "render/common/shading.hpp"
 
+#include <blurcull/patterns.hpp>
+
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -540,11 +542,12 @@ TEST_CASE("embree agrees with the kernel's exact coverage oracle, sample by samp
     for (int py = 0; py < height; ++py) {
         for (int px = 0; px < width; ++px) {
             glm::vec3 sum(0.0f);
+            // The samples of the settings' sampler (the default), as every backend draws them.
+            const blurcull::patternsf::SamplerSetup pattern = blurcull::patternsf::sampler_setup(
+                settings.sampler, static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py),
+                static_cast<std::uint32_t>(spp), settings.seed);
             for (int j = 0; j < spp; ++j) {
-                const auto sample = blurcull::kernelf::pixel_sample(static_cast<std::uint32_t>(px),
-                                                                    static_cast<std::uint32_t>(py),
-                                                                    static_cast<std::uint32_t>(j),
-                                                                    static_cast<std::uint32_t>(spp), settings.seed);
+                const auto sample = blurcull::patternsf::sampler_sample(pattern, static_cast<std::uint32_t>(j));
                 const glm::dvec2 s(model.sample_ndc(px, py, sample.offset));
                 double nearest = std::numeric_limits<double>::infinity();
                 glm::vec3 colour = scene.background;

@@ -11,6 +11,7 @@
 #include "scene/builtin_scenes.hpp"
 
 #include <blurcull/kernel.hpp>
+#include <blurcull/patterns.hpp>
 
 #include <doctest/doctest.h>
 
@@ -50,9 +51,10 @@ std::vector<std::uint32_t> reference_sample_ids(const Scene& scene, const Render
     std::vector<Sample> samples(ids.size());
     for (int py = 0; py < settings.height; ++py) {
         for (int px = 0; px < settings.width; ++px) {
+            const blurcull::patternsf::SamplerSetup pattern = blurcull::patternsf::sampler_setup(
+                settings.sampler, static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py), spp, settings.seed);
             for (std::uint32_t j = 0; j < spp; ++j) {
-                const blurcull::kernelf::PixelSample s = blurcull::kernelf::pixel_sample(
-                    static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py), j, spp, settings.seed);
+                const blurcull::kernelf::PixelSample s = blurcull::patternsf::sampler_sample(pattern, j);
                 samples[(static_cast<std::size_t>(py) * settings.width + px) * spp + j] =
                     Sample{typename K::vec2(model.sample_ndc(px, py, s.offset)), typename K::vec2(s.lens),
                            static_cast<Real>(s.time)};

@@ -15,6 +15,8 @@
 #include "frontend_test_helpers.hpp"
 
 #include <blurcull/kernel.hpp>
+#include <blurcull/patterns.hpp>
+
 #include <doctest/doctest.h>
 #include <glm/glm.hpp>
 
@@ -69,9 +71,11 @@ Material diffuse(glm::vec3 colour) {
 }
 
 // The view-space ray of sample j of pixel (px, py), as the backends make it.
-Ray sample_ray(const CameraModel& model, int px, int py, std::uint32_t j, std::uint32_t spp, std::uint32_t seed) {
-    const blurcull::kernelf::PixelSample sample =
-        blurcull::kernelf::pixel_sample(static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py), j, spp, seed);
+// sampler: the settings' pattern (RenderSettings::sampler).
+Ray sample_ray(const CameraModel& model, int px, int py, std::uint32_t j, std::uint32_t spp, std::uint32_t seed,
+               int sampler) {
+    const blurcull::kernelf::PixelSample sample = blurcull::patternsf::pattern_sample(
+        sampler, static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py), j, spp, seed);
     return model.lens_ray(model.sample_ndc(px, py, sample.offset), sample.lens);
 }
 
@@ -246,7 +250,7 @@ TEST_CASE("embree bounce: a plane mirror floor shows the wall where the mirror i
     int checked_in_mirror = 0;
     for (int py = 0; py < size; ++py) {
         for (int px = 0; px < size; ++px) {
-            const Ray ray = sample_ray(model, px, py, 0, 1, settings.seed);
+            const Ray ray = sample_ray(model, px, py, 0, 1, settings.seed, settings.sampler);
             const double dy = ray.direction.y;  // direction.z = -1
             // Direct: the wall at height 20 dy. Mirrored (floor hit before
             // the wall when |dy| > 0.05): height 20 |dy| - 2, as seen from the
@@ -281,7 +285,7 @@ TEST_CASE("embree bounce: a plane of glass shows the floor where Snell's law put
     int checked = 0;
     for (int py = size / 2 + 2; py < size; ++py) {
         for (int px = 0; px < size; ++px) {
-            const Ray ray = sample_ray(model, px, py, 0, 1, settings.seed);
+            const Ray ray = sample_ray(model, px, py, 0, 1, settings.seed, settings.sampler);
             const glm::dvec3 d = glm::normalize(glm::dvec3(ray.direction));
             const double s = -1.0 / d.y;
             const glm::dvec3 hit = s * d;

@@ -24,7 +24,8 @@ bool same_sample(const P::PixelSample& a, const P::PixelSample& b) {
     return a.offset == b.offset && a.lens == b.lens && a.time == b.time;
 }
 
-const int all_patterns[] = {BC_PATTERN_HASHED, BC_PATTERN_RANDOM, BC_PATTERN_JITTERED, BC_PATTERN_SOBOL};
+const int all_patterns[] = {BC_PATTERN_HASHED, BC_PATTERN_RANDOM, BC_PATTERN_JITTERED, BC_PATTERN_SOBOL,
+                            BC_PATTERN_PADDED_SOBOL};
 
 // Cells of the (2^a x 2^b) grid holding each point; a net has every cell once.
 bool is_net(const std::vector<std::pair<double, double>>& points, int a, int b) {
@@ -165,12 +166,12 @@ TEST_CASE("pattern_sample dispatches to the named patterns; hashed is pixel_samp
         CHECK(same_sample(P::pattern_sample(BC_PATTERN_HASHED, 3, 4, j, 16, 2), P::pixel_sample(3, 4, j, 16, 2)));
         CHECK(same_sample(P::pattern_sample(BC_PATTERN_RANDOM, 3, 4, j, 16, 2), P::pattern_random(3, 4, j, 2)));
         CHECK(same_sample(P::pattern_sample(BC_PATTERN_JITTERED, 3, 4, j, 16, 2), P::pattern_jittered(3, 4, j, 16, 2)));
-        CHECK(same_sample(P::pattern_sample(BC_PATTERN_SOBOL, 3, 4, j, 16, 2), P::pattern_sobol(3, 4, j, 2)));
+        CHECK(same_sample(P::pattern_sample(BC_PATTERN_SOBOL, 3, 4, j, 16, 2), P::pattern_sobol(3, 4, j, 16, 2)));
     }
     CHECK(parse_sample_pattern("sobol") == BC_PATTERN_SOBOL);
     CHECK(parse_sample_pattern("hashed") == BC_PATTERN_HASHED);
     CHECK_THROWS_WITH_AS(parse_sample_pattern("halton"),
-                         "unknown sample pattern 'halton' (valid: hashed, random, jittered, sobol)",
+                         "unknown sample pattern 'halton' (valid: hashed, random, jittered, sobol, padded-sobol)",
                          std::invalid_argument);
 }
 
@@ -281,7 +282,7 @@ TEST_CASE("Owen scrambling keeps each digit a function of the digits above it, a
             std::vector<std::pair<double, double>> points;
             std::vector<int> strata(spp, 0);
             for (std::uint32_t j = 0; j < spp; ++j) {
-                const P::PixelSample s = P::pattern_sobol(px, 3, j, 11u);
+                const P::PixelSample s = P::pattern_sobol(px, 3, j, spp, 11u);
                 points.emplace_back(s.offset.x, s.offset.y);
                 ++strata[std::size_t(s.time * float(spp))];
             }
@@ -316,8 +317,10 @@ TEST_CASE("stratified patterns integrate better than random ones") {
     const double hashed = rms_error(BC_PATTERN_HASHED);
     const double jittered = rms_error(BC_PATTERN_JITTERED);
     const double sobol = rms_error(BC_PATTERN_SOBOL);
+    const double padded = rms_error(BC_PATTERN_PADDED_SOBOL);
     MESSAGE("RMS error, 64 spp: random " << random << ", hashed " << hashed << ", jittered " << jittered
-                                         << ", sobol " << sobol);
+                                         << ", sobol " << sobol << ", padded-sobol " << padded);
+    CHECK(padded < 0.5 * random);
     CHECK(jittered < 0.5 * random);
     CHECK(sobol < 0.5 * random);
     CHECK(sobol < jittered);

@@ -123,6 +123,7 @@ RenderSettings make_settings(const RenderCommand& command) {
     settings.seed = command.seed;
     settings.cull = parse_cull_method(command.cull);
     settings.method = parse_render_method(command.method);
+    settings.sampler = parse_sample_pattern(command.sampler);
     settings.threads = command.threads;
     settings.progress = !command.quiet;
     return settings;
@@ -243,6 +244,12 @@ void refuse_unhonoured_options(const RenderCommand& command, Backend backend) {
         {"--layer-images", command.layer_images_option, backend_bit(Backend::gl)},
     };
     command.refuse_secondary_flags(method.method);
+    const bool own_samples = method.method == RenderMethod::interleave || method.method == RenderMethod::interval ||
+                             method.method == RenderMethod::accum;
+    if (own_samples && command.sampler_option != nullptr && command.sampler_option->count() > 0) {
+        throw std::invalid_argument(std::string("--sampler: method ") + method.name +
+                                    " draws its own samples (only stochastic and dof-secondary take it)");
+    }
     for (const BackendOption& option : options) {
         if (option.option == nullptr || option.option->count() == 0) continue;
         if (!takes(option.backends, backend)) {
@@ -431,6 +438,9 @@ void print_json_summary(const RenderCommand& command, const RenderJob& job, cons
     summary["width"] = job.settings.width;
     summary["height"] = job.settings.height;
     summary["seed"] = job.settings.seed;
+    if (job.settings.method == RenderMethod::stochastic || job.settings.method == RenderMethod::dof_secondary) {
+        summary["sampler"] = sample_pattern_name(job.settings.sampler);  // the others draw their own samples
+    }
     summary["blur_scale"] = command.blur_scale;
     summary["lens_radius"] = job.scene.camera.lens_radius;
     summary["focus_distance"] = job.scene.camera.focus_distance;
@@ -530,6 +540,13 @@ void RenderCommand::add_options(CLI::App& app) {
     method_option = app.add_option("--method", method, render_method_help())
                         ->check(CLI::IsMember(render_method_names_and_aliases()))
                         ->capture_default_str();
+    std::vector<std::string> samplers;
+    for (int pattern = 0; pattern < BC_PATTERN_COUNT; ++pattern) samplers.emplace_back(sample_pattern_name(pattern));
+    sampler_option = app.add_option("--sampler", sampler,
+                                    "sample pattern of the stochastic renderers: " + sample_pattern_list() +
+                                        " (docs/sampling.md)")
+                         ->check(CLI::IsMember(samplers))
+                         ->capture_default_str();
     app.add_option("-o,--output", output,
                    "image to write, .png (sRGB 8-bit) or .exr (linear RGBA, alpha = coverage); for --frames a name "
                    "with a frame field such as %04d (default: <scene>.png, <scene>_%04d.png for --frames)");

@@ -21,6 +21,8 @@ struct RenderCommand : SceneFlags, SecondaryFlags {
 
     std::string backend = "auto";
     std::string method = to_string(RenderSettings{}.method);
+    // The stochastic renderers' sample pattern (BC_PATTERN_*, pattern_names.hpp).
+    std::string sampler = sample_pattern_name(RenderSettings{}.sampler);
     std::string output;         // empty: <scene>.png, or <scene>_%04d.png for --frames, in the current folder
     std::string exr_type = "half";  // an .exr output's channels: half or float
     // A sequence (app/frame_sequence.hpp): "A:B[:STEP]"; empty: one frame.
@@ -39,6 +41,7 @@ struct RenderCommand : SceneFlags, SecondaryFlags {
     // The backend-specific options, to tell whether they were given
     // (count() > 0) when the backend in use cannot honour them.
     CLI::Option* method_option = nullptr;
+    CLI::Option* sampler_option = nullptr;
     CLI::Option* footprint_option = nullptr;
     CLI::Option* precision_option = nullptr;
     CLI::Option* gl_cell_option = nullptr;

@@ -243,7 +243,13 @@
 // ---- Sample patterns (patterns.hpp: patterns<Real>, detail/patterns_body.inl) ----------
 //
 // Each returns a PixelSample like pixel_sample. pattern ids: BC_PATTERN_HASHED 0
-// (pixel_sample), BC_PATTERN_RANDOM 1, BC_PATTERN_JITTERED 2, BC_PATTERN_SOBOL 3.
+// (pixel_sample), BC_PATTERN_RANDOM 1, BC_PATTERN_JITTERED 2, BC_PATTERN_SOBOL 3,
+// BC_PATTERN_PADDED_SOBOL 4 (BC_PATTERN_COUNT 5); names in pattern_names.hpp.
+//
+// SamplerSetup sampler_setup(int pattern, uint px, uint py, uint spp, uint seed)
+// PixelSample sampler_sample(SamplerSetup setup, uint index)
+//   pattern_sample in two steps, the per-pixel work once: what every backend
+//   draws its stochastic samples with (RenderSettings::sampler, --sampler).
 //
 // PixelSample pattern_sample(int pattern, uint px, uint py, uint index, uint spp, uint seed)
 //   Sample index of spp of pixel (px, py) in pattern `pattern`; an unknown id
@@ -256,9 +262,12 @@
 // PixelSample pattern_jittered(uint px, uint py, uint index, uint spp, uint seed)
 //   Stratified in (x, y), (u, v) and t, the three paired by random
 //   permutations; spp = 0 counts as 1, samples past floor(sqrt(spp))^2 are uniform.
-// PixelSample pattern_sobol(uint px, uint py, uint index, uint seed)
-//   Owen-scrambled 5D Sobol, index scrambled per pixel: every power-of-two
-//   prefix of a pixel's samples is well stratified.
+// PixelSample pattern_sobol(uint px, uint py, uint index, uint spp, uint seed)
+//   Owen-scrambled 5D Sobol (x, y, t, u, v), index scrambled per pixel: every
+//   power-of-two prefix of a pixel's samples is well stratified.
+// PixelSample pattern_padded_sobol(uint px, uint py, uint index, uint spp, uint seed)
+//   Owen-scrambled Sobol (x, y) and (u, v, t), each with its own index
+//   shuffle: position and lens each a (0, m, 2)-net.
 // PixelSample interval_sample(uint px, uint py, uint stratum, uint strata, uint seed)
 //   The interval method's sample: jittered, its time inside stratum `stratum`
 //   of `strata` equal parts of the shutter.

@@ -28,6 +28,7 @@ struct patterns : kernel<Real> {
     using vec4 = typename base::vec4;
     using uint = typename base::uint;
     using PixelSample = typename base::PixelSample;
+    using PixelSampleSetup = typename base::PixelSampleSetup;
     using base::abs;
     using base::bc_epsilon;
     using base::bc_hash;
@@ -39,6 +40,8 @@ struct patterns : kernel<Real> {
     using base::max;
     using base::min;
     using base::pixel_sample;
+    using base::pixel_sample_from;
+    using base::pixel_sample_setup;
     using base::sin;
     using base::sqrt;
 
@@ -55,7 +58,7 @@ using patternsd = patterns<double>;
 // ((py % tile) * tile + px % tile) * spp + j (= patternsf::pattern_sample_tiled).
 // Throws std::invalid_argument for an unknown pattern, tile < 1 or spp < 1.
 inline std::vector<kernelf::PixelSample> make_pattern_tile(int pattern, int tile, int spp, std::uint32_t seed) {
-    if (pattern < BC_PATTERN_HASHED || pattern > BC_PATTERN_SOBOL) {
+    if (pattern < BC_PATTERN_HASHED || pattern >= BC_PATTERN_COUNT) {
         throw std::invalid_argument("unknown sample pattern id " + std::to_string(pattern));
     }
     if (tile < 1 || tile > 4096) throw std::invalid_argument("pattern tile size must be in [1, 4096], got " + std::to_string(tile));

@@ -85,8 +85,10 @@ void main() {
     PixelSample from_setup = bc_pixel_sample_from(setup, 3u);
     PixelSample patterned = bc_pattern_sample(pattern, px, py, 3u, 16u, 7u);
     PixelSample tiled = bc_pattern_sample_tiled(pattern, px, py, 3u, 16u, 7u, 2u);
+    SamplerSetup sampler = bc_sampler_setup(pattern, px, py, 16u, 7u);
+    PixelSample sampled = bc_sampler_sample(sampler, 3u);
     PixelSample others[4] = PixelSample[4](bc_pattern_random(px, py, 1u, 7u), bc_pattern_jittered(px, py, 1u, 16u, 7u),
-                                           bc_pattern_sobol(px, py, 1u, 7u), bc_interval_sample(px, py, 1u, 4u, 7u));
+                                           bc_pattern_sobol(px, py, 1u, 4u, 7u), bc_interval_sample(px, py, 1u, 4u, 7u));
     vec3 tuple = bc_interleaved_tuple(px);
     uint tile = bc_interleaved_corner_colour(px, py, 7u) + bc_interleaved_prototype(px, py, 7u);
     vec2 jitter = bc_interleaved_jitter(px, py, 7u);
@@ -112,7 +114,7 @@ void main() {
 
     values[0] = coc + vertex.x + float(finite) + float(needs) + float(covered) + depth + barycentric.y + float(on_screen) + float(footprint_state) +
                 float(passes) + time_range.x + sample_at.offset.x + sample_at.lens.y + sample_at.time + patterned.time +
-                tiled.time + from_setup.time + others[0].time + others[1].time + others[2].time + others[3].time + tuple.x +
+                tiled.time + sampled.time + from_setup.time + bc_pattern_padded_sobol(px, py, 1u, 4u, 7u).time + others[0].time + others[1].time + others[2].time + others[3].time + tuple.x +
                 float(tile) + jitter.x + accum.time + accum.offset.x + accum.lens.y + bc_rotate_unit(jitter.x, jitter.y) +
                 raster.x + sample_pos.y + float(rect.x) + rect_ndc.w + interleaved.x + float(test) + key + float(wins) +
                 camera_ab.y + secondary + shutter_range.x + local_time;

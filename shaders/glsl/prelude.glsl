@@ -100,8 +100,11 @@
 #define pattern_jittered bc_pattern_jittered
 #define interval_sample bc_interval_sample
 #define pattern_sobol bc_pattern_sobol
+#define pattern_padded_sobol bc_pattern_padded_sobol
 #define pattern_sample bc_pattern_sample
 #define pattern_sample_tiled bc_pattern_sample_tiled
+#define sampler_setup bc_sampler_setup
+#define sampler_sample bc_sampler_sample
 #define interleaved_tuple bc_interleaved_tuple
 #define interleaved_corner_colour bc_interleaved_corner_colour
 #define interleaved_prototype bc_interleaved_prototype

@@ -129,12 +129,12 @@ Image resolve_sample_ids(const SurfaceShader& shader, const CameraModel& model, 
     const auto spp = static_cast<std::uint32_t>(settings.spp);
     for (int py = 0; py < settings.height; ++py) {
         for (int px = 0; px < settings.width; ++px) {
-            const kernelf::PixelSampleSetup pattern = kernelf::pixel_sample_setup(
-                static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py), spp, settings.seed);
+            const patternsf::SamplerSetup pattern = patternsf::sampler_setup(
+                settings.sampler, static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py), spp, settings.seed);
             const std::size_t base = image.index(px, py) * spp;
             glm::vec3 sum(0.0f);
             for (std::uint32_t j = 0; j < spp; ++j) {
-                const kernelf::PixelSample s = kernelf::pixel_sample_from(pattern, j);
+                const kernelf::PixelSample s = patternsf::sampler_sample(pattern, j);
                 sum += shader.sample_colour(ids[base + j], model.sample_ndc(px, py, s.offset), s.lens, s.time);
             }
             image.at(px, py) = resolve_box(sum, settings.spp);

@@ -89,7 +89,7 @@ private:
 
 // The image of per-sample winner ids in the stochastic renderers' layout
 // (sample j of pixel (px, py) at ids[(py width + px) spp + j], at
-// kernel::pixel_sample's position, lens and time): each sample's
+// the settings' sampler's position, lens and time): each sample's
 // sample_colour, summed in sample order, then resolve_box. For an engine that
 // outputs only winner ids (the GL backend reads them back).
 Image resolve_sample_ids(const SurfaceShader& shader, const CameraModel& model, const RenderSettings& settings,

@@ -14,6 +14,7 @@
 #include "scene/scene_checks.hpp"
 
 #include <blurcull/kernel.hpp>
+#include <blurcull/patterns.hpp>
 
 #include <algorithm>
 #include <array>
@@ -276,15 +277,15 @@ private:
         return (static_cast<std::size_t>(py - y0_) * tw_ + (px - x0_)) * frame_.spp + j;
     }
 
-    // The tile's samples (kernel::pixel_sample's), with empty depth and hits.
+    // The tile's samples (the settings' sampler's), with empty depth and hits.
     void load_samples() {
         for (int py = y0_; py <= y1_; ++py) {
             for (int px = x0_; px <= x1_; ++px) {
-                const kernelf::PixelSampleSetup pattern = kernelf::pixel_sample_setup(
-                    static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py),
+                const patternsf::SamplerSetup pattern = patternsf::sampler_setup(
+                    frame_.settings.sampler, static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py),
                     static_cast<std::uint32_t>(frame_.settings.spp), frame_.settings.seed);
                 for (std::uint32_t j = 0; j < frame_.spp; ++j) {
-                    const kernelf::PixelSample s = kernelf::pixel_sample_from(pattern, frame_.first_sample + j);
+                    const kernelf::PixelSample s = patternsf::sampler_sample(pattern, frame_.first_sample + j);
                     const std::size_t k = slot(px, py, j);
                     const glm::vec2 ndc = frame_.model.sample_ndc(px, py, s.offset);
                     samples_[k] = Sample{typename K::vec2(ndc), typename K::vec2(s.lens), static_cast<Real>(s.time)};

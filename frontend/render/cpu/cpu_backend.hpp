@@ -92,7 +92,7 @@ struct CpuOptions {
 };
 
 // Renders with settings.spp samples per pixel, sample j of pixel (px, py)
-// taken from kernel::pixel_sample(px, py, j, spp, seed) — the samples every
+// taken from patternsf::sampler_sample (settings.sampler's pattern) — the samples every
 // backend uses. Culling only skips samples the exact test would reject, so the
 // image is the same for every settings.cull (tests/test_frontend_cpu.cpp).
 // stats.samples_tested counts the exact tests run (samples that passed the

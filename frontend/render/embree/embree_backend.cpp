@@ -10,6 +10,7 @@
 #include "scene/scene_checks.hpp"
 
 #include <blurcull/kernel.hpp>
+#include <blurcull/patterns.hpp>
 #include <embree3/rtcore.h>
 
 #include <algorithm>
@@ -261,9 +262,10 @@ private:
     void make_row_rays(int py, std::vector<PrimaryRay>& rays, std::vector<RowSample>& samples) const {
         const auto spp = static_cast<std::uint32_t>(settings_.spp);
         for (int px = 0; px < settings_.width; ++px) {
+            const patternsf::SamplerSetup pattern = patternsf::sampler_setup(
+                settings_.sampler, static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py), spp, settings_.seed);
             for (std::uint32_t j = 0; j < spp; ++j) {
-                const kernelf::PixelSample sample = kernelf::pixel_sample(
-                    static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py), j, spp, settings_.seed);
+                const kernelf::PixelSample sample = patternsf::sampler_sample(pattern, j);
                 const glm::vec2 ndc = model_.sample_ndc(px, py, sample.offset);
                 const Ray ray = model_.lens_ray(ndc, sample.lens);
                 samples[static_cast<std::size_t>(px) * spp + j] = RowSample{ndc, sample.lens, sample.time};

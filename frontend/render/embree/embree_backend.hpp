@@ -9,7 +9,8 @@
 namespace blurcull::frontend {
 
 // Traces settings.spp rays per pixel, sample j of pixel (px, py) taken from
-// blurcull::kernelf::pixel_sample(px, py, j, spp, seed). Deterministic: the
+// blurcull::patternsf::sampler_sample(sampler_setup(settings.sampler, px, py,
+// spp, seed), j), as on every backend. Deterministic: the
 // image depends only on the scene and settings (not on the thread count).
 // stats.samples_tested = rays traced, stats.samples_hit = rays that hit.
 // Throws std::invalid_argument for bad settings (a settings.method other than

@@ -104,6 +104,7 @@ void set_common(const gl::Functions& gl, const gl::Program& program, const Camer
     set_float(gl, program, "near_plane", model.znear);
     set_uint(gl, program, "spp", static_cast<std::uint32_t>(settings.spp));
     set_uint(gl, program, "seed", settings.seed);
+    set_int(gl, program, "sampler", settings.sampler);  // render_samples.comp only; -1 elsewhere, ignored
     set_uint(gl, program, "pass_base", pass_base);
 }
 

@@ -5,6 +5,7 @@
 #include "render/common/shading.hpp"
 
 #include <blurcull/kernel.hpp>
+#include <blurcull/patterns.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -101,8 +102,8 @@ PrimaryResolve resolve_primary(const Scene& scene, const CameraModel& model, con
     out.sample_colour.assign(sample_ids.size(), glm::vec3(0.0f));
     for (int py = 0; py < settings.height; ++py) {
         for (int px = 0; px < settings.width; ++px) {
-            const kernelf::PixelSampleSetup pattern = kernelf::pixel_sample_setup(
-                static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py), spp, settings.seed);
+            const patternsf::SamplerSetup pattern = patternsf::sampler_setup(
+                settings.sampler, static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py), spp, settings.seed);
             for (std::uint32_t j = 0; j < spp; ++j) {
                 const std::uint32_t k = (static_cast<std::uint32_t>(py * settings.width + px)) * spp + j;
                 const std::uint32_t id = sample_ids[k];
@@ -116,7 +117,7 @@ PrimaryResolve resolve_primary(const Scene& scene, const CameraModel& model, con
                     continue;
                 }
                 ++out.reflector_samples;
-                const kernelf::PixelSample s = kernelf::pixel_sample_from(pattern, j);
+                const kernelf::PixelSample s = patternsf::sampler_sample(pattern, j);
                 const SurfaceHit hit = sample_hit(scene, model, id, model.sample_ndc(px, py, s.offset), s.lens, s.time);
                 // A degenerate hit (grazing to the rounding) sees the environment straight on.
                 if (!hit.valid) continue;

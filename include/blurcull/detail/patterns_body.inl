@@ -10,6 +10,8 @@
 #define BC_PATTERN_RANDOM 1    // independent uniform samples
 #define BC_PATTERN_JITTERED 2  // stratified in (x, y), (u, v) and t, padded by random shuffles
 #define BC_PATTERN_SOBOL 3     // 5D Sobol, Owen-scrambled by hashing, index shuffled per pixel
+#define BC_PATTERN_PADDED_SOBOL 4  // (x, y) and (u, v, t) from two independently shuffled Sobol sets
+#define BC_PATTERN_COUNT 5     // ids are 0 .. BC_PATTERN_COUNT - 1
 
 #define BC_INTERLEAVED_COLOURS 3u
 
@@ -58,68 +60,71 @@ BC_FN uint bc_permute(uint i, uint n, uint key) {
     return i % n;
 }
 
-// Nested uniform (Owen) scrambling of a 32-bit fraction by hashing (Laine and
-// Karras 2011; Burley, "Practical Hash-based Owen Scrambling", JCGT 2020).
-// With the bits reversed, digit i of the fraction is bit i, and each step
-// below changes bit i only as a function of the bits below it (the fraction's
-// more significant digits) and of the seed: adding, multiplying by an odd
-// number, xoring with a product by an even number. That is exactly Owen's
-// rule, so nets stay nets. The seed-dependent constants are this project's.
+// The Laine-Karras permutation of a bit-reversed 32-bit value: bit i of the
+// result is bit i of x xored with a function of the bits below it and of the
+// seed (adding, multiplying by an odd number, xoring with a product by an
+// even number each keep that), which, read with the bits reversed, is Owen's
+// nested uniform scrambling (Laine and Karras, "Stratified sampling for
+// stochastic transparency", EGSR 2011; Burley, "Practical Hash-based Owen
+// Scrambling", JCGT 9(4), 2020). The constants are N. Vegdahl's improved
+// hash ("Building a better LK hash", 2021), as in Blender Cycles.
+BC_FN uint bc_lk_permute(uint x, uint seed) {
+    x = x ^ (x * 0x3d20adeau);
+    x = x + seed;
+    x = x * ((seed >> 16u) | 1u);
+    x = x ^ (x * 0x05526c56u);
+    x = x ^ (x * 0x53a22864u);
+    return x;
+}
+
+// Nested uniform (Owen) scrambling of a 32-bit fraction (Burley 2020's
+// nested_uniform_scramble): the top m output digits are a function of the
+// top m input digits and the seed only, and a bijection of them.
 BC_FN uint bc_owen_scramble(uint x, uint seed) {
-    uint a = bc_hash(seed ^ 0x3c6ef372u);
-    uint b = bc_hash(a ^ 0xa54ff53au);
-    uint c = bc_hash(b ^ 0x510e527fu);
-    x = bc_reverse_bits(x);
-    x = x + a;
-    x = x ^ (x * (b << 1u));
-    x = x * (c | 1u);
-    x = x ^ (x * 0x6a09e668u);
-    x = x + b;
-    x = x ^ (x * (a << 1u));
-    x = x * (bc_hash(c) | 1u);
-    return bc_reverse_bits(x);
+    return bc_reverse_bits(bc_lk_permute(bc_reverse_bits(x), seed));
 }
 
 // Point `index` of the Sobol sequence in dimension dim (0..4), as a 32-bit
-// fraction. Dimension 0 is van der Corput; dimensions 1..4 use the primitive
-// polynomials (degree s, coefficients a) and initial numbers m_1..m_s of
-// dimensions 2..5 of S. Joe and F. Y. Kuo, "Constructing Sobol sequences with
-// better two-dimensional projections", SIAM J. Sci. Comput. 30(5), 2008
-// (table new-joe-kuo-6.21201): (1,0;1) (2,1;1,3) (3,1;1,3,1) (3,2;1,1,1).
-// Direction numbers follow the recurrence of Bratley and Fox (1988):
-// V_k = m_k 2^(32-k) for k <= s, then
-// V_k = V_(k-s) ^ (V_(k-s) >> s) ^ sum over j < s of a_j V_(k-j).
-BC_FN uint bc_sobol(uint index, int dim) {
-    if (dim <= 0) return bc_reverse_bits(index);
+// fraction with its bits reversed (bit 0 = the first binary digit), so that
+// bc_lk_permute scrambles it directly. Dimension 0 is van der Corput;
+// dimensions 1..4 use the primitive polynomials (degree s, coefficients a) and
+// initial numbers m_1..m_s of dimensions 2..5 of S. Joe and F. Y. Kuo,
+// "Constructing Sobol sequences with better two-dimensional projections",
+// SIAM J. Sci. Comput. 30(5), 2008 (table new-joe-kuo-6.21201):
+// (1,0;1) (2,1;1,3) (3,1;1,3,1) (3,2;1,1,1). Direction numbers follow the
+// recurrence of Bratley and Fox (1988), V_k = m_k 2^(32-k) for k <= s, then
+// V_k = V_(k-s) ^ (V_(k-s) >> s) ^ sum over j < s of a_j V_(k-j); reversed,
+// R_k = V_k's bits reversed = m_k's k bits reversed, and >> becomes <<.
+BC_FN uint bc_sobol_reversed(uint index, int dim) {
+    if (dim <= 0) return index;
     uint s = 3u;
     uint a = 2u;
-    uint m1 = 1u;
-    uint m2 = 1u;
-    uint m3 = 1u;
+    uint r1 = 1u;  // m_1 = 1 in every dimension
+    uint r2 = 2u;  // m_2 = 1: "01" reversed
+    uint r3 = 4u;  // m_3 = 1: "001" reversed
     if (dim == 1) {
         s = 1u;
         a = 0u;
     } else if (dim == 2) {
         s = 2u;
         a = 1u;
-        m2 = 3u;
+        r2 = 3u;  // m_2 = 3
     } else if (dim == 3) {
         a = 1u;
-        m2 = 3u;
+        r2 = 3u;
     }
     uint result = 0u;
-    uint v1 = 0u;  // V_(k-1)
-    uint v2 = 0u;  // V_(k-2)
-    uint v3 = 0u;  // V_(k-3)
+    uint v1 = 0u;  // R_(k-1)
+    uint v2 = 0u;  // R_(k-2)
+    uint v3 = 0u;  // R_(k-3)
     for (uint k = 1u; k <= 32u; ++k) {
         if ((index >> (k - 1u)) == 0u) break;
         uint v;
         if (k <= s) {
-            uint m = k == 1u ? m1 : (k == 2u ? m2 : m3);
-            v = m << (32u - k);
+            v = k == 1u ? r1 : (k == 2u ? r2 : r3);
         } else {
             uint back = s == 1u ? v1 : (s == 2u ? v2 : v3);
-            v = back ^ (back >> s);
+            v = back ^ (back << s);
             if (s >= 2u && ((a >> (s - 2u)) & 1u) != 0u) v = v ^ v1;
             if (s >= 3u && ((a >> (s - 3u)) & 1u) != 0u) v = v ^ v2;
         }
@@ -129,6 +134,12 @@ BC_FN uint bc_sobol(uint index, int dim) {
         v1 = v;
     }
     return result;
+}
+
+// Point `index` of the Sobol sequence in dimension dim (0..4), as a 32-bit
+// fraction (bit 31 = the first binary digit).
+BC_FN uint bc_sobol(uint index, int dim) {
+    return bc_reverse_bits(bc_sobol_reversed(index, dim));
 }
 
 // The lens sample of a point of the unit square, kept inside [-1, 1]^2 (the
@@ -193,20 +204,83 @@ BC_FN PixelSample interval_sample(uint px, uint py, uint stratum, uint strata, u
     return bc_jittered(px, py, stratum, strata, seed, true);
 }
 
-// Owen-scrambled 5D Sobol (x, y, t, u, v = dimensions 0..4). The index is
-// Owen-scrambled per pixel too (Burley 2020): that maps the first 2^m indices
-// onto one aligned block of 2^m points, itself a net, in a random order, so
-// every power-of-two prefix of a pixel's samples stays well stratified.
-BC_FN PixelSample pattern_sobol(uint px, uint py, uint index, uint seed) {
+// The per-pixel part of the Sobol patterns: the index shuffle's key and mask
+// and one Owen-scrambling seed per dimension.
+struct SobolSetup {
+    uint index_key;   // the shuffle of (x, y)'s index
+    uint index_key2;  // BC_PATTERN_PADDED_SOBOL: the shuffle of (u, v, t)'s index
+    uint index_mask;  // 2^m - 1 with 2^m >= spp: the pixel's points are one block of 2^m
+    uint dim_key0;
+    uint dim_key1;
+    uint dim_key2;
+    uint dim_key3;
+    uint dim_key4;
+};
+
+BC_FN SobolSetup bc_sobol_setup(uint px, uint py, uint spp, uint seed) {
+    SobolSetup p;
     uint pixel_key = bc_hash3(px, py, seed ^ 0xe6546b64u);
-    uint shuffled = bc_owen_scramble(index, pixel_key);
+    p.index_key = bc_hash(pixel_key ^ 0x5851f42du);
+    p.index_key2 = bc_hash(pixel_key ^ 0x14057b7eu);
+    p.index_mask = 0u;
+    while (p.index_mask < max(spp, 1u) - 1u) p.index_mask = (p.index_mask << 1u) | 1u;
+    p.dim_key0 = bc_hash(pixel_key ^ 0x68e31da4u);
+    p.dim_key1 = bc_hash(pixel_key ^ 0xb5297a4du);
+    p.dim_key2 = bc_hash(pixel_key ^ 0x1b56c4e9u);
+    p.dim_key3 = bc_hash(pixel_key ^ 0x3c6ef372u);
+    p.dim_key4 = bc_hash(pixel_key ^ 0xa54ff53au);
+    return p;
+}
+
+// The index shuffle (Burley 2020): Owen-scrambling the index maps indices
+// 0 .. 2^m - 1 onto one aligned block of 2^m Sobol points, itself a net, in a
+// random order; masked to the pixel's 2^M >= spp points so the Sobol sums stay
+// short.
+BC_FN uint bc_sobol_shuffle(uint index, uint key, uint mask) {
+    return bc_owen_scramble(index, key) & mask;
+}
+
+// Coordinate dim of Sobol point `shuffled`, Owen-scrambled with `key`, in [0, 1).
+BC_FN real bc_sobol_unit(uint shuffled, int dim, uint key) {
+    return bc_unit(bc_reverse_bits(bc_lk_permute(bc_sobol_reversed(shuffled, dim), key)));
+}
+
+// Owen-scrambled 5D Sobol (x, y, t, u, v = dimensions 0..4): the pixel's
+// samples, for any power-of-two prefix, are a net of the Sobol sequence,
+// (x, y) a (0, m, 2)-net, each coordinate stratified in 2^m strata.
+BC_FN PixelSample bc_sobol_from(BC_IN(SobolSetup) p, uint index) {
+    uint shuffled = bc_sobol_shuffle(index, p.index_key, p.index_mask);
     PixelSample s;
-    s.offset = vec2(bc_unit(bc_owen_scramble(bc_sobol(shuffled, 0), bc_hash(pixel_key ^ 0u))),
-                    bc_unit(bc_owen_scramble(bc_sobol(shuffled, 1), bc_hash(pixel_key ^ 1u))));
-    s.time = bc_unit(bc_owen_scramble(bc_sobol(shuffled, 2), bc_hash(pixel_key ^ 2u)));
-    s.lens = bc_lens_of(vec2(bc_unit(bc_owen_scramble(bc_sobol(shuffled, 3), bc_hash(pixel_key ^ 3u))),
-                             bc_unit(bc_owen_scramble(bc_sobol(shuffled, 4), bc_hash(pixel_key ^ 4u)))));
+    s.offset = vec2(bc_sobol_unit(shuffled, 0, p.dim_key0), bc_sobol_unit(shuffled, 1, p.dim_key1));
+    s.time = bc_sobol_unit(shuffled, 2, p.dim_key2);
+    s.lens = bc_lens_of(vec2(bc_sobol_unit(shuffled, 3, p.dim_key3), bc_sobol_unit(shuffled, 4, p.dim_key4)));
     return s;
+}
+
+// Padded Sobol (Kollig and Keller's padding with Burley's shuffles): (x, y)
+// = Sobol dimensions 0, 1 under one index shuffle, (u, v, t) = dimensions
+// 0, 1, 2 under an independent one. Both the pixel position and the lens
+// square are (0, m, 2)-nets, the lens and time jointly a (1, m, 3)-net
+// (dimensions 0..2 of Joe and Kuo), at the cost of any joint stratification
+// between position and lens.
+BC_FN PixelSample bc_padded_sobol_from(BC_IN(SobolSetup) p, uint index) {
+    uint position = bc_sobol_shuffle(index, p.index_key, p.index_mask);
+    uint lens_time = bc_sobol_shuffle(index, p.index_key2, p.index_mask);
+    PixelSample s;
+    s.offset = vec2(bc_sobol_unit(position, 0, p.dim_key0), bc_sobol_unit(position, 1, p.dim_key1));
+    s.lens = bc_lens_of(vec2(bc_sobol_unit(lens_time, 0, p.dim_key3), bc_sobol_unit(lens_time, 1, p.dim_key4)));
+    s.time = bc_sobol_unit(lens_time, 2, p.dim_key2);
+    return s;
+}
+
+// BC_PATTERN_SOBOL: sample `index` of `spp` of pixel (px, py).
+BC_FN PixelSample pattern_sobol(uint px, uint py, uint index, uint spp, uint seed) {
+    return bc_sobol_from(bc_sobol_setup(px, py, spp, seed), index);
+}
+
+// BC_PATTERN_PADDED_SOBOL: sample `index` of `spp` of pixel (px, py).
+BC_FN PixelSample pattern_padded_sobol(uint px, uint py, uint index, uint spp, uint seed) {
+    return bc_padded_sobol_from(bc_sobol_setup(px, py, spp, seed), index);
 }
 
 // The common interface: sample `index` of `spp` of pixel (px, py) in one of
@@ -214,8 +288,46 @@ BC_FN PixelSample pattern_sobol(uint px, uint py, uint index, uint seed) {
 BC_FN PixelSample pattern_sample(int pattern, uint px, uint py, uint index, uint spp, uint seed) {
     if (pattern == BC_PATTERN_RANDOM) return pattern_random(px, py, index, seed);
     if (pattern == BC_PATTERN_JITTERED) return pattern_jittered(px, py, index, spp, seed);
-    if (pattern == BC_PATTERN_SOBOL) return pattern_sobol(px, py, index, seed);
+    if (pattern == BC_PATTERN_SOBOL) return pattern_sobol(px, py, index, spp, seed);
+    if (pattern == BC_PATTERN_PADDED_SOBOL) return pattern_padded_sobol(px, py, index, spp, seed);
     return pixel_sample(px, py, index, spp, seed);
+}
+
+// ---- the sampler of the stochastic renderers (--sampler) --------------------
+
+// What a renderer computes once per pixel to draw all of its samples in the
+// pattern it renders with: the pattern's per-pixel setup.
+struct SamplerSetup {
+    int pattern;
+    PixelSampleSetup hashed;  // BC_PATTERN_HASHED
+    SobolSetup sobol;         // BC_PATTERN_SOBOL, BC_PATTERN_PADDED_SOBOL
+    uint px;
+    uint py;
+    uint spp;
+    uint seed;
+};
+
+// The per-pixel setup of pattern `pattern` (BC_PATTERN_*) for pixel (px, py),
+// spp >= 1 samples and seed; every backend draws its samples through it.
+BC_FN SamplerSetup sampler_setup(int pattern, uint px, uint py, uint spp, uint seed) {
+    SamplerSetup p;
+    p.pattern = pattern;
+    p.hashed = pixel_sample_setup(px, py, spp, seed);
+    p.sobol = bc_sobol_setup(px, py, spp, seed);
+    p.px = px;
+    p.py = py;
+    p.spp = spp;
+    p.seed = seed;
+    return p;
+}
+
+// Sample `index` of the pixel of setup p: pattern_sample(p.pattern, ...) with
+// the per-pixel work done once (BC_PATTERN_HASHED is pixel_sample_from).
+BC_FN PixelSample sampler_sample(BC_IN(SamplerSetup) p, uint index) {
+    if (p.pattern == BC_PATTERN_SOBOL) return bc_sobol_from(p.sobol, index);
+    if (p.pattern == BC_PATTERN_PADDED_SOBOL) return bc_padded_sobol_from(p.sobol, index);
+    if (p.pattern == BC_PATTERN_HASHED) return pixel_sample_from(p.hashed, index);
+    return pattern_sample(p.pattern, p.px, p.py, index, p.spp, p.seed);
 }
 
 // The same pattern repeated every `tile` pixels in x and y, so a GPU may

@@ -1,5 +1,5 @@
-// Before each pass: the pass's four samples of every pixel (pixel_sample_setup
-// once per pixel, then pixel_sample_from), so the fragment shaders, which run
+// Before each pass: the pass's four samples of every pixel (sampler_setup
+// once per pixel, then sampler_sample, in the settings' sampler), so the fragment shaders, which run
 // once per triangle and pixel, only read them. Also, with stride the group's
 // size, the samples of a group of passes for render_static_group.frag.
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -7,17 +7,18 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(std430, binding = 7) writeonly buffer PassSamples { vec4 pass_ndc_lens[]; };
 layout(std430, binding = 8) writeonly buffer PassTimes { float pass_time[]; };
 
+uniform int sampler;  // BC_PATTERN_* (RenderSettings::sampler)
 uniform uint stride;  // samples per pixel in the buffers: 4, or a group's size
 
 void main() {
     uvec2 pixel = gl_GlobalInvocationID.xy;
     if (pixel.x >= uint(image_size.x) || pixel.y >= uint(image_size.y)) return;
     uint slot = (pixel.y * uint(image_size.x) + pixel.x) * stride;
-    PixelSampleSetup setup = bc_pixel_sample_setup(pixel.x, pixel.y, spp, seed);
+    SamplerSetup setup = bc_sampler_setup(sampler, pixel.x, pixel.y, spp, seed);
     for (uint k = 0u; k < stride; ++k) {
         uint j = pass_base + k;
         if (j >= spp) break;
-        PixelSample s = bc_pixel_sample_from(setup, j);
+        PixelSample s = bc_sampler_sample(setup, j);
         pass_ndc_lens[slot + k] = vec4(sample_ndc(pixel.x, pixel.y, s.offset), s.lens);
         pass_time[slot + k] = s.time;
     }
