@@ -189,7 +189,7 @@ int main(int argc, char** argv) {
                 for (int m = 0; m < kMethods; ++m)
                     selected[m] = std::find(wanted.begin(), wanted.end(), methods[m]) != wanted.end();
                 if (std::find(selected, selected + kMethods, true) == selected + kMethods)
-                    throw std::invalid_argument("--methods: none of bbox, hull, dualspace, clip2, edges given");
+                    throw std::invalid_argument("--methods: none of bbox, hull, dualspace, clip2, edges, hyperplane given");
             } else if (arg == "--edge-min-samples") {
                 edge_min_samples = std::max(0, std::atoi(value().c_str()));
             } else if (arg == "--csv") {
