@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cmath>
@@ -24,10 +25,18 @@ struct Run {
     std::string err;
 };
 
+// The scratch folder of this test process: its own, so two runs at once
+// (several sessions on one machine) do not overwrite each other's files.
+std::filesystem::path scratch_folder() {
+    static const std::filesystem::path folder =
+        std::filesystem::temp_directory_path() / ("blurcull_cli_test_" + std::to_string(::getpid()));
+    return folder;
+}
+
 // Runs the command with the given arguments in a scratch folder.
 Run run_cli(const std::string& arguments, const std::string& environment = "") {
     namespace fs = std::filesystem;
-    static const fs::path folder = fs::temp_directory_path() / "blurcull_cli_test";
+    const fs::path folder = scratch_folder();
     fs::create_directories(folder);
     const fs::path err_file = folder / "stderr.txt";
     std::string command = "cd '" + folder.string() + "' && " + environment + " '" + BLURCULL_CLI + "' " + arguments + " 2>'" +
@@ -76,7 +85,7 @@ TEST_CASE("blurcull render writes a PNG and a JSON summary") {
     CHECK(summary["ste"].get<double>() ==
           doctest::Approx(summary["samples_hit"].get<double>() / summary["samples_tested"].get<double>()));
     blurcull::frontend::Image image =
-        blurcull::frontend::read_png((std::filesystem::temp_directory_path() / "blurcull_cli_test/car_test.png").string());
+        blurcull::frontend::read_png((scratch_folder() / "car_test.png").string());
     CHECK(image.width == 64);
     CHECK(image.height == 48);
 }
@@ -186,7 +195,7 @@ TEST_CASE("bad input: one line naming the problem, non-zero exit, no output file
     // Left by an older build, they would fail the check below.
     run_cli("scenes");  // makes the folder
     for (const auto& entry :
-         std::filesystem::directory_iterator(std::filesystem::temp_directory_path() / "blurcull_cli_test")) {
+         std::filesystem::directory_iterator(scratch_folder())) {
         if (entry.path().filename().string().rfind("should_not_exist", 0) == 0) std::filesystem::remove(entry.path());
     }
     for (const Case& c : cases) {
@@ -203,7 +212,7 @@ TEST_CASE("bad input: one line naming the problem, non-zero exit, no output file
         CHECK(run.out.empty());
         // Nothing written, not even in part (a .partial-PID file).
         for (const auto& entry :
-             std::filesystem::directory_iterator(std::filesystem::temp_directory_path() / "blurcull_cli_test")) {
+             std::filesystem::directory_iterator(scratch_folder())) {
             const std::string name = entry.path().filename().string();
             CHECK_MESSAGE(name.rfind("should_not_exist", 0) != 0, name);
             CHECK_MESSAGE(name.find(".partial-") == std::string::npos, name);
@@ -241,7 +250,7 @@ TEST_CASE("blurcull render refuses an option the backend cannot honour") {
         CHECK(lines(run.err) == 1);
         CHECK(run.err.find(c.expected) != std::string::npos);
         CHECK(run.out.empty());
-        CHECK_FALSE(std::filesystem::exists(std::filesystem::temp_directory_path() / "blurcull_cli_test/refused.png"));
+        CHECK_FALSE(std::filesystem::exists(scratch_folder() / "refused.png"));
     }
     // With --backend auto the line names the backend it chose.
     Run automatic = run_cli("render --footprint 2 --gl-cell 4 --scene car --size 32x24 -q -o refused.png",
@@ -338,7 +347,7 @@ TEST_CASE("blurcull render --backend gl --gl-cell: the cell size reaches the gl 
     const nlohmann::json a = nlohmann::json::parse(standard.out), b = nlohmann::json::parse(fine.out);
     // Culling only skips samples the exact test rejects: same hits, same image.
     CHECK(a["samples_hit"] == b["samples_hit"]);
-    const std::string folder = (std::filesystem::temp_directory_path() / "blurcull_cli_test").string();
+    const std::string folder = (scratch_folder()).string();
     const blurcull::frontend::Image image_a = blurcull::frontend::read_png(folder + "/gl_cell_8.png");
     const blurcull::frontend::Image image_b = blurcull::frontend::read_png(folder + "/gl_cell_1.png");
     CHECK(image_a.pixels == image_b.pixels);
@@ -376,13 +385,13 @@ TEST_CASE("blurcull render --motion-segments: K or auto reaches the scene, bad v
         CHECK(run.status != 0);
         CHECK(lines(run.err) == 1);
         CHECK(run.err.find("--motion-segments") != std::string::npos);
-        CHECK_FALSE(std::filesystem::exists(std::filesystem::temp_directory_path() / "blurcull_cli_test" / "never.png"));
+        CHECK_FALSE(std::filesystem::exists(scratch_folder() / "never.png"));
     }
 }
 
 namespace {
 
-const std::string cli_folder = (std::filesystem::temp_directory_path() / "blurcull_cli_test").string();
+const std::string cli_folder = (scratch_folder()).string();
 
 std::string file_bytes(const std::string& path) {
     FILE* f = std::fopen(path.c_str(), "rb");
