@@ -4,6 +4,7 @@
 
 #include "render/common/image.hpp"
 #include "render/gl/gl_backend.hpp"
+#include "scene/builtin_scenes.hpp"
 #include "scene/scene.hpp"
 
 #include <doctest/doctest.h>
@@ -24,6 +25,14 @@ namespace blurcull::frontend::test {
 inline bool is_ci() {
     const char* ci = std::getenv("CI");
     return ci != nullptr && (std::string(ci) == "true" || std::string(ci) == "1");
+}
+
+// A built-in scene framed for a width x height image, its blur scaled.
+inline Scene small_scene(const std::string& name, int width, int height, float blur_scale = 1.0f) {
+    SceneOptions options;
+    options.blur_scale = blur_scale;
+    options.aspect = float(width) / float(height);
+    return make_builtin_scene(name, options);
 }
 
 // Two triangles a, b, c and a, c, d moving by `motion` over the shutter.

@@ -18,13 +18,6 @@ using namespace blurcull::frontend::test;
 
 namespace {
 
-Scene small_scene(const std::string& name, float blur_scale, int width, int height) {
-    SceneOptions options;
-    options.blur_scale = blur_scale;
-    options.aspect = float(width) / float(height);
-    return make_builtin_scene(name, options);
-}
-
 // A ground plane that runs from behind the camera to the horizon, a wall
 // crossing the near plane, camera motion and defocus: the near-plane paths.
 Scene near_plane_scene() {
@@ -51,7 +44,7 @@ TEST_CASE("every culling method renders the same image, on every built-in scene,
     for (const std::string& name : builtin_scene_names()) {
         for (float blur : {1.0f, 2.0f}) {
             for (const CpuOptions& options : {CpuOptions{}, single}) {
-                Scene scene = small_scene(name, blur, width, height);
+                Scene scene = small_scene(name, width, height, blur);
                 RenderSettings settings = quiet_settings(width, height, 4);
                 settings.cull = CullMethod::bbox;
                 RenderResult reference = render_cpu(scene, settings, options);
@@ -72,7 +65,7 @@ TEST_CASE("every culling method renders the same image, on every built-in scene,
 }
 
 TEST_CASE("edges: the blocks that get edge planes (edge_min_samples) change nothing in the image") {
-    Scene scene = small_scene("forest", 2.0f, 96, 72);
+    Scene scene = small_scene("forest", 96, 72, 2.0f);
     RenderSettings settings = quiet_settings(96, 72, 8);
     settings.cull = CullMethod::two_stage;
     const RenderResult clip2 = render_cpu(scene, settings);
@@ -94,7 +87,7 @@ TEST_CASE("edges: the blocks that get edge planes (edge_min_samples) change noth
 }
 
 TEST_CASE("culling footprints larger than a pixel change nothing in the image") {
-    Scene scene = small_scene("forest", 2.0f, 64, 48);
+    Scene scene = small_scene("forest", 64, 48, 2.0f);
     RenderSettings settings = quiet_settings(64, 48, 8);
     settings.cull = CullMethod::bbox;
     RenderResult reference = render_cpu(scene, settings);
@@ -126,7 +119,7 @@ TEST_CASE("near-plane crossings: same image for every method") {
 }
 
 TEST_CASE("the image does not depend on the thread count; the seed changes it") {
-    Scene scene = small_scene("car", 1.0f, 64, 48);
+    Scene scene = small_scene("car", 64, 48, 1.0f);
     RenderSettings settings = quiet_settings(64, 48, 4);
     settings.threads = 1;
     RenderResult one = render_cpu(scene, settings);
@@ -148,7 +141,7 @@ TEST_CASE("CPU rasterizer and Embree agree on every built-in scene") {
     // and at least 99.5% of the pixels equal to within 1/255.
     const int width = 96, height = 72;
     for (const std::string& name : builtin_scene_names()) {
-        Scene scene = small_scene(name, 1.0f, width, height);
+        Scene scene = small_scene(name, width, height, 1.0f);
         RenderSettings settings = quiet_settings(width, height, 16);
         RenderResult cpu = render_cpu(scene, settings);
         RenderResult ray = render_embree(scene, settings);

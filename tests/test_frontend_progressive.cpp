@@ -21,12 +21,6 @@ using namespace blurcull::frontend::test;
 
 namespace {
 
-Scene small_scene(const std::string& name, int width, int height) {
-    SceneOptions options;
-    options.aspect = float(width) / float(height);
-    return make_builtin_scene(name, options);
-}
-
 // The progressive render of `settings.spp` samples in passes of `passes`
 // samples each (their sum is the spp).
 RenderResult render_in_passes(const Scene& scene, const RenderSettings& settings, const std::vector<int>& passes,

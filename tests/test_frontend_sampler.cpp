@@ -24,12 +24,6 @@ using namespace blurcull::frontend::test;
 
 namespace {
 
-Scene small_scene(const std::string& name, int width, int height) {
-    SceneOptions options;
-    options.aspect = float(width) / float(height);
-    return make_builtin_scene(name, options);
-}
-
 RenderSettings with_sampler(int width, int height, int spp, int sampler) {
     RenderSettings settings = quiet_settings(width, height, spp);
     settings.sampler = sampler;
