@@ -120,6 +120,17 @@
 //   oracle is then decided by rounding; docs/kernel.md). An axis whose extent
 //   overflows spans [-huge, huge].
 //
+// vec4 stratum_screen_box(MovingTriangle tri, real near, ScreenBound whole, vec2 time, vec2 u_range, vec2 v_range)
+//   The screen box (lo.x, lo.y, hi.x, hi.y) of the samples in one stratum of
+//   shutter and lens only: time in [time.x, time.y] within [0, 1], u and v in
+//   the given sub-ranges of [-1, 1]. whole = screen_bound(tri, near, cull);
+//   its box is narrowed to the box of the triangle's 12 stratum corners (each
+//   vertex at both time ends and both lens ends, projected), with twice
+//   screen_bound's margin. lo.x > hi.x: the stratum holds no covered sample.
+//   A renderer that keeps its samples grouped by stratum tests a stratum's
+//   samples only inside its box. A corner behind the near plane narrows
+//   nothing on that axis; fallback, whole's box, where screen_bound falls back.
+//
 // int screen_footprint(ScreenBound b, vec2 lo, vec2 hi)
 //   Where the screen rectangle [lo, hi] (NDC, lo <= hi) lies relative to b:
 //   BC_FOOTPRINT_OUTSIDE (0: no sample in it passes screen_contains; also for

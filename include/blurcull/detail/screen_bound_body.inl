@@ -171,6 +171,64 @@ BC_FN ScreenBound screen_bound(BC_IN(MovingTriangle) tri, real near, int cull) {
     return b;
 }
 
+// Screen extent along one axis of the samples with time in [time.x, time.y]
+// and lens coordinate along the axis (u for x, v for y) in [lens.x, lens.y]
+// (sub-ranges of [0, 1] and [-1, 1]). At such a (t, l) a vertex's clip (x + l c, w)
+// is bilinear in (t, l), so it lies in the convex hull of its four corner
+// points (time ends by lens ends); with every corner in front of the near
+// plane x / w is extremal at one of the 12 corners of the triangle. A
+// corner behind it: bc_axis_extent's whole-shutter extent (it clips).
+BC_FN vec2 bc_stratum_axis_extent(BC_IN(MovingTriangle) tri, int axis, real near_plane, vec2 time, vec2 lens) {
+    real near = near_plane - bc_err(near_plane);
+    real lo = bc_huge();
+    real hi = -bc_huge();
+    real magnitude = real(0);
+    for (int i = 0; i < 3; ++i) {
+        // What the corners are computed from: their rounding is relative to it.
+        real size = abs(tri.p[i][axis]) + abs(tri.p[i + 3][axis]) + abs(tri.c[i][axis]) + abs(tri.c[i + 3][axis]);
+        real depth_size = abs(tri.p[i].z) + abs(tri.p[i + 3].z);
+        for (int e = 0; e < 2; ++e) {
+            real t = e == 0 ? time.x : time.y;
+            real x = (real(1) - t) * tri.p[i][axis] + t * tri.p[i + 3][axis];
+            real c = (real(1) - t) * tri.c[i][axis] + t * tri.c[i + 3][axis];
+            real w = (real(1) - t) * tri.p[i].z + t * tri.p[i + 3].z;
+            if (!(w >= near)) return bc_axis_extent(tri, axis, near_plane);
+            // One division per corner pair (the product's rounding is in the margin).
+            real inv_w = real(1) / w;
+            real s0 = (x + lens.x * c) * inv_w;
+            real s1 = (x + lens.y * c) * inv_w;
+            lo = min(lo, min(s0, s1));
+            hi = max(hi, max(s0, s1));
+            magnitude = max(magnitude, (size + max(abs(s0), abs(s1)) * depth_size) * inv_w);
+        }
+    }
+    // Twice bc_axis_extent's margin: the corners' interpolation and the
+    // division by an interpolated w round too.
+    real pad = bc_err(real(8) * magnitude + real(2) * max(abs(lo), abs(hi)));
+    lo = lo - pad;
+    hi = hi + pad;
+    if (!bc_finite(lo) || !bc_finite(hi) || !bc_finite(pad)) return vec2(-bc_huge(), bc_huge());
+    return vec2(lo, hi);
+}
+
+// The screen box of the samples in one stratum of lens and shutter: time in
+// [time.x, time.y], u in [u_range.x, u_range.y], v in [v_range.x, v_range.y],
+// as (lo.x, lo.y, hi.x, hi.y); lo.x > hi.x when the stratum holds nothing.
+// whole: screen_bound(tri, near, cull) for any cull, whose box it narrows.
+// Fallback, whole's box: whole empty, near <= 0, a triangle screen_bound
+// does not bound.
+BC_FN vec4 stratum_screen_box(BC_IN(MovingTriangle) tri, real near, BC_IN(ScreenBound) whole, vec2 time, vec2 u_range,
+                              vec2 v_range) {
+    if (whole.empty) return vec4(real(1), real(1), real(-1), real(-1));
+    vec4 box = vec4(whole.lo.x, whole.lo.y, whole.hi.x, whole.hi.y);
+    if (!(near > real(0)) || !bc_triangle_boundable(tri)) return box;
+    vec2 ex = bc_stratum_axis_extent(tri, 0, near, time, u_range);
+    vec2 ey = bc_stratum_axis_extent(tri, 1, near, time, v_range);
+    box = vec4(max(box.x, ex.x), max(box.y, ey.x), min(box.z, ex.y), min(box.w, ey.y));
+    if (box.x > box.z || box.y > box.w) return vec4(real(1), real(1), real(-1), real(-1));
+    return box;
+}
+
 #define BC_FOOTPRINT_OUTSIDE 0
 #define BC_FOOTPRINT_PARTIAL 1
 #define BC_FOOTPRINT_INSIDE 2
