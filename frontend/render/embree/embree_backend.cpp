@@ -2,6 +2,7 @@
 
 #include "render/common/camera_model.hpp"
 #include "render/common/motion_segments.hpp"
+#include "render/common/pixel_samples.hpp"
 #include "render/common/progress.hpp"
 #include "render/common/shading.hpp"
 #include "render/common/surface_shading.hpp"
@@ -229,11 +230,12 @@ public:
         std::vector<PrimaryRay> rays(static_cast<std::size_t>(width) * spp);
         std::vector<RowSample> samples(rays.size());
         std::vector<std::uint32_t> prim_ids(rays.size());
+        std::vector<kernelf::PixelSample> pixel_buffer(spp);
         tracer.set_filter_data(samples.data());
         std::uint64_t hits = 0;
         int last_percent = -1;
         for (int py = next_row_.fetch_add(1); py < settings_.height; py = next_row_.fetch_add(1)) {
-            make_row_rays(py, rays, samples);
+            make_row_rays(py, rays, samples, pixel_buffer);
             tracer.trace(rays.data(), rays.size(), prim_ids.data());
             hits += sum_row(py, rays, prim_ids, samples, secondary);
             const int done = rows_done_.fetch_add(1) + 1;
@@ -258,14 +260,17 @@ public:
     std::uint64_t secondary_rays() const { return secondary_rays_.load(); }
 
 private:
-    // Row py's rays and their samples, pixel by pixel in sample order.
-    void make_row_rays(int py, std::vector<PrimaryRay>& rays, std::vector<RowSample>& samples) const {
+    // Row py's rays and their samples, pixel by pixel in sample order
+    // (pixel_buffer: one pixel's samples, scratch).
+    void make_row_rays(int py, std::vector<PrimaryRay>& rays, std::vector<RowSample>& samples,
+                       std::vector<kernelf::PixelSample>& pixel_buffer) const {
         const auto spp = static_cast<std::uint32_t>(settings_.spp);
         for (int px = 0; px < settings_.width; ++px) {
             const patternsf::SamplerSetup pattern = patternsf::sampler_setup(
                 settings_.sampler, static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py), spp, settings_.seed);
+            pixel_samples(pattern, 0, spp, pixel_buffer.data());
             for (std::uint32_t j = 0; j < spp; ++j) {
-                const kernelf::PixelSample sample = patternsf::sampler_sample(pattern, j);
+                const kernelf::PixelSample& sample = pixel_buffer[j];
                 const glm::vec2 ndc = model_.sample_ndc(px, py, sample.offset);
                 const Ray ray = model_.lens_ray(ndc, sample.lens);
                 samples[static_cast<std::size_t>(px) * spp + j] = RowSample{ndc, sample.lens, sample.time};
