@@ -136,7 +136,7 @@ TEST_CASE("blurcull view renders frames under Xvfb and writes the window's conte
     REQUIRE(count_lines(run.out) == 3);
     std::istringstream lines(run.out);
     std::string line;
-    const char* expected[] = {"cull twostage", "cull bbox", "cull hull"};
+    const char* expected[] = {"cull bbox", "cull hull", "cull dualspace"};
     for (const char* method : expected) {
         std::getline(lines, line);
         CHECK(line.find(method) != std::string::npos);

@@ -238,6 +238,8 @@ void refuse_unhonoured_options(const RenderCommand& command, Backend backend) {
     };
     const BackendOption options[] = {
         {"--footprint", command.footprint_option, backend_bit(Backend::cpu)},
+        {"--time-strata", command.time_strata_option, backend_bit(Backend::cpu)},
+        {"--lens-strata", command.lens_strata_option, backend_bit(Backend::cpu)},
         {"--precision", command.precision_option, backend_bit(Backend::cpu)},
         {"--gl-cell", command.gl_cell_option, backend_bit(Backend::gl)},
         {"--secondary", command.secondary_option, backend_bit(Backend::embree)},
@@ -318,6 +320,8 @@ RenderJob set_up(const RenderCommand& command) {
     refuse_unhonoured_options(command, job.backend);
     require_gl_context(command);
     job.cpu.footprint = command.footprint;
+    job.cpu.time_strata = command.time_strata;
+    job.cpu.lens_strata = command.lens_strata;
     job.cpu.precision = parse_kernel_precision(command.precision);
     job.gl.cell_pixels = command.gl_cell;
 #if BLURCULL_HAVE_EMBREE
@@ -568,6 +572,18 @@ void RenderCommand::add_options(CLI::App& app) {
     footprint_option = app.add_option("--footprint", footprint, "cpu: pixels per side of a culling footprint")
                            ->check(CLI::Range(1, 64))
                            ->capture_default_str();
+    time_strata_option =
+        app.add_option("--time-strata", time_strata,
+                       "cpu, bbox and hull: shutter slices a moving triangle's samples are tested in, each in its "
+                       "own screen box (1, 2, 4, 8 or 16; 1: off)")
+            ->check(CLI::IsMember({1, 2, 4, 8, 16}))
+            ->capture_default_str();
+    lens_strata_option =
+        app.add_option("--lens-strata", lens_strata,
+                       "cpu, bbox and hull: parts of the lens along u and along v a defocused triangle's samples are "
+                       "tested in, each in its own screen box (1, 2 or 4; 1: off)")
+            ->check(CLI::IsMember({1, 2, 4}))
+            ->capture_default_str();
     std::string precision_help = "cpu: the kernel's arithmetic";
     for (const KernelPrecisionInfo& info : kernel_precisions()) {
         precision_help += std::string("; ") + info.name + ": " + info.help;

@@ -32,6 +32,9 @@ struct RenderCommand : SceneFlags, SecondaryFlags {
     bool json = false;
     int threads = 0;
     int footprint = CpuOptions{}.footprint;
+    // cpu, bbox and hull: time slices and lens parts per axis (CpuOptions::time_strata, lens_strata).
+    int time_strata = CpuOptions{}.time_strata;
+    int lens_strata = CpuOptions{}.lens_strata;
     std::string precision = to_string(CpuOptions{}.precision);
     int gl_cell = GlOptions{}.cell_pixels;
     std::string secondary = "bounce";  // embree: bounce or none (EmbreeSecondary)
@@ -43,6 +46,8 @@ struct RenderCommand : SceneFlags, SecondaryFlags {
     CLI::Option* method_option = nullptr;
     CLI::Option* sampler_option = nullptr;
     CLI::Option* footprint_option = nullptr;
+    CLI::Option* time_strata_option = nullptr;
+    CLI::Option* lens_strata_option = nullptr;
     CLI::Option* precision_option = nullptr;
     CLI::Option* gl_cell_option = nullptr;
     CLI::Option* secondary_option = nullptr;

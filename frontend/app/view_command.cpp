@@ -142,7 +142,7 @@ struct ViewState {
     float shutter_close = 1.0f;
     double blur_scale = 1.0;
     int spp = 4;
-    CullMethod cull = CullMethod::two_stage;
+    CullMethod cull = CullMethod::bbox;
     RenderMethod method = RenderMethod::stochastic;
 };
 

@@ -37,7 +37,7 @@ struct ViewFrame {
     int samples = 0;           // spp in the image
     int target = 0;            // the settings' spp
     int preview_scale = 1;     // > 1: a preview at 1/preview_scale of the size, outside the accumulation
-    CullMethod cull = CullMethod::two_stage;  // what drew it: the settings', or a preview's preview_cull
+    CullMethod cull = CullMethod::bbox;  // what drew it: the settings', or a preview's preview_cull
     double pass_ms = 0.0;      // wall time of the pass
     double pass_cpu_ms = 0.0;  // CPU time of the process during the pass, every thread
 

@@ -24,7 +24,9 @@ struct RenderSettings {
     int height = 768;
     int spp = 16;  // samples per pixel
     std::uint32_t seed = 1;
-    CullMethod cull = CullMethod::two_stage;
+    // bbox: on the CPU backend the fastest cull (with its shutter strata,
+    // CpuOptions::time_strata), and every cull gives the same image.
+    CullMethod cull = CullMethod::bbox;
     int threads = 0;  // 0 = std::thread::hardware_concurrency()
     bool progress = true;  // report progress on stderr when a render is slow
     // Which renderer: stochastic (render_cpu), interleave, interval or accum

@@ -6,11 +6,13 @@
 #include "render/cpu/exact_test.hpp"
 #include "render/common/moving_triangle.hpp"
 #include "render/common/motion_segments.hpp"
+#include "render/common/pixel_samples.hpp"
 #include "render/common/progress.hpp"
 #include "render/common/shading.hpp"
 #include "render/common/surface_shading.hpp"
 #include "render/cpu/parallel_items.hpp"
 #include "render/cpu/sample_chain.hpp"
+#include "render/cpu/sample_strata.hpp"
 #include "scene/scene_checks.hpp"
 
 #include <blurcull/kernel.hpp>
@@ -71,6 +73,13 @@ SampleBox sample_box(const CameraModel& model, const PixelRect& r) {
     return SampleBox{top_left.x, bottom_right.y, bottom_right.z, top_left.w};
 }
 
+// One stratum's screen box (NDC lo.xy, hi.xy) and its pixels.
+template <class K>
+struct StratumBox {
+    typename K::vec4 box;
+    PixelRect rect;
+};
+
 template <class K>
 struct TileSample {
     typename K::vec2 ndc;
@@ -102,6 +111,14 @@ struct FrameSetup {
     // samples of the triangle's pixel rectangle.
     std::vector<CoverageSetup> fast_tests;
     std::vector<typename K::vec3> hull_edges;
+    // bbox and hull: the strata the tiles group their samples by, and per
+    // moving or defocused triangle (one motion segment) the pixels of each
+    // stratum's screen box, strata.count() rectangles from
+    // stratum_rect_offset[i] (none_offset: the triangle is not drawn by strata).
+    SampleStrata strata;
+    std::vector<StratumBox<K>> stratum_rects;
+    std::vector<std::size_t> stratum_rect_offset;
+    static constexpr std::size_t none_offset = ~std::size_t(0);
     std::size_t invalid = 0;  // triangles skipped: their clip coordinates overflow
     int tiles_x = 0, tiles_y = 0;
     std::vector<std::vector<std::uint32_t>> bins;  // per work tile, the triangles whose rectangle meets it
@@ -119,10 +136,37 @@ struct FrameSetup {
     }
 };
 
+// The pixels of each stratum's screen box (kernel stratum_screen_box of
+// the triangle's screen bound `whole`), inside its rectangle `r`, appended to
+// `rects`. False when they do not pay: the strata's rectangles, on average,
+// hold more than 3/4 of r's pixels (a triangle that hardly moves and is
+// nearly in focus), so visiting the strata one by one would cost more
+// (shorter runs) than it spares; the caller then drops them.
+template <class Real>
+bool add_stratum_rects(const CameraModel& model, const typename kernel<Real>::MovingTriangle& tri, Real near,
+                       const typename kernel<Real>::ScreenBound& whole, const PixelRect& r, SampleStrata strata,
+                       std::vector<StratumBox<kernel<Real>>>& rects) {
+    using K = blurcull::kernel<Real>;
+    double area = 0.0;
+    for (int s = 0; s < strata.count(); ++s) {
+        typename K::vec2 time, u, v;
+        strata.ranges(s, time, u, v);
+        const typename K::vec4 box = K::stratum_screen_box(tri, near, whole, time, u, v);
+        PixelRect q = box.x > box.z ? PixelRect{0, 0, -1, -1}
+                                    : pixel_rect<K>(model, typename K::vec2(box.x, box.y), typename K::vec2(box.z, box.w));
+        q = PixelRect{std::max(q.x0, r.x0), std::max(q.y0, r.y0), std::min(q.x1, r.x1), std::min(q.y1, r.y1)};
+        rects.push_back(StratumBox<K>{box, q});
+        if (q.x0 <= q.x1 && q.y0 <= q.y1) area += double(q.x1 - q.x0 + 1) * double(q.y1 - q.y0 + 1);
+    }
+    const double whole_area = double(r.x1 - r.x0 + 1) * double(r.y1 - r.y0 + 1);
+    return area <= 0.75 * whole_area * double(strata.count());
+}
+
 // Sets up every triangle of the scene, in parallel over contiguous chunks;
 // each chunk keeps its hull edges apart, then they are joined in triangle order.
 template <class Real>
-void set_up_triangles(const Scene& scene, const CameraModel& model, int method, int threads, FrameSetup<Real>& setup) {
+void set_up_triangles(const Scene& scene, const CameraModel& model, int method, int threads, SampleStrata strata,
+                      FrameSetup<Real>& setup) {
     using K = blurcull::kernel<Real>;
     const Real near = static_cast<Real>(model.znear);
     setup.pieces = plan_segment_pieces(scene, model);
@@ -132,8 +176,11 @@ void set_up_triangles(const Scene& scene, const CameraModel& model, int method, 
     setup.classes.resize(count);
     setup.bounds.resize(count);
     setup.fast_tests.resize(count);
+    setup.strata = strata;
+    setup.stratum_rect_offset.assign(count, FrameSetup<Real>::none_offset);
     const std::size_t chunks = static_cast<std::size_t>(std::max(1, std::min(threads, 64)));
     std::vector<std::vector<typename K::vec3>> chunk_edges(chunks);
+    std::vector<std::vector<StratumBox<K>>> chunk_rects(chunks);
     std::vector<std::size_t> chunk_invalid(chunks, 0);
     auto set_up = [&](std::size_t chunk) {
         const std::size_t first = count * chunk / chunks, last = count * (chunk + 1) / chunks;
@@ -149,8 +196,16 @@ void set_up_triangles(const Scene& scene, const CameraModel& model, int method, 
             if (bound.empty) continue;
             setup.rects[i] = pixel_rect<K>(model, bound.lo, bound.hi);
             const PixelRect& r = setup.rects[i];
-            if (r.x0 <= r.x1 && r.y0 <= r.y1)
+            if (r.x0 <= r.x1 && r.y0 <= r.y1) {
                 setup.fast_tests[i] = make_coverage_setup<Real>(setup.triangles[i], sample_box(model, r));
+                if (strata.count() > 1 && setup.classes[i] != 0 && setup.pieces[i].segments == 1) {
+                    const std::size_t offset = chunk_rects[chunk].size();
+                    if (add_stratum_rects<Real>(model, setup.triangles[i], near, bound, r, strata, chunk_rects[chunk]))
+                        setup.stratum_rect_offset[i] = offset;
+                    else
+                        chunk_rects[chunk].resize(offset);
+                }
+            }
             auto& stored = setup.bounds[i];
             stored.lo = bound.lo;
             stored.hi = bound.hi;
@@ -167,6 +222,10 @@ void set_up_triangles(const Scene& scene, const CameraModel& model, int method, 
         const std::size_t base = setup.hull_edges.size();
         for (std::size_t i = count * c / chunks; i < count * (c + 1) / chunks; ++i) setup.bounds[i].hull_offset += base;
         setup.hull_edges.insert(setup.hull_edges.end(), chunk_edges[c].begin(), chunk_edges[c].end());
+        const std::size_t rect_base = setup.stratum_rects.size();
+        for (std::size_t i = count * c / chunks; i < count * (c + 1) / chunks; ++i)
+            if (setup.stratum_rect_offset[i] != FrameSetup<Real>::none_offset) setup.stratum_rect_offset[i] += rect_base;
+        setup.stratum_rects.insert(setup.stratum_rects.end(), chunk_rects[c].begin(), chunk_rects[c].end());
         setup.invalid += chunk_invalid[c];
     }
 }
@@ -236,7 +295,11 @@ public:
           lanes_(samples_.size()),
           time_lanes_(samples_.size()),
           shutter_time_(samples_.size()),
-          in_window_(samples_.size()) {}
+          in_window_(samples_.size()),
+          pixel_samples_(frame.spp),
+          strata_lanes_(frame.setup.strata.count() > 1 ? samples_.size() : 0),
+          strata_slot_(frame.setup.strata.count() > 1 ? samples_.size() : 0),
+          stratum_(frame.setup.strata.count() > 1 ? samples_.size() : 0) {}
 
     // Rasterizes work tile `tile` (row-major over the tiles) into its pixels of `image`.
     void render_tile(int tile, Image& image) {
@@ -251,6 +314,7 @@ public:
         y1_ = std::min(y0_ + tile_size, frame_.settings.height) - 1;
         tw_ = x1_ - x0_ + 1;
         load_samples();
+        strata_grouped_ = false;
         footprints_x_ = (tw_ + frame_.footprint - 1) / frame_.footprint;
         if (frame_.time_sorted) sort_footprints_by_time();
         for (std::uint32_t index : frame_.setup.bins[static_cast<std::size_t>(tile)]) {
@@ -284,8 +348,9 @@ private:
                 const patternsf::SamplerSetup pattern = patternsf::sampler_setup(
                     frame_.settings.sampler, static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py),
                     static_cast<std::uint32_t>(frame_.settings.spp), frame_.settings.seed);
+                pixel_samples(pattern, frame_.first_sample, frame_.spp, pixel_samples_.data());
                 for (std::uint32_t j = 0; j < frame_.spp; ++j) {
-                    const kernelf::PixelSample s = patternsf::sampler_sample(pattern, frame_.first_sample + j);
+                    const kernelf::PixelSample& s = pixel_samples_[j];
                     const std::size_t k = slot(px, py, j);
                     const glm::vec2 ndc = frame_.model.sample_ndc(px, py, s.offset);
                     samples_[k] = Sample{typename K::vec2(ndc), typename K::vec2(s.lens), static_cast<Real>(s.time)};
@@ -296,6 +361,28 @@ private:
                     hit_[k] = none;
                 }
             }
+        }
+    }
+
+    // The tile's samples by stratum, then pixel (row-major), then index:
+    // copied into strata_lanes_ (slots in strata_slot_), stratum s's samples
+    // of pixel p from strata_start_[s * pixels + p] (a counting sort).
+    void group_by_stratum() {
+        const SampleStrata& strata = frame_.setup.strata;
+        const std::size_t pixels = static_cast<std::size_t>(tw_) * static_cast<std::size_t>(y1_ - y0_ + 1);
+        const std::size_t count = pixels * frame_.spp;
+        strata_start_.assign(static_cast<std::size_t>(strata.count()) * pixels + 1, 0);
+        for (std::size_t k = 0; k < count; ++k) {
+            stratum_[k] = static_cast<std::uint8_t>(strata.of(lanes_.fu()[k], lanes_.fv()[k], lanes_.ft()[k]));
+            ++strata_start_[static_cast<std::size_t>(stratum_[k]) * pixels + k / frame_.spp + 1];
+        }
+        for (std::size_t i = 1; i < strata_start_.size(); ++i) strata_start_[i] += strata_start_[i - 1];
+        std::vector<std::uint32_t>& next = strata_next_;
+        next.assign(strata_start_.begin(), strata_start_.end() - 1);
+        for (std::size_t k = 0; k < count; ++k) {
+            const std::uint32_t q = next[static_cast<std::size_t>(stratum_[k]) * pixels + k / frame_.spp]++;
+            strata_lanes_.copy(q, lanes_, k);
+            strata_slot_[q] = static_cast<std::uint32_t>(k);
         }
     }
 
@@ -461,6 +548,13 @@ private:
             columns_.reset(rx0, rx1, frame_.footprint);
             rows_.reset(ry0, ry1, frame_.footprint);
         }
+        // bbox, hull: a moving or defocused triangle stratum by stratum
+        // (the samples keep their shutter times: one motion segment).
+        if (frame_.setup.stratum_rect_offset[index] != FrameSetup<Real>::none_offset && window_segments_ == 1) {
+            rasterize_by_strata(current, &frame_.setup.stratum_rects[frame_.setup.stratum_rect_offset[index]]);
+            flush_exact(current);
+            return;
+        }
         const int block = frame_.block, footprint = frame_.footprint;
         for (int by = ry0 - (ry0 % block); by <= ry1; by += block) {
             for (int bx = rx0 - (rx0 % block); bx <= rx1; bx += block) {
@@ -513,6 +607,57 @@ private:
             }
         }
         flush_exact(current);
+    }
+
+    // A moving or defocused triangle under bbox or hull, stratum by stratum:
+    // each stratum's samples only in the pixels of its screen box (the
+    // setup's stratum_rects), through the hull's screen test, the fast test
+    // and covers.
+    void rasterize_by_strata(const Current& current, const StratumBox<K>* strata) {
+        if (!strata_grouped_) group_by_stratum();  // once per tile, when a triangle first needs it
+        strata_grouped_ = true;
+        const std::size_t pixels = static_cast<std::size_t>(tw_) * static_cast<std::size_t>(y1_ - y0_ + 1);
+        typename K::ScreenBound bound = current.bound;
+        for (int s = 0; s < frame_.setup.strata.count(); ++s) {
+            const PixelRect& r = strata[s].rect;
+            const int x0 = std::max(r.x0, x0_), x1 = std::min(r.x1, x1_);
+            const int y0 = std::max(r.y0, y0_), y1 = std::min(r.y1, y1_);
+            if (x0 > x1 || y0 > y1) continue;
+            bound.lo = typename K::vec2(strata[s].box.x, strata[s].box.y);
+            bound.hi = typename K::vec2(strata[s].box.z, strata[s].box.w);
+            for (int py = y0; py <= y1; ++py) {
+                const std::size_t p = static_cast<std::size_t>(s) * pixels +
+                                      static_cast<std::size_t>(py - y0_) * static_cast<std::size_t>(tw_) +
+                                      static_cast<std::size_t>(x0 - x0_);
+                const std::uint32_t first = strata_start_[p];
+                const std::uint32_t last = strata_start_[p + static_cast<std::size_t>(x1 - x0) + 1];
+                test_strata_run(current, bound, first, last - first);
+            }
+        }
+    }
+
+    // Samples first .. first + count - 1 of strata_lanes_: the screen test
+    // against the stratum's `bound` where it has a hull, the fast test on
+    // those that passed, covers on what it kept.
+    void test_strata_run(const Current& current, const typename K::ScreenBound& bound, std::size_t first,
+                         std::size_t count) {
+        visited += count;
+        for (std::size_t done = 0; done < count; done += 32) {
+            const std::size_t at = first + done;
+            const int n = static_cast<int>(std::min<std::size_t>(32, count - done));
+            // The box alone (bbox): its pixels were chosen by it, and the few
+            // samples it would cull per pixel cost more to test than the fast
+            // test spends on them. A hull culls more: tested per sample.
+            const std::uint32_t passed = bound.hull_count == 0 ? (n >= 32 ? ~0u : (1u << n) - 1u)
+                                                               : samples_passing_screen<Real>(bound, true, strata_lanes_, at, n);
+            if (passed == 0) continue;
+            tested += bit_count(passed);
+            const std::uint32_t kept =
+                may_cover32(*current.fast, strata_lanes_.fsx() + at, strata_lanes_.fsy() + at,
+                            strata_lanes_.fu() + at, strata_lanes_.fv() + at, strata_lanes_.ft() + at, passed);
+            for (std::uint32_t maybe = passed & kept; maybe != 0; maybe &= maybe - 1)
+                test_exactly(current, strata_slot_[at + static_cast<std::size_t>(__builtin_ctz(maybe))]);
+        }
     }
 
     // Tests a footprint's samples that may pass `sb`.
@@ -730,6 +875,13 @@ private:
     AxisCache columns_, rows_;  // the current triangle's axis bounds (share_axes)
     std::vector<float> shutter_time_;  // each sample's own time (samples_ hold the window's local time)
     std::vector<char> in_window_;      // whether the current motion-segment window holds the sample
+    std::vector<kernelf::PixelSample> pixel_samples_;  // load_samples' scratch: one pixel's samples
+    SampleLanes strata_lanes_;                 // samples_ grouped by stratum (group_by_stratum)
+    std::vector<std::uint32_t> strata_slot_;   // slot of each strata_lanes_ sample
+    std::vector<std::uint8_t> stratum_;        // stratum of each slot
+    std::vector<std::uint32_t> strata_start_;  // first strata_lanes_ sample of each (stratum, pixel)
+    std::vector<std::uint32_t> strata_next_;   // group_by_stratum's scratch
+    bool strata_grouped_ = false;              // strata_lanes_ hold this tile's samples
     std::array<std::size_t, 4> pending_{};  // samples waiting for covers4 (double only)
     std::size_t pending_count_ = 0;
     int window_segment_ = 0, window_segments_ = 1;  // the window samples_ are loaded for
@@ -803,7 +955,9 @@ RenderResult render_cpu_in(const Scene& scene, const RenderSettings& settings, c
     Clock::time_point phase = Clock::now();
     const SurfaceShader shader(scene, model);
     FrameSetup<Real> setup;
-    set_up_triangles(scene, model, cull.kernel_method, threads, setup);
+    // Strata only where no per-footprint bound culls lens and time (bbox, hull).
+    const SampleStrata strata = cull_bounds ? SampleStrata{} : SampleStrata{options.time_strata, options.lens_strata};
+    set_up_triangles(scene, model, cull.kernel_method, threads, strata, setup);
     if (setup.invalid > 0) {
         result.warnings.push_back("cpu: skipped " + std::to_string(setup.invalid) +
                                   " triangles whose clip coordinates overflow");
@@ -869,6 +1023,11 @@ RenderResult render_cpu(const Scene& scene, const RenderSettings& settings, cons
     require_valid_scene(scene);
     if (options.footprint < 1) throw std::invalid_argument("cpu: footprint must be >= 1 pixel");
     if (options.block < 0) throw std::invalid_argument("cpu: block must be >= 0 pixels");
+    auto power_of_two = [](int n, int most) { return n >= 1 && n <= most && (n & (n - 1)) == 0; };
+    if (!power_of_two(options.time_strata, 16) || !power_of_two(options.lens_strata, 4))
+        throw std::invalid_argument("cpu: time strata must be 1, 2, 4, 8 or 16 and lens strata 1, 2 or 4 (got " +
+                                    std::to_string(options.time_strata) + " and " +
+                                    std::to_string(options.lens_strata) + ")");
     if (options.sums != nullptr) validate_pass(settings, *options.sums, options.pass_samples);
     switch (options.precision) {
     case KernelPrecision::float32:

@@ -89,6 +89,15 @@ struct CpuOptions {
     // docs/benchmarks.md ("edges' CPU time"): about 18 instructions saved per
     // visited sample against the planes' setup.
     int edge_min_samples = 512;
+    // Strata of shutter and lens for the methods without per-footprint
+    // bounds (bbox, hull): each work tile keeps its samples grouped by
+    // stratum (time_strata equal slices of the shutter by lens_strata equal
+    // parts of u and of v), and a moving or defocused triangle's samples of a
+    // stratum are tested only in the pixels of that stratum's screen box
+    // (kernel stratum_screen_box). Powers of two (the strata's ends are
+    // then exact); 1 and 1: off.
+    int time_strata = 4;
+    int lens_strata = 1;
 };
 
 // Renders with settings.spp samples per pixel, sample j of pixel (px, py)
