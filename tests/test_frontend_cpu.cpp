@@ -3,6 +3,7 @@
 // agreement with the Embree reference on every built-in scene.
 #include "frontend_test_helpers.hpp"
 #include "render/cpu/cpu_backend.hpp"
+#include "render/cpu/sample_strata.hpp"
 #include "render/embree/embree_backend.hpp"
 #include "render/common/image.hpp"
 #include "scene/builtin_scenes.hpp"
@@ -10,6 +11,8 @@
 #include <doctest/doctest.h>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -155,6 +158,35 @@ TEST_CASE("strata of shutter and lens (bbox, hull) change nothing in the image, 
     const RenderResult result = render_cpu(near, settings, on);
     CHECK(result.stats.samples_hit == reference.stats.samples_hit);
     CHECK(same_pixels(result.image, reference.image));
+}
+
+TEST_CASE("SampleStrata: every sample lies in the ranges of its stratum") {
+    std::vector<float> values = {-1.0f, -0.5f, 0.0f, -0.0f, 0.25f, 0.5f, 0.75f, 1.0f, 1e-30f, -1e-30f, 1e-45f, -1e-45f};
+    for (float boundary : {-0.75f, -0.5f, -0.25f, 0.0f, 0.125f, 0.25f, 0.5f, 0.75f, 0.9375f}) {
+        values.push_back(std::nextafter(boundary, -2.0f));
+        values.push_back(std::nextafter(boundary, 2.0f));
+    }
+    for (int i = 0; i <= 1000; ++i) values.push_back(-1.0f + 2.0f * float(i) / 1000.0f);
+    int checked = 0;
+    for (int time : {1, 2, 4, 8, 16}) {
+        for (int lens : {1, 2, 4}) {
+            const SampleStrata strata{time, lens};
+            for (float a : values) {
+                const float t = std::min(std::abs(a), 1.0f), u = a, v = -a;
+                const int s = strata.of(u, v, t);
+                REQUIRE(s >= 0);
+                REQUIRE(s < strata.count());
+                glm::dvec2 tr, ur, vr;
+                strata.ranges(s, tr, ur, vr);
+                INFO("strata ", time, "x", lens, " sample ", u, " ", v, " ", t, " stratum ", s);
+                CHECK((t >= tr.x && t <= tr.y));
+                CHECK((u >= ur.x && u <= ur.y));
+                CHECK((v >= vr.x && v <= vr.y));
+                ++checked;
+            }
+        }
+    }
+    CHECK(checked > 10000);
 }
 
 TEST_CASE("strata that are not powers of two are refused") {

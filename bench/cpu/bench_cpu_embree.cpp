@@ -16,6 +16,7 @@
 //
 //   bench_cpu_embree [--scenes hand,car,dragonfly,forest] [--size 1024x768[,WxH...]] [--spp 16[,N...]]
 //                    [--blur 1,2] [--repeat 3] [--threads 0[,N...]] [--culls bbox,hull,dualspace,twostage]
+//   (a cull may carry its CPU time strata: bbox:1 is bbox without its shutter strata)
 //                    [--csv FILE]
 #include "render/cpu/cpu_backend.hpp"
 #include "render/embree/embree_backend.hpp"
@@ -98,11 +99,15 @@ void run_scene(const std::string& name, float blur, const RenderSettings& base, 
     std::vector<Contender> all;
     all.push_back({"embree", [](const Scene& s, const RenderSettings& r) { return render_embree(s, r); }, {}, {}, {}});
     for (const std::string& cull : culls) {
-        const CullMethod method = parse_cull_method(cull);
+        // "bbox:1": the cull with CpuOptions::time_strata 1 (without its shutter strata).
+        const std::size_t colon = cull.find(':');
+        const CullMethod method = parse_cull_method(cull.substr(0, colon));
+        CpuOptions options;
+        if (colon != std::string::npos) options.time_strata = std::atoi(cull.c_str() + colon + 1);
         all.push_back({"cpu " + cull,
-                       [method](const Scene& s, RenderSettings r) {
+                       [method, options](const Scene& s, RenderSettings r) {
                            r.cull = method;
-                           return render_cpu(s, r);
+                           return render_cpu(s, r, options);
                        },
                        {}, {}, {}});
     }

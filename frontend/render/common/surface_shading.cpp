@@ -1,6 +1,7 @@
 #include "render/common/surface_shading.hpp"
 
 #include "render/common/moving_triangle.hpp"
+#include "render/common/pixel_samples.hpp"
 #include "render/common/shading.hpp"
 #include "render/common/surface_shared.h"
 #include "render/common/texture_sampling.hpp"
@@ -127,14 +128,16 @@ Image resolve_sample_ids(const SurfaceShader& shader, const CameraModel& model, 
                          const std::vector<std::uint32_t>& ids) {
     Image image(settings.width, settings.height);
     const auto spp = static_cast<std::uint32_t>(settings.spp);
+    std::vector<kernelf::PixelSample> samples(spp);
     for (int py = 0; py < settings.height; ++py) {
         for (int px = 0; px < settings.width; ++px) {
             const patternsf::SamplerSetup pattern = patternsf::sampler_setup(
                 settings.sampler, static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py), spp, settings.seed);
             const std::size_t base = image.index(px, py) * spp;
             glm::vec3 sum(0.0f);
+            pixel_samples(pattern, 0, spp, samples.data());
             for (std::uint32_t j = 0; j < spp; ++j) {
-                const kernelf::PixelSample s = patternsf::sampler_sample(pattern, j);
+                const kernelf::PixelSample& s = samples[j];
                 sum += shader.sample_colour(ids[base + j], model.sample_ndc(px, py, s.offset), s.lens, s.time);
             }
             image.at(px, py) = resolve_box(sum, settings.spp);

@@ -30,11 +30,15 @@ struct SampleStrata {
     }
 
 private:
-    // Which of `parts` equal parts of [lo, lo + size] holds x (by comparison
-    // with the parts' exact ends, so rounding cannot misplace it).
+    // Which of `parts` equal parts of [lo, lo + size] holds x: a first guess
+    // by scaling, then settled by comparison with the parts' ends (exact in
+    // double for parts a power of two), so rounding cannot misplace it.
     static int part(float x, double lo, double size, int parts) {
-        int k = 0;
-        while (k + 1 < parts && double(x) >= lo + size * double(k + 1) / double(parts)) ++k;
+        const double step = size / double(parts);
+        const double scaled = (double(x) - lo) / step;
+        int k = scaled >= double(parts) ? parts - 1 : (scaled > 0.0 ? static_cast<int>(scaled) : 0);
+        while (k > 0 && double(x) < lo + step * double(k)) --k;
+        while (k + 1 < parts && double(x) >= lo + step * double(k + 1)) ++k;
         return k;
     }
     template <class Real>
