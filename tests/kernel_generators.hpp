@@ -239,6 +239,16 @@ inline Config make_config(Rng& rng, Family family) {
     return cfg;
 }
 
+// A value in [lo, hi]: lo or hi, each with chance 1 / choices, else uniform
+// between (the property tests' samples on the ends of a bound's ranges).
+inline double value_or_end(Rng& rng, double lo, double hi, int choices) {
+    switch (rng.below(choices)) {
+        case 0: return lo;
+        case 1: return hi;
+        default: return rng.uniform(lo, hi);
+    }
+}
+
 // A sample in the footprint; sometimes exactly on its edges or at the ends of
 // the shutter and lens ranges.
 inline Sample5 make_sample(Rng& rng, const Config& cfg) {

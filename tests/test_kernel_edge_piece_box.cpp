@@ -19,14 +19,8 @@ struct Tally {
     std::uint64_t pieces = 0, culled_pieces = 0, samples = 0, passed = 0, covered = 0;
 };
 
-// A value in [lo, hi]: an end or uniform between.
-double in_range(Rng& rng, double lo, double hi) {
-    switch (rng.below(4)) {
-        case 0: return lo;
-        case 1: return hi;
-        default: return rng.uniform(lo, hi);
-    }
-}
+// A value in [lo, hi]: an end (chance 1/4 each) or uniform between.
+double in_range(Rng& rng, double lo, double hi) { return value_or_end(rng, lo, hi, 4); }
 
 template <class Real>
 void check_config(const Config& cfg, Rng& rng, Tally& tally) {

@@ -22,14 +22,8 @@ struct Tally {
     std::uint64_t strata = 0, narrowed = 0, samples = 0, covered = 0, outside = 0;
 };
 
-// A value in [lo, hi]: often an end.
-double in_range(Rng& rng, double lo, double hi) {
-    switch (rng.below(6)) {
-        case 0: return lo;
-        case 1: return hi;
-        default: return rng.uniform(lo, hi);
-    }
-}
+// A value in [lo, hi]: an end (chance 1/6 each) or uniform between.
+double in_range(Rng& rng, double lo, double hi) { return value_or_end(rng, lo, hi, 6); }
 
 // A sub-range of [lo, hi]: one of `parts` equal parts (parts a power of
 // two, so the ends are exact), or random ends.
