@@ -548,9 +548,10 @@ private:
             columns_.reset(rx0, rx1, frame_.footprint);
             rows_.reset(ry0, ry1, frame_.footprint);
         }
-        // bbox, hull: a moving or defocused triangle stratum by stratum
-        // (the samples keep their shutter times: one motion segment).
-        if (frame_.setup.stratum_rect_offset[index] != FrameSetup<Real>::none_offset && window_segments_ == 1) {
+        // bbox, hull: a moving or defocused triangle stratum by stratum (the
+        // setup gives strata only to one-segment pieces, whose samples keep
+        // their shutter times).
+        if (frame_.setup.stratum_rect_offset[index] != FrameSetup<Real>::none_offset) {
             rasterize_by_strata(current, &frame_.setup.stratum_rects[frame_.setup.stratum_rect_offset[index]]);
             flush_exact(current);
             return;
@@ -611,52 +612,34 @@ private:
 
     // A moving or defocused triangle under bbox or hull, stratum by stratum:
     // each stratum's samples only in the pixels of its screen box (the
-    // setup's stratum_rects), through the hull's screen test, the fast test
-    // and covers.
+    // setup's stratum_rects), through test_run with the stratum's box as the
+    // screen bound. Its per-sample test runs only with a hull (hull): for
+    // bbox the box chose the pixels, and the few samples per pixel it would
+    // cull cost more to test than the fast test spends on them.
     void rasterize_by_strata(const Current& current, const StratumBox<K>* strata) {
         if (!strata_grouped_) group_by_stratum();  // once per tile, when a triangle first needs it
         strata_grouped_ = true;
+        // No lens or time bounds here (bbox, hull): test_run's chain is the screen test alone.
+        static const typename K::SampleBounds no_bounds = K::no_sample_bounds();
         const std::size_t pixels = static_cast<std::size_t>(tw_) * static_cast<std::size_t>(y1_ - y0_ + 1);
-        typename K::ScreenBound bound = current.bound;
+        const auto slot_of = [this](std::size_t q) { return static_cast<std::size_t>(strata_slot_[q]); };
+        Current stratum = current;
+        stratum.check_screen = current.bound.hull_count > 0;
         for (int s = 0; s < frame_.setup.strata.count(); ++s) {
             const PixelRect& r = strata[s].rect;
             const int x0 = std::max(r.x0, x0_), x1 = std::min(r.x1, x1_);
             const int y0 = std::max(r.y0, y0_), y1 = std::min(r.y1, y1_);
             if (x0 > x1 || y0 > y1) continue;
-            bound.lo = typename K::vec2(strata[s].box.x, strata[s].box.y);
-            bound.hi = typename K::vec2(strata[s].box.z, strata[s].box.w);
+            stratum.bound.lo = typename K::vec2(strata[s].box.x, strata[s].box.y);
+            stratum.bound.hi = typename K::vec2(strata[s].box.z, strata[s].box.w);
             for (int py = y0; py <= y1; ++py) {
                 const std::size_t p = static_cast<std::size_t>(s) * pixels +
                                       static_cast<std::size_t>(py - y0_) * static_cast<std::size_t>(tw_) +
                                       static_cast<std::size_t>(x0 - x0_);
                 const std::uint32_t first = strata_start_[p];
                 const std::uint32_t last = strata_start_[p + static_cast<std::size_t>(x1 - x0) + 1];
-                test_strata_run(current, bound, first, last - first);
+                test_run(stratum, no_bounds, strata_lanes_, first, last - first, slot_of);
             }
-        }
-    }
-
-    // Samples first .. first + count - 1 of strata_lanes_: the screen test
-    // against the stratum's `bound` where it has a hull, the fast test on
-    // those that passed, covers on what it kept.
-    void test_strata_run(const Current& current, const typename K::ScreenBound& bound, std::size_t first,
-                         std::size_t count) {
-        visited += count;
-        for (std::size_t done = 0; done < count; done += 32) {
-            const std::size_t at = first + done;
-            const int n = static_cast<int>(std::min<std::size_t>(32, count - done));
-            // The box alone (bbox): its pixels were chosen by it, and the few
-            // samples it would cull per pixel cost more to test than the fast
-            // test spends on them. A hull culls more: tested per sample.
-            const std::uint32_t passed = bound.hull_count == 0 ? (n >= 32 ? ~0u : (1u << n) - 1u)
-                                                               : samples_passing_screen<Real>(bound, true, strata_lanes_, at, n);
-            if (passed == 0) continue;
-            tested += bit_count(passed);
-            const std::uint32_t kept =
-                may_cover32(*current.fast, strata_lanes_.fsx() + at, strata_lanes_.fsy() + at,
-                            strata_lanes_.fu() + at, strata_lanes_.fv() + at, strata_lanes_.ft() + at, passed);
-            for (std::uint32_t maybe = passed & kept; maybe != 0; maybe &= maybe - 1)
-                test_exactly(current, strata_slot_[at + static_cast<std::size_t>(__builtin_ctz(maybe))]);
         }
     }
 
