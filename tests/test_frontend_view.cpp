@@ -1,12 +1,15 @@
-// `blurcull view` as CI runs it: under xvfb-run, a few frames with --frames
-// and the window's contents with --screenshot; and its one-line refusal when
-// there is no display. BLURCULL_CLI is the path of the built executable.
-// Without xvfb-run the window tests are skipped, unless CI=true (then they fail).
+// `blurcull view` as CI runs it: on a virtual X server (Xvfb), a few frames
+// with --frames and the window's contents with --screenshot; and its one-line
+// refusal when there is no display. BLURCULL_CLI is the path of the built
+// executable. Without Xvfb the window tests are skipped, unless CI=true (then
+// they fail).
 #include "frontend_test_helpers.hpp"
 #include "render/common/image.hpp"
 
 #include <doctest/doctest.h>
 
+#include <fcntl.h>
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -70,12 +73,66 @@ Run run_cli(const std::string& arguments, const std::string& prefix = "") {
     return run;
 }
 
+// One Xvfb for the whole test process, started on first use and stopped at
+// exit; each window test runs the command with its DISPLAY. Not xvfb-run per
+// command: its clean-up races the SIGUSR1 that Xvfb sends its parent on every
+// server reset (a client leaving), and under load it then exits 5 with a line
+// of its own after the command's (seen twice in CI). Started without
+// SIGUSR1 ignored, Xvfb sends none; -displayfd picks a free display and says
+// which once it accepts connections.
+class VirtualDisplay {
+public:
+    VirtualDisplay() {
+        int ready[2];
+        if (pipe(ready) != 0) return;
+        pid_ = fork();
+        if (pid_ == 0) {
+            close(ready[0]);
+            const int null_fd = open("/dev/null", O_RDWR);
+            dup2(null_fd, STDIN_FILENO);
+            dup2(null_fd, STDOUT_FILENO);
+            dup2(null_fd, STDERR_FILENO);
+            const std::string fd = std::to_string(ready[1]);
+            execlp("Xvfb", "Xvfb", "-displayfd", fd.c_str(), "-nolisten", "tcp", "-screen", "0", "1280x1024x24",
+                   static_cast<char*>(nullptr));
+            _exit(127);
+        }
+        close(ready[1]);
+        std::string number;
+        char c = 0;
+        while (pid_ > 0 && read(ready[0], &c, 1) == 1 && c != '\n') number += c;
+        close(ready[0]);
+        if (!number.empty()) display_ = ":" + number;
+    }
+    VirtualDisplay(const VirtualDisplay&) = delete;
+    VirtualDisplay& operator=(const VirtualDisplay&) = delete;
+    ~VirtualDisplay() {
+        if (pid_ <= 0) return;
+        kill(pid_, SIGTERM);
+        waitpid(pid_, nullptr, 0);
+    }
+    // ":N", or empty when Xvfb is missing or did not start.
+    const std::string& display() const { return display_; }
+
+private:
+    pid_t pid_ = -1;
+    std::string display_;
+};
+
+const VirtualDisplay& virtual_display() {
+    static const VirtualDisplay display;
+    return display;
+}
+
 bool xvfb_or_skip() {
-    if (std::system("command -v xvfb-run >/dev/null 2>&1") == 0) return true;
-    if (is_ci()) FAIL("xvfb-run is missing in CI (install xvfb and xauth: scripts/install-deps.sh)");
-    MESSAGE("SKIPPED: xvfb-run is missing (install xvfb and xauth); CI=true makes this a failure");
+    if (!virtual_display().display().empty()) return true;
+    if (is_ci()) FAIL("Xvfb did not start in CI (install xvfb: scripts/install-deps.sh)");
+    MESSAGE("SKIPPED: Xvfb is missing or did not start (install xvfb); CI=true makes this a failure");
     return false;
 }
+
+// The prefix that runs a command on the virtual display (xvfb_or_skip first).
+std::string on_display() { return "env -u WAYLAND_DISPLAY DISPLAY=" + virtual_display().display(); }
 
 std::size_t count_lines(const std::string& text) { return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')); }
 
@@ -128,7 +185,7 @@ TEST_CASE("blurcull view renders frames under Xvfb and writes the window's conte
     Run run = run_cli("view --backend gl --scene '" + data_dir +
                           "/triangle_animated.gltf' --size 160x120 --frames 3 --screenshot '" +
                           shot.string() + "'",
-                      "xvfb-run -a");
+                      on_display());
     INFO("stdout: " << run.out << "\nstderr: " << run.err);
     REQUIRE(run.status == 0);
     // One line per frame, the cull method cycling so both the per-triangle and
@@ -173,7 +230,7 @@ TEST_CASE("blurcull view shows the GL backend's image: one frame matches blurcul
     if (!xvfb_or_skip()) return;
     const fs::path shot = scratch() / "view_one.png";
     const fs::path rendered = scratch() / "render_gl.png";
-    Run view = run_cli(view_args + " --backend gl --frames 1 --screenshot '" + shot.string() + "'", "xvfb-run -a");
+    Run view = run_cli(view_args + " --backend gl --frames 1 --screenshot '" + shot.string() + "'", on_display());
     INFO("view stderr: " << view.err);
     REQUIRE(view.status == 0);
     // Under the sanitizer build llvmpipe leaves 112 bytes from its unloaded
@@ -249,7 +306,7 @@ TEST_CASE("blurcull view --backend cpu refines progressively to the image of blu
     // method, so the accumulation restarts from 1 spp.
     Run view = run_cli("view --backend cpu --scene hand --size 160x120 --spp 8 --cull bbox --frames 2 --screenshot '" +
                            shot.string() + "'",
-                       "xvfb-run -a");
+                       on_display());
     INFO("view stdout: " << view.out << "\nstderr: " << view.err);
     REQUIRE(view.status == 0);
     const std::vector<PassLine> lines = pass_lines(view.out);
@@ -295,7 +352,7 @@ TEST_CASE("blurcull view --backend cpu, one view converged: the window equals bl
     fs::remove(shot);
     Run view = run_cli("view --backend cpu --scene hand --size 160x120 --spp 16 --cull clip2 -q --frames 1 "
                        "--screenshot '" + shot.string() + "'",
-                       "xvfb-run -a");
+                       on_display());
     INFO("view stderr: " << view.err);
     REQUIRE(view.status == 0);
     Run render = run_cli("render --backend cpu --scene hand --size 160x120 --spp 16 --cull clip2 -q -o '" +
@@ -310,7 +367,7 @@ TEST_CASE("blurcull view --backend cpu, one view converged: the window equals bl
 
 TEST_CASE("blurcull view --backend auto draws with the cpu backend when the window's OpenGL is software") {
     if (!xvfb_or_skip()) return;
-    Run view = run_cli("view --scene hand --size 64x48 --spp 2 --frames 1", "xvfb-run -a");
+    Run view = run_cli("view --scene hand --size 64x48 --spp 2 --frames 1", on_display());
     INFO("view stdout: " << view.out << "\nstderr: " << view.err);
     REQUIRE(view.status == 0);
     // The start-up line names what draws: "on cpu backend; GL llvmpipe, software" or the GL renderer.
@@ -372,7 +429,7 @@ TEST_CASE("blurcull view --method dof-secondary shows the image of blurcull rend
     const fs::path direct = scratch() / "render_mirror_sphere_stochastic.png";
     fs::remove(shot);
     Run view = run_cli("view --method dof-secondary " + settings + " --frames 1 --screenshot '" + shot.string() + "'",
-                       "xvfb-run -a");
+                       on_display());
     INFO("view stderr: " << view.err);
     REQUIRE(view.status == 0);
     Run render = run_cli("render --method dof-secondary --backend gl " + settings + " -o '" + rendered.string() + "'",
@@ -407,7 +464,7 @@ TEST_CASE("blurcull view --method dof-secondary takes bad input as render does")
         const fs::path rendered = scratch() / "render_no_mirror.png";
         Run view = run_cli("view --method dof-secondary " + settings + " --frames 1 --screenshot '" + shot.string() +
                                "'",
-                           "xvfb-run -a");
+                           on_display());
         INFO("view stderr: " << view.err);
         REQUIRE(view.status == 0);
         Run render = run_cli("render --backend gl " + settings + " -o '" + rendered.string() + "'", no_leak_check);
@@ -424,7 +481,7 @@ TEST_CASE("blurcull view --method dof-secondary takes bad input as render does")
         if (!xvfb_or_skip()) return;
         const std::string settings = "--scene '" + data_dir + "/triangle_animated.gltf' --size 160x120 --spp 4 "
                                      "--motion-segments 2 -q";
-        Run view = run_cli("view --method dof-secondary " + settings + " --frames 1", "xvfb-run -a");
+        Run view = run_cli("view --method dof-secondary " + settings + " --frames 1", on_display());
         Run render = run_cli("render --method dof-secondary --backend cpu " + settings + " -o refused.png");
         CHECK(view.status == 1);
         CHECK(render.status == 1);
@@ -433,7 +490,7 @@ TEST_CASE("blurcull view --method dof-secondary takes bad input as render does")
         CHECK(first_line(view.err) == first_line(render.err));
         // And the stochastic method on gl refuses it as render --backend gl
         // does (the cpu backend's view draws motion segments).
-        Run view_stochastic = run_cli("view --backend gl " + settings + " --frames 1", "xvfb-run -a");
+        Run view_stochastic = run_cli("view --backend gl " + settings + " --frames 1", on_display());
         Run render_gl = run_cli("render --backend gl " + settings + " -o refused.png", no_leak_check);
         CHECK(view_stochastic.status == 1);
         CHECK(count_lines(view_stochastic.err) == 1);

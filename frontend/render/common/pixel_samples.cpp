@@ -1,5 +1,7 @@
 #include "render/common/pixel_samples.hpp"
 
+#include "render/common/cpu_features.hpp"
+
 #include <algorithm>
 #include <array>
 
@@ -33,10 +35,6 @@ struct DirectionNumbers {
 };
 
 #if BLURCULL_SAMPLES_X86
-bool cpu_has_avx2() {
-    __builtin_cpu_init();
-    return __builtin_cpu_supports("avx2");
-}
 const bool has_avx2 = cpu_has_avx2();
 
 // The kernel's integer functions on eight lanes, the same operations (integer

@@ -1,5 +1,7 @@
 #include "render/cpu/coverage_test.hpp"
 
+#include "render/common/cpu_features.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -256,15 +258,9 @@ __attribute__((target("avx2,fma"))) bool may_cover_fma(const CoverageSetup& s, f
     return may_cover_lane<V>(s, sx, sy, u, v, t);
 }
 
-bool cpu_has_avx2_fma() {
-    __builtin_cpu_init();
-    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-}
-#else
-bool cpu_has_avx2_fma() { return false; }
 #endif
 
-const bool has_avx2 = cpu_has_avx2_fma();
+const bool has_avx2 = cpu_has_avx2() && cpu_has_fma();
 
 bool keep_one(const CoverageSetup&, float, float, float, float, float) { return true; }
 std::uint32_t keep_all(const CoverageSetup&, const float*, const float*, const float*, const float*, const float*,

@@ -1,5 +1,7 @@
 #include "render/cpu/exact_test.hpp"
 
+#include "render/common/cpu_features.hpp"
+
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
 #define BLURCULL_EXACT_X86 1
@@ -22,10 +24,6 @@ std::uint32_t covers4_scalar(const kerneld::MovingTriangle& tri, const double* s
 namespace {
 
 #if BLURCULL_EXACT_X86
-bool cpu_has_avx() {
-    __builtin_cpu_init();
-    return __builtin_cpu_supports("avx");
-}
 const bool has_avx = cpu_has_avx();
 
 // A sheared vertex on four lanes, as vertex_at computes it.

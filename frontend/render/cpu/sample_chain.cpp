@@ -1,5 +1,7 @@
 #include "render/cpu/sample_chain.hpp"
 
+#include "render/common/cpu_features.hpp"
+
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
 
@@ -58,10 +60,6 @@ std::uint32_t samples_passing_scalar(const typename kernel<Real>::ScreenBound& s
 namespace {
 
 #if BLURCULL_CHAIN_X86
-bool cpu_has_avx() {
-    __builtin_cpu_init();
-    return __builtin_cpu_supports("avx");
-}
 const bool has_avx = cpu_has_avx();
 
 // One time line of kernel::sample_passes over four lanes: rejected where
