@@ -38,15 +38,26 @@ Scene near_plane_scene() {
     return scene;
 }
 
+// The options whose samples_hit counts every covered sample: occlusion
+// culling off (it skips samples already hidden, so its count depends on the
+// path a triangle takes). The tests that compare samples_hit across culls,
+// footprints and strata, a check of every covered sample being found, use
+// them; occlusion's own test compares its images with these.
+CpuOptions counting_every_hit() {
+    CpuOptions options;
+    options.occlusion = false;
+    return options;
+}
+
 }  // namespace
 
 TEST_CASE("every culling method renders the same image, on every built-in scene, in double and in float") {
     const int width = 64, height = 48;
-    CpuOptions single;
+    CpuOptions single = counting_every_hit();
     single.precision = KernelPrecision::float32;
     for (const std::string& name : builtin_scene_names()) {
         for (float blur : {1.0f, 2.0f}) {
-            for (const CpuOptions& options : {CpuOptions{}, single}) {
+            for (const CpuOptions& options : {counting_every_hit(), single}) {
                 Scene scene = small_scene(name, width, height, blur);
                 RenderSettings settings = quiet_settings(width, height, 4);
                 settings.cull = CullMethod::bbox;
@@ -93,7 +104,7 @@ TEST_CASE("culling footprints larger than a pixel change nothing in the image") 
     Scene scene = small_scene("forest", 64, 48, 2.0f);
     RenderSettings settings = quiet_settings(64, 48, 8);
     settings.cull = CullMethod::bbox;
-    RenderResult reference = render_cpu(scene, settings);
+    RenderResult reference = render_cpu(scene, settings, counting_every_hit());
     settings.cull = CullMethod::two_stage;
     for (int footprint : {2, 3, 8}) {
         CpuOptions options;
@@ -115,7 +126,7 @@ TEST_CASE("strata of shutter and lens (bbox, hull) change nothing in the image, 
                     Scene scene = small_scene(name, width, height, blur);
                     RenderSettings settings = quiet_settings(width, height, 8);
                     settings.cull = method;
-                    CpuOptions off;
+                    CpuOptions off = counting_every_hit();
                     off.precision = precision;
                     off.time_strata = 1;
                     off.lens_strata = 1;
@@ -149,14 +160,67 @@ TEST_CASE("strata of shutter and lens (bbox, hull) change nothing in the image, 
     Scene near = near_plane_scene();
     RenderSettings settings = quiet_settings(48, 36, 8);
     settings.cull = CullMethod::bbox;
-    CpuOptions off;
+    CpuOptions off = counting_every_hit();
     off.time_strata = 1;
     const RenderResult reference = render_cpu(near, settings, off);
-    CpuOptions on;
+    CpuOptions on = counting_every_hit();
     on.time_strata = 8;
     on.lens_strata = 2;
     const RenderResult result = render_cpu(near, settings, on);
     CHECK(result.stats.samples_hit == reference.stats.samples_hit);
+    CHECK(same_pixels(result.image, reference.image));
+}
+
+TEST_CASE("occlusion culling changes no sample's winner, and spares exact tests where triangles hide others") {
+    const int width = 64, height = 48;
+    std::uint64_t tested_off = 0, tested_on = 0, occluded = 0;
+    for (const std::string& name : builtin_scene_names()) {
+        for (float blur : {1.0f, 2.0f}) {
+            for (KernelPrecision precision : {KernelPrecision::float64, KernelPrecision::float32}) {
+                for (CullMethod method : {CullMethod::bbox, CullMethod::hull}) {
+                    for (const auto& [time, lens] : {std::pair{4, 1}, {16, 1}, {4, 2}}) {
+                        Scene scene = small_scene(name, width, height, blur);
+                        RenderSettings settings = quiet_settings(width, height, 8);
+                        settings.cull = method;
+                        CpuOptions off = counting_every_hit();
+                        off.precision = precision;
+                        off.time_strata = time;
+                        off.lens_strata = lens;
+                        CpuOptions on = off;
+                        on.occlusion = true;
+                        std::vector<std::uint32_t> ids_off, ids_on;
+                        const RenderResult reference = render_cpu(scene, settings, off, &ids_off);
+                        const RenderResult result = render_cpu(scene, settings, on, &ids_on);
+                        INFO(name, " x", blur, " ", to_string(method), " ", to_string(precision), " strata ", time,
+                             "x", lens, "x", lens);
+                        // The same triangle wins every sample: the same image, bit for bit.
+                        CHECK(ids_on == ids_off);
+                        CHECK(same_pixels(result.image, reference.image));
+                        CHECK(result.stats.samples_tested <= reference.stats.samples_tested);
+                        CHECK(result.stats.samples_hit <= reference.stats.samples_hit);
+                        tested_off += reference.stats.samples_tested;
+                        tested_on += result.stats.samples_tested;
+                        for (const auto& [counter, value] : result.stats.counters)
+                            if (counter == "samples_occluded") occluded += static_cast<std::uint64_t>(value);
+                    }
+                }
+            }
+        }
+    }
+    std::printf("occlusion: %llu exact tests with it, %llu without; %llu samples skipped as occluded\n",
+                static_cast<unsigned long long>(tested_on), static_cast<unsigned long long>(tested_off),
+                static_cast<unsigned long long>(occluded));
+    // Not vacuous: the forest's trees hide one another.
+    CHECK(tested_on < tested_off * 3 / 4);
+    CHECK(occluded > 0);
+    // Triangles that cross the near plane (no depth floor) and the ones behind them.
+    Scene near = near_plane_scene();
+    RenderSettings settings = quiet_settings(48, 36, 8);
+    settings.cull = CullMethod::bbox;
+    std::vector<std::uint32_t> ids_off, ids_on;
+    const RenderResult reference = render_cpu(near, settings, counting_every_hit(), &ids_off);
+    const RenderResult result = render_cpu(near, settings, CpuOptions{}, &ids_on);
+    CHECK(ids_on == ids_off);
     CHECK(same_pixels(result.image, reference.image));
 }
 
@@ -204,7 +268,7 @@ TEST_CASE("near-plane crossings: same image for every method") {
     Scene scene = near_plane_scene();
     RenderSettings settings = quiet_settings(80, 60, 8);
     settings.cull = CullMethod::bbox;
-    RenderResult reference = render_cpu(scene, settings);
+    RenderResult reference = render_cpu(scene, settings, counting_every_hit());
     CHECK(reference.stats.samples_hit > 1000);
     for (CullMethod method : {CullMethod::hull, CullMethod::dualspace, CullMethod::two_stage, CullMethod::edges,
                                   CullMethod::hyperplane}) {

@@ -240,6 +240,7 @@ void refuse_unhonoured_options(const RenderCommand& command, Backend backend) {
         {"--footprint", command.footprint_option, backend_bit(Backend::cpu)},
         {"--time-strata", command.time_strata_option, backend_bit(Backend::cpu)},
         {"--lens-strata", command.lens_strata_option, backend_bit(Backend::cpu)},
+        {"--occlusion", command.occlusion_option, backend_bit(Backend::cpu)},
         {"--precision", command.precision_option, backend_bit(Backend::cpu)},
         {"--gl-cell", command.gl_cell_option, backend_bit(Backend::gl)},
         {"--secondary", command.secondary_option, backend_bit(Backend::embree)},
@@ -322,6 +323,7 @@ RenderJob set_up(const RenderCommand& command) {
     job.cpu.footprint = command.footprint;
     job.cpu.time_strata = command.time_strata;
     job.cpu.lens_strata = command.lens_strata;
+    job.cpu.occlusion = command.occlusion == "on";
     job.cpu.precision = parse_kernel_precision(command.precision);
     job.gl.cell_pixels = command.gl_cell;
 #if BLURCULL_HAVE_EMBREE
@@ -583,6 +585,12 @@ void RenderCommand::add_options(CLI::App& app) {
                        "cpu, bbox and hull: parts of the lens along u and along v a defocused triangle's samples are "
                        "tested in, each in its own screen box (1, 2 or 4; 1: off)")
             ->check(CLI::IsMember({1, 2, 4}))
+            ->capture_default_str();
+    occlusion_option =
+        app.add_option("--occlusion", occlusion,
+                       "cpu, bbox and hull: skip a moving triangle's samples that nearer triangles already hold "
+                       "(on or off; the same image, fewer samples tested and counted in samples_hit)")
+            ->check(CLI::IsMember({"on", "off"}))
             ->capture_default_str();
     std::string precision_help = "cpu: the kernel's arithmetic";
     for (const KernelPrecisionInfo& info : kernel_precisions()) {

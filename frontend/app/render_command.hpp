@@ -35,6 +35,7 @@ struct RenderCommand : SceneFlags, SecondaryFlags {
     // cpu, bbox and hull: time slices and lens parts per axis (CpuOptions::time_strata, lens_strata).
     int time_strata = CpuOptions{}.time_strata;
     int lens_strata = CpuOptions{}.lens_strata;
+    std::string occlusion = CpuOptions{}.occlusion ? "on" : "off";  // cpu: CpuOptions::occlusion
     std::string precision = to_string(CpuOptions{}.precision);
     int gl_cell = GlOptions{}.cell_pixels;
     std::string secondary = "bounce";  // embree: bounce or none (EmbreeSecondary)
@@ -48,6 +49,7 @@ struct RenderCommand : SceneFlags, SecondaryFlags {
     CLI::Option* footprint_option = nullptr;
     CLI::Option* time_strata_option = nullptr;
     CLI::Option* lens_strata_option = nullptr;
+    CLI::Option* occlusion_option = nullptr;
     CLI::Option* precision_option = nullptr;
     CLI::Option* gl_cell_option = nullptr;
     CLI::Option* secondary_option = nullptr;

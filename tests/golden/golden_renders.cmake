@@ -28,6 +28,7 @@ set(spp 4)
 set(all hand,car,dragonfly,forest)
 set(cases
   "${all}|cpu|stochastic|bbox|-" "${all}|cpu|stochastic|hull|-" "${all}|cpu|stochastic|dualspace|-"
+  "${all}|cpu|stochastic|bbox|--occlusion=off" "${all}|cpu|stochastic|hull|--occlusion=off"
   "${all}|cpu|stochastic|clip2|-" "${all}|cpu|stochastic|clip2|--precision=float"
   "${all}|cpu|stochastic|dualspace|--footprint=1"
   "${all}|cpu|interleave|clip2|-" "${all}|cpu|interval|clip2|-" "${all}|cpu|accum|clip2|-"

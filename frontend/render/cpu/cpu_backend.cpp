@@ -78,6 +78,9 @@ template <class K>
 struct StratumBox {
     typename K::vec4 box;
     PixelRect rect;
+    // kernel depth_floor: the stratum's samples of a pixel whose
+    // stored depths are all below it are occluded (0: none can be skipped).
+    typename K::real depth_floor;
 };
 
 template <class K>
@@ -148,6 +151,9 @@ bool add_stratum_rects(const CameraModel& model, const typename kernel<Real>::Mo
                        std::vector<StratumBox<kernel<Real>>>& rects) {
     using K = blurcull::kernel<Real>;
     double area = 0.0;
+    // Every sample of the image has |NDC| <= 1; 2 leaves room for their rounding.
+    const Real scale = K::depth_floor_scale(tri, typename K::vec2(0, 1), typename K::vec2(-1, 1),
+                                            typename K::vec2(-1, 1), Real(2));
     for (int s = 0; s < strata.count(); ++s) {
         typename K::vec2 time, u, v;
         strata.ranges(s, time, u, v);
@@ -155,7 +161,7 @@ bool add_stratum_rects(const CameraModel& model, const typename kernel<Real>::Mo
         PixelRect q = box.x > box.z ? PixelRect{0, 0, -1, -1}
                                     : pixel_rect<K>(model, typename K::vec2(box.x, box.y), typename K::vec2(box.z, box.w));
         q = PixelRect{std::max(q.x0, r.x0), std::max(q.y0, r.y0), std::min(q.x1, r.x1), std::min(q.y1, r.y1)};
-        rects.push_back(StratumBox<K>{box, q});
+        rects.push_back(StratumBox<K>{box, q, K::depth_floor(tri, time, scale)});
         if (q.x0 <= q.x1 && q.y0 <= q.y1) area += double(q.x1 - q.x0 + 1) * double(q.y1 - q.y0 + 1);
     }
     const double whole_area = double(r.x1 - r.x0 + 1) * double(r.y1 - r.y0 + 1);
@@ -230,18 +236,46 @@ void set_up_triangles(const Scene& scene, const CameraModel& model, int method, 
     }
 }
 
-// Bins each triangle into the work tiles its pixel rectangle meets.
+// The nearest view depth a triangle reaches over the shutter: the smallest w
+// of its vertices at the shutter's ends (w is linear in time).
+template <class Real>
+Real nearest_vertex_depth(const typename kernel<Real>::MovingTriangle& tri) {
+    Real w = tri.p[0].z;
+    for (int j = 1; j < 6; ++j) w = std::min(w, tri.p[j].z);
+    return w;
+}
+
+// Bins each triangle into the work tiles its pixel rectangle meets. Within
+// each motion-segment window (the pieces' groups, kept in their order) the
+// triangles go nearest first, so that the occlusion test finds the tiles'
+// samples covered by near triangles before the far ones come: the depth
+// rule's winner (nearest, then lowest index) does not depend on the order.
 template <class Real>
 void bin_triangles(int width, int height, FrameSetup<Real>& setup) {
     setup.tiles_x = (width + tile_size - 1) / tile_size;
     setup.tiles_y = (height + tile_size - 1) / tile_size;
     setup.bins.assign(static_cast<std::size_t>(setup.tiles_x) * setup.tiles_y, {});
-    for (std::size_t i = 0; i < setup.rects.size(); ++i) {
+    const std::size_t count = setup.rects.size();
+    std::vector<std::uint32_t> order(count);
+    std::vector<Real> nearest(count);
+    std::vector<int> window(count);
+    for (std::size_t i = 0; i < count; ++i) {
+        order[i] = static_cast<std::uint32_t>(i);
+        nearest[i] = nearest_vertex_depth<Real>(setup.triangles[i]);
+        if (!(nearest[i] == nearest[i])) nearest[i] = std::numeric_limits<Real>::infinity();  // NaN: last
+        window[i] = setup.pieces[i].segments == 1 ? 0 : 1 + setup.pieces[i].segment;
+    }
+    std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+        if (window[a] != window[b]) return window[a] < window[b];
+        if (nearest[a] != nearest[b]) return nearest[a] < nearest[b];
+        return a < b;
+    });
+    for (std::uint32_t i : order) {
         const PixelRect& r = setup.rects[i];
         if (r.x0 > r.x1 || r.y0 > r.y1) continue;
         for (int ty = r.y0 / tile_size; ty <= r.y1 / tile_size; ++ty) {
             for (int tx = r.x0 / tile_size; tx <= r.x1 / tile_size; ++tx) {
-                setup.bins[static_cast<std::size_t>(ty) * setup.tiles_x + tx].push_back(static_cast<std::uint32_t>(i));
+                setup.bins[static_cast<std::size_t>(ty) * setup.tiles_x + tx].push_back(i);
             }
         }
     }
@@ -273,6 +307,7 @@ struct FrameContext {
     // edges: a block gets its edge planes only where it leaves at least this
     // many samples to visit (CpuOptions::edge_min_samples).
     double edge_min_samples = 0;
+    bool occlusion = false;  // CpuOptions::occlusion
 };
 
 // One worker's rasterization of work tiles: its sample, depth and hit
@@ -313,6 +348,7 @@ public:
         x1_ = std::min(x0_ + tile_size, frame_.settings.width) - 1;
         y1_ = std::min(y0_ + tile_size, frame_.settings.height) - 1;
         tw_ = x1_ - x0_ + 1;
+        tile_pixels_ = static_cast<std::size_t>(tw_) * static_cast<std::size_t>(y1_ - y0_ + 1);
         load_samples();
         strata_grouped_ = false;
         footprints_x_ = (tw_ + frame_.footprint - 1) / frame_.footprint;
@@ -331,6 +367,7 @@ public:
 
     // This worker's counts: exact tests, hits, sample bounds set up, and empty ones.
     std::uint64_t tested = 0, hits = 0, bounded = 0, bounded_empty = 0, visited = 0;
+    std::uint64_t occluded = 0;  // samples skipped by the occlusion test (CpuOptions::occlusion)
     // This worker's time in its tiles' raster (samples, triangles) and resolve steps.
     double raster_seconds = 0.0, resolve_seconds = 0.0;
 
@@ -384,6 +421,24 @@ private:
             strata_lanes_.copy(q, lanes_, k);
             strata_slot_[q] = static_cast<std::uint32_t>(k);
         }
+        // Every (stratum, pixel)'s farthest depth is due: triangles may have
+        // drawn before the grouping.
+        farthest_.assign(static_cast<std::size_t>(strata.count()) * pixels, Real(0));
+        farthest_due_.assign(farthest_.size(), 1);
+    }
+
+    // The farthest depth held by the samples of stratum-pixel p (an index of
+    // strata_start_), infinite while one of them is uncovered; recomputed
+    // only when a hit there made it due (a stale value is larger: safe).
+    Real farthest_depth(std::size_t p) {
+        if (farthest_due_[p]) {
+            Real far = Real(0);
+            for (std::uint32_t q = strata_start_[p]; q < strata_start_[p + 1]; ++q)
+                far = std::max(far, depth_[strata_slot_[q]]);
+            farthest_[p] = far;
+            farthest_due_[p] = 0;
+        }
+        return farthest_[p];
     }
 
     // Motion segments: the tile's samples as seen by the pieces of one window,
@@ -632,13 +687,34 @@ private:
             if (x0 > x1 || y0 > y1) continue;
             stratum.bound.lo = typename K::vec2(strata[s].box.x, strata[s].box.y);
             stratum.bound.hi = typename K::vec2(strata[s].box.z, strata[s].box.w);
+            // Occlusion off: a floor no stored depth is below.
+            const Real floor = frame_.occlusion ? strata[s].depth_floor : Real(0);
             for (int py = y0; py <= y1; ++py) {
-                const std::size_t p = static_cast<std::size_t>(s) * pixels +
-                                      static_cast<std::size_t>(py - y0_) * static_cast<std::size_t>(tw_) +
-                                      static_cast<std::size_t>(x0 - x0_);
-                const std::uint32_t first = strata_start_[p];
-                const std::uint32_t last = strata_start_[p + static_cast<std::size_t>(x1 - x0) + 1];
-                test_run(stratum, no_bounds, strata_lanes_, first, last - first, slot_of);
+                const std::size_t row = static_cast<std::size_t>(s) * pixels +
+                                        static_cast<std::size_t>(py - y0_) * static_cast<std::size_t>(tw_) -
+                                        static_cast<std::size_t>(x0_);
+                if (!(floor > Real(0))) {
+                    const std::uint32_t first = strata_start_[row + static_cast<std::size_t>(x0)];
+                    const std::uint32_t last = strata_start_[row + static_cast<std::size_t>(x1) + 1];
+                    test_run(stratum, no_bounds, strata_lanes_, first, last - first, slot_of);
+                    continue;
+                }
+                // Runs of pixels whose samples of this stratum are not all
+                // nearer than the triangle can be.
+                int px = x0;
+                while (px <= x1) {
+                    while (px <= x1 && farthest_depth(row + static_cast<std::size_t>(px)) < floor) {
+                        const std::size_t p = row + static_cast<std::size_t>(px);
+                        occluded += strata_start_[p + 1] - strata_start_[p];
+                        ++px;
+                    }
+                    if (px > x1) break;
+                    const int run_start = px;
+                    while (px <= x1 && !(farthest_depth(row + static_cast<std::size_t>(px)) < floor)) ++px;
+                    const std::uint32_t first = strata_start_[row + static_cast<std::size_t>(run_start)];
+                    const std::uint32_t last = strata_start_[row + static_cast<std::size_t>(px)];
+                    test_run(stratum, no_bounds, strata_lanes_, first, last - first, slot_of);
+                }
             }
         }
     }
@@ -814,6 +890,8 @@ private:
         if (K::depth_nearer(z, depth_[k]) || (z == depth_[k] && source < hit_[k])) {
             depth_[k] = z;
             hit_[k] = source;
+            if (strata_grouped_)
+                farthest_due_[static_cast<std::size_t>(stratum_[k]) * tile_pixels_ + k / frame_.spp] = 1;
         }
     }
 
@@ -865,6 +943,9 @@ private:
     std::vector<std::uint32_t> strata_start_;  // first strata_lanes_ sample of each (stratum, pixel)
     std::vector<std::uint32_t> strata_next_;   // group_by_stratum's scratch
     bool strata_grouped_ = false;              // strata_lanes_ hold this tile's samples
+    std::vector<Real> farthest_;               // per (stratum, pixel): farthest_depth
+    std::vector<char> farthest_due_;           // per (stratum, pixel): farthest_ needs recomputing
+    std::size_t tile_pixels_ = 0;
     std::array<std::size_t, 4> pending_{};  // samples waiting for covers4 (double only)
     std::size_t pending_count_ = 0;
     int window_segment_ = 0, window_segments_ = 1;  // the window samples_ are loaded for
@@ -884,7 +965,7 @@ template <class Real>
 RasterSplit rasterize_tiles(const FrameContext<Real>& frame, int threads, Clock::time_point start,
                             RenderResult& result) {
     std::atomic<std::uint64_t> total_tested{0}, total_hit{0}, total_bounded{0}, total_bounded_empty{0},
-        total_visited{0};
+        total_visited{0}, total_occluded{0};
     std::mutex seconds_lock;
     double raster_seconds = 0.0, resolve_seconds = 0.0;
     const int tile_count = frame.setup.tiles_x * frame.setup.tiles_y;
@@ -902,6 +983,7 @@ RasterSplit rasterize_tiles(const FrameContext<Real>& frame, int threads, Clock:
             total_bounded.fetch_add(rasterizer.bounded);
             total_bounded_empty.fetch_add(rasterizer.bounded_empty);
             total_visited.fetch_add(rasterizer.visited);
+            total_occluded.fetch_add(rasterizer.occluded);
             const std::lock_guard<std::mutex> lock(seconds_lock);
             raster_seconds += rasterizer.raster_seconds;
             resolve_seconds += rasterizer.resolve_seconds;
@@ -914,6 +996,7 @@ RasterSplit rasterize_tiles(const FrameContext<Real>& frame, int threads, Clock:
     stats.bounds_computed = total_bounded.load();
     stats.bounds_empty = total_bounded_empty.load();
     stats.samples_visited = total_visited.load();
+    if (frame.occlusion) stats.counters.emplace_back("samples_occluded", double(total_occluded.load()));
     return RasterSplit{raster_seconds, resolve_seconds};
 }
 
@@ -971,7 +1054,8 @@ RenderResult render_cpu_in(const Scene& scene, const RenderSettings& settings, c
                                    options.sums,
                                    options.sums != nullptr ? static_cast<std::uint32_t>(options.sums->samples) : 0u,
                                    options.cancel,
-                                   double(options.edge_min_samples)};
+                                   double(options.edge_min_samples),
+                                   options.occlusion};
     if (sample_ids != nullptr)
         sample_ids->assign(static_cast<std::size_t>(settings.width) * settings.height * frame.spp, no_sample_hit);
     const RasterSplit split = rasterize_tiles(frame, threads, start, result);

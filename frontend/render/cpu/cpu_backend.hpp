@@ -98,6 +98,13 @@ struct CpuOptions {
     // then exact); 1 and 1: off.
     int time_strata = 4;
     int lens_strata = 1;
+    // Occlusion culling on the strata (bbox, hull): a stratum's samples of a
+    // pixel are skipped when every one of them already holds a depth below
+    // the kernel's depth_floor of the triangle, so the strict depth test
+    // would fail on each (the triangles go nearest first within each tile).
+    // The image is the same; stats.samples_hit then counts the covered
+    // samples among those tested, not every covered sample.
+    bool occlusion = true;
 };
 
 // Renders with settings.spp samples per pixel, sample j of pixel (px, py)
@@ -105,7 +112,8 @@ struct CpuOptions {
 // backend uses. Culling only skips samples the exact test would reject, so the
 // image is the same for every settings.cull (tests/test_frontend_cpu.cpp).
 // stats.samples_tested counts the exact tests run (samples that passed the
-// cull), stats.samples_hit those that found coverage. Deterministic whatever
+// cull), stats.samples_hit those that found coverage (with
+// options.occlusion, not those skipped as occluded). Deterministic whatever
 // the thread count. With options.sums, one pass of a progressive render
 // (SampleSums above); sample_ids then hold the pass's samples only. Throws
 // std::invalid_argument for bad settings and

@@ -229,6 +229,102 @@ BC_FN vec4 stratum_screen_box(BC_IN(MovingTriangle) tri, real near, BC_IN(Screen
     return box;
 }
 
+// The determinant of the triangle's sheared vertices at (t, u, v), as covers
+// computes it: v0 . (v1 x v2).
+BC_FN real bc_sheared_det(BC_IN(MovingTriangle) tri, real t, vec2 uv) {
+    vec3 v0 = vertex_at(tri, 0, t, uv);
+    vec3 v1 = vertex_at(tri, 1, t, uv);
+    vec3 v2 = vertex_at(tri, 2, t, uv);
+    return bc_dot3(v0, cross(v1, v2));
+}
+
+// The smallest |det| of the sheared vertices over time in [time.x, time.y]
+// at one lens corner uv, or 0 when the range may hold a sign change: det is
+// a cubic in t (each sheared coordinate is linear in t), so it lies between
+// the smallest and largest of its four Bernstein coefficients on the range,
+// which come from its values at the range's ends and thirds.
+BC_FN real bc_det_floor_in_time(BC_IN(MovingTriangle) tri, vec2 time, vec2 uv) {
+    real h = time.y - time.x;
+    real f0 = bc_sheared_det(tri, time.x, uv);
+    real f1 = bc_sheared_det(tri, time.x + h / real(3), uv);
+    real f2 = bc_sheared_det(tri, time.x + real(2) * h / real(3), uv);
+    real f3 = bc_sheared_det(tri, time.y, uv);
+    real b1 = (real(-5) * f0 + real(18) * f1 - real(9) * f2 + real(2) * f3) / real(6);
+    real b2 = (real(2) * f0 - real(9) * f1 + real(18) * f2 - real(5) * f3) / real(6);
+    real lo = min(min(f0, f3), min(b1, b2));
+    real hi = max(max(f0, f3), max(b1, b2));
+    if (lo > real(0)) return lo;
+    if (hi < real(0)) return -hi;
+    return real(0);
+}
+
+// The scale of a depth floor (depth_floor below): a number in [0, 1] such
+// that every sample covers() covers with time in [time.x, time.y], u in
+// u_range, v in v_range and |sx|, |sy| <= screen_extent gets a depth at
+// least its triangle's smallest vertex depth at the sample's time times it.
+// With D the smallest |det| of the sheared vertices over that box and Err a
+// bound on the rounding of covers' edge values and det there, the computed
+// depth is at least W D / (D + Err), W the smallest vertex depth
+// (docs/kernel.md, "Depth floors"). 0 (nothing can be said) where a vertex
+// is at or behind the eye, the triangle may be seen edge-on in the box, or
+// a value is not finite.
+BC_FN real depth_floor_scale(BC_IN(MovingTriangle) tri, vec2 time, vec2 u_range, vec2 v_range, real screen_extent) {
+    real eps = bc_epsilon();
+    if (!triangle_is_finite(tri) || !bc_finite(screen_extent)) return real(0);
+    // Bounds on |x|, |y|, |w| of each sheared vertex (lens coordinates in
+    // [-1, 1]), and its depth at the range's ends (w is linear in t).
+    vec3 size[3];
+    for (int i = 0; i < 3; ++i) {
+        vec3 a = tri.p[i];
+        vec3 b = tri.p[i + 3];
+        real w0 = (real(1) - time.x) * a.z + time.x * b.z;
+        real w1 = (real(1) - time.y) * a.z + time.y * b.z;
+        if (!(min(w0, w1) > real(0))) return real(0);
+        size[i] = vec3(max(abs(a.x) + abs(tri.c[i].x), abs(b.x) + abs(tri.c[i + 3].x)),
+                       max(abs(a.y) + abs(tri.c[i].y), abs(b.y) + abs(tri.c[i + 3].y)), max(abs(a.z), abs(b.z)));
+    }
+    // P bounds |v0| . (|v1| x |v2|), the terms of det; A_i those of edge value
+    // i at a ray (sx, sy, 1); Err = sum |w_i| A_i + P, times the roundings.
+    real r = max(screen_extent, real(1));
+    real err = real(0);
+    real terms = real(0);
+    for (int i = 0; i < 3; ++i) {
+        vec3 a = size[(i + 1) % 3];
+        vec3 b = size[(i + 2) % 3];
+        vec3 n = vec3(a.y * b.z + a.z * b.y, a.z * b.x + a.x * b.z, a.x * b.y + a.y * b.x);
+        err = err + size[i].z * ((n.x + n.y) * r + n.z);
+        if (i == 0) terms = bc_dot3(size[0], n);
+    }
+    err = (err + terms) * (real(64) * eps);
+    // D: det is bilinear in (u, v) (each term has one x and one y entry), so
+    // its extremes over the lens box are at the box's corners.
+    real d = bc_det_floor_in_time(tri, time, vec2(u_range.x, v_range.x));
+    d = min(d, bc_det_floor_in_time(tri, time, vec2(u_range.y, v_range.x)));
+    d = min(d, bc_det_floor_in_time(tri, time, vec2(u_range.x, v_range.y)));
+    d = min(d, bc_det_floor_in_time(tri, time, vec2(u_range.y, v_range.y)));
+    // The corners' own rounding (vertices, products, the coefficients' sums).
+    d = d - terms * (real(1024) * eps);
+    if (!(d > real(0)) || !bc_finite(err)) return real(0);
+    real scale = (real(1) - real(16) * eps) * (d / (d + err));
+    return bc_finite(scale) ? clamp(scale, real(0), real(1)) : real(0);
+}
+
+// A lower bound on the depth covers() gives any covered sample of the
+// triangle with time in [time.x, time.y]: its smallest vertex depth at the
+// range's ends times `scale`, depth_floor_scale over a box of time, lens and
+// screen that holds the samples'. A renderer whose stored depths for those
+// samples are all below it can skip them: the strict depth test fails on
+// every one. 0 where a vertex is at or behind the eye.
+BC_FN real depth_floor(BC_IN(MovingTriangle) tri, vec2 time, real scale) {
+    real w = bc_huge();
+    for (int i = 0; i < 3; ++i) {
+        w = min(w, (real(1) - time.x) * tri.p[i].z + time.x * tri.p[i + 3].z);
+        w = min(w, (real(1) - time.y) * tri.p[i].z + time.y * tri.p[i + 3].z);
+    }
+    if (!(w > real(0)) || !(scale > real(0))) return real(0);
+    return w * scale;
+}
+
 #define BC_FOOTPRINT_OUTSIDE 0
 #define BC_FOOTPRINT_PARTIAL 1
 #define BC_FOOTPRINT_INSIDE 2
