@@ -16,7 +16,8 @@
 //
 //   bench_cpu_embree [--scenes hand,car,dragonfly,forest] [--size 1024x768[,WxH...]] [--spp 16[,N...]]
 //                    [--blur 1,2] [--repeat 3] [--threads 0[,N...]] [--culls bbox,hull,dualspace,twostage]
-//   (a cull may carry its CPU time strata: bbox:1 is bbox without its shutter strata)
+//   (a cull may carry its CPU time strata: bbox:1 is bbox without its shutter strata;
+//    and :noocc, occlusion culling off: bbox:4:noocc)
 //                    [--csv FILE]
 #include "render/cpu/cpu_backend.hpp"
 #include "render/embree/embree_backend.hpp"
@@ -99,11 +100,13 @@ void run_scene(const std::string& name, float blur, const RenderSettings& base, 
     std::vector<Contender> all;
     all.push_back({"embree", [](const Scene& s, const RenderSettings& r) { return render_embree(s, r); }, {}, {}, {}});
     for (const std::string& cull : culls) {
-        // "bbox:1": the cull with CpuOptions::time_strata 1 (without its shutter strata).
+        // "bbox:1": the cull with CpuOptions::time_strata 1 (without its
+        // shutter strata); "bbox:4:noocc": with 4 and occlusion culling off.
         const std::size_t colon = cull.find(':');
         const CullMethod method = parse_cull_method(cull.substr(0, colon));
         CpuOptions options;
         if (colon != std::string::npos) options.time_strata = std::atoi(cull.c_str() + colon + 1);
+        if (cull.find(":noocc") != std::string::npos) options.occlusion = false;
         all.push_back({"cpu " + cull,
                        [method, options](const Scene& s, RenderSettings r) {
                            r.cull = method;

@@ -1,6 +1,7 @@
 #include "render/cpu/cpu_backend.hpp"
 
 #include "render/common/camera_model.hpp"
+#include "render/common/huge_page_allocator.hpp"
 #include "render/common/method_plan.hpp"
 #include "render/cpu/coverage_test.hpp"
 #include "render/cpu/exact_test.hpp"
@@ -23,6 +24,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <mutex>
 #include <string>
@@ -106,21 +108,21 @@ struct FrameSetup {
     // The motion-segment piece of each entry below (one whole-shutter piece
     // per scene triangle when K = 1): its source triangle and window.
     std::vector<SegmentPiece> pieces;
-    std::vector<typename K::MovingTriangle> triangles;
-    std::vector<PixelRect> rects;
-    std::vector<int> classes;
-    std::vector<StoredBound> bounds;
+    HugePageVector<typename K::MovingTriangle> triangles;
+    HugePageVector<PixelRect> rects;
+    HugePageVector<int> classes;
+    HugePageVector<StoredBound> bounds;
     // The fast coverage test's setup (render/cpu/coverage_test.hpp), for the
     // samples of the triangle's pixel rectangle.
-    std::vector<CoverageSetup> fast_tests;
-    std::vector<typename K::vec3> hull_edges;
+    HugePageVector<CoverageSetup> fast_tests;
+    HugePageVector<typename K::vec3> hull_edges;
     // bbox and hull: the strata the tiles group their samples by, and per
     // moving or defocused triangle (one motion segment) the pixels of each
     // stratum's screen box, strata.count() rectangles from
     // stratum_rect_offset[i] (none_offset: the triangle is not drawn by strata).
     SampleStrata strata;
-    std::vector<StratumBox<K>> stratum_rects;
-    std::vector<std::size_t> stratum_rect_offset;
+    HugePageVector<StratumBox<K>> stratum_rects;
+    HugePageVector<std::size_t> stratum_rect_offset;
     static constexpr std::size_t none_offset = ~std::size_t(0);
     std::size_t invalid = 0;  // triangles skipped: their clip coordinates overflow
     int tiles_x = 0, tiles_y = 0;
@@ -148,7 +150,7 @@ struct FrameSetup {
 template <class Real>
 bool add_stratum_rects(const CameraModel& model, const typename kernel<Real>::MovingTriangle& tri, Real near,
                        const typename kernel<Real>::ScreenBound& whole, const PixelRect& r, SampleStrata strata,
-                       std::vector<StratumBox<kernel<Real>>>& rects) {
+                       HugePageVector<StratumBox<kernel<Real>>>& rects) {
     using K = blurcull::kernel<Real>;
     double area = 0.0;
     // Every sample of the image has |NDC| <= 1; 2 leaves room for their rounding.
@@ -186,10 +188,12 @@ void set_up_triangles(const Scene& scene, const CameraModel& model, int method, 
     setup.stratum_rect_offset.assign(count, FrameSetup<Real>::none_offset);
     const std::size_t chunks = static_cast<std::size_t>(std::max(1, std::min(threads, 64)));
     std::vector<std::vector<typename K::vec3>> chunk_edges(chunks);
-    std::vector<std::vector<StratumBox<K>>> chunk_rects(chunks);
+    std::vector<HugePageVector<StratumBox<K>>> chunk_rects(chunks);
     std::vector<std::size_t> chunk_invalid(chunks, 0);
     auto set_up = [&](std::size_t chunk) {
         const std::size_t first = count * chunk / chunks, last = count * (chunk + 1) / chunks;
+        // Room for every triangle's strata: address space only until used, and no copies as it grows.
+        if (strata.count() > 1) chunk_rects[chunk].reserve((last - first) * static_cast<std::size_t>(strata.count()));
         for (std::size_t i = first; i < last; ++i) {
             setup.triangles[i] = make_segment_triangle<Real>(scene, model, setup.pieces[i]);
             setup.classes[i] = K::classify(setup.triangles[i]);
@@ -255,22 +259,32 @@ void bin_triangles(int width, int height, FrameSetup<Real>& setup) {
     setup.tiles_x = (width + tile_size - 1) / tile_size;
     setup.tiles_y = (height + tile_size - 1) / tile_size;
     setup.bins.assign(static_cast<std::size_t>(setup.tiles_x) * setup.tiles_y, {});
+    // Each triangle as one 64-bit key: its nearest depth as a float's bits
+    // (a non-negative float's bits order as its value; any order gives the
+    // same image, so the rounding to float only blurs the ties), then its
+    // index. Windows are contiguous runs of indices: each is sorted alone.
     const std::size_t count = setup.rects.size();
-    std::vector<std::uint32_t> order(count);
-    std::vector<Real> nearest(count);
-    std::vector<int> window(count);
+    std::vector<std::uint64_t> keys(count);
     for (std::size_t i = 0; i < count; ++i) {
-        order[i] = static_cast<std::uint32_t>(i);
-        nearest[i] = nearest_vertex_depth<Real>(setup.triangles[i]);
-        if (!(nearest[i] == nearest[i])) nearest[i] = std::numeric_limits<Real>::infinity();  // NaN: last
-        window[i] = setup.pieces[i].segments == 1 ? 0 : 1 + setup.pieces[i].segment;
+        const Real w = nearest_vertex_depth<Real>(setup.triangles[i]);
+        // Behind the eye: first (0); NaN or beyond float: last.
+        const float key = w > Real(0) ? static_cast<float>(std::min<Real>(w, std::numeric_limits<float>::max()))
+                          : w == w    ? 0.0f
+                                      : std::numeric_limits<float>::max();
+        std::uint32_t bits = 0;
+        std::memcpy(&bits, &key, sizeof bits);
+        keys[i] = (std::uint64_t(bits) << 32) | std::uint64_t(i);
     }
-    std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-        if (window[a] != window[b]) return window[a] < window[b];
-        if (nearest[a] != nearest[b]) return nearest[a] < nearest[b];
-        return a < b;
-    });
-    for (std::uint32_t i : order) {
+    for (std::size_t first = 0; first < count;) {
+        std::size_t last = first + 1;
+        while (last < count && setup.pieces[last].segment == setup.pieces[first].segment &&
+               setup.pieces[last].segments == setup.pieces[first].segments)
+            ++last;
+        std::sort(keys.begin() + static_cast<std::ptrdiff_t>(first), keys.begin() + static_cast<std::ptrdiff_t>(last));
+        first = last;
+    }
+    for (std::uint64_t key : keys) {
+        const std::uint32_t i = static_cast<std::uint32_t>(key & 0xFFFFFFFFu);
         const PixelRect& r = setup.rects[i];
         if (r.x0 > r.x1 || r.y0 > r.y1) continue;
         for (int ty = r.y0 / tile_size; ty <= r.y1 / tile_size; ++ty) {

@@ -31,11 +31,13 @@ struct SampleStrata {
 
 private:
     // Which of `parts` equal parts of [lo, lo + size] holds x: a first guess
-    // by scaling, then settled by comparison with the parts' ends (exact in
-    // double for parts a power of two), so rounding cannot misplace it.
+    // by scaling (a multiplication: parts and size are powers of two), then
+    // settled by comparison with the parts' ends (exact in double for parts
+    // a power of two), so rounding cannot misplace it.
     static int part(float x, double lo, double size, int parts) {
+        if (parts == 1) return 0;
         const double step = size / double(parts);
-        const double scaled = (double(x) - lo) / step;
+        const double scaled = (double(x) - lo) * (double(parts) / size);
         int k = scaled >= double(parts) ? parts - 1 : (scaled > 0.0 ? static_cast<int>(scaled) : 0);
         while (k > 0 && double(x) < lo + step * double(k)) --k;
         while (k + 1 < parts && double(x) >= lo + step * double(k + 1)) ++k;
