@@ -18,7 +18,7 @@ struct SampleStrata {
     // The stratum of a sample: time slice, then part of u, then of v. A
     // sample on a boundary goes to the part above, whose range holds its lower end.
     int of(float u, float v, float t) const {
-        return (part(t, 0.0, 1.0, time) * lens + part(u, -1.0, 2.0, lens)) * lens + part(v, -1.0, 2.0, lens);
+        return (time_part(t) * lens + part(u, -1.0, 2.0, lens)) * lens + part(v, -1.0, 2.0, lens);
     }
 
     // Stratum s's closed ranges of time, u and v (of's parts).
@@ -30,6 +30,13 @@ struct SampleStrata {
     }
 
 private:
+    // part(t, 0, 1, time): t * time is exact in float (time a power of two),
+    // so its integer part is the slice, a boundary k / time going to slice k.
+    int time_part(float t) const {
+        const float scaled = t * float(time);
+        const int k = scaled > 0.0f ? static_cast<int>(scaled) : 0;
+        return k < time ? k : time - 1;
+    }
     // Which of `parts` equal parts of [lo, lo + size] holds x: a first guess
     // by scaling (a multiplication: parts and size are powers of two), then
     // settled by comparison with the parts' ends (exact in double for parts
