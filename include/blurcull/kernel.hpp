@@ -131,6 +131,21 @@
 //   samples only inside its box. A corner behind the near plane narrows
 //   nothing on that axis; fallback, whole's box, where screen_bound falls back.
 //
+// real depth_floor_scale(MovingTriangle tri, vec2 time, vec2 u_range, vec2 v_range, real screen_extent)
+// real depth_floor(MovingTriangle tri, vec2 time, real scale)
+//   Occlusion culling: a lower bound on the depth covers() computes for any
+//   sample it covers. depth_floor_scale, once per triangle over a box of
+//   shutter and lens (and screen positions |sx|, |sy| <= screen_extent),
+//   gives s in [0, 1]: D / (D + Err) with D the smallest |det| of the sheared
+//   vertices over the box (Bernstein bounds of a cubic in t at the lens
+//   corners) and Err a bound on covers' rounding of its edge values and det;
+//   0 where a vertex is at or behind the eye or the triangle may be seen
+//   edge-on. depth_floor(tri, time, s), for a time range inside the box, is
+//   the smallest vertex w at the range's ends times s: every covered sample
+//   of that range has a depth at least that, so a renderer whose stored
+//   depths (strict depth test) are all below it can skip those samples.
+//   Proof in docs/kernel.md, "Depth floors".
+//
 // int screen_footprint(ScreenBound b, vec2 lo, vec2 hi)
 //   Where the screen rectangle [lo, hi] (NDC, lo <= hi) lies relative to b:
 //   BC_FOOTPRINT_OUTSIDE (0: no sample in it passes screen_contains; also for

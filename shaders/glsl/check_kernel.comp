@@ -67,6 +67,8 @@ void main() {
     bool on_screen = bc_screen_contains(screen, s);
     int footprint_state = bc_screen_footprint(screen, s - vec2(0.01), s + vec2(0.01));
     vec4 stratum = bc_stratum_screen_box(tri, near, screen, vec2(0.25, 0.5), vec2(-1.0, 0.0), vec2(0.0, 1.0));
+    float floor_scale = bc_depth_floor_scale(tri, vec2(0.0, 1.0), vec2(-1.0, 1.0), vec2(-1.0, 1.0), 1.0);
+    float floored = bc_depth_floor(tri, vec2(0.25, 0.5), floor_scale);
     SampleBounds none = bc_no_sample_bounds();
     SampleBounds bounds = bc_sample_bounds(tri, s - vec2(0.01), s + vec2(0.01), cull);
     SampleBounds edge_bounds = bc_sample_bounds(tri, s - vec2(0.01), s + vec2(0.01), BC_CULL_EDGES);
@@ -113,7 +115,7 @@ void main() {
 
     float secondary = check_secondary_rays(vec3(values[45], values[46], values[47]), vec3(values[48], values[49], values[57]));
 
-    values[0] = coc + vertex.x + float(finite) + float(needs) + float(covered) + depth + barycentric.y + float(on_screen) + float(footprint_state) + stratum.x +
+    values[0] = coc + vertex.x + float(finite) + float(needs) + float(covered) + depth + barycentric.y + float(on_screen) + float(footprint_state) + stratum.x + floored +
                 float(passes) + time_range.x + sample_at.offset.x + sample_at.lens.y + sample_at.time + patterned.time +
                 tiled.time + sampled.time + from_setup.time + bc_pattern_padded_sobol(px, py, 1u, 4u, 7u).time + others[0].time + others[1].time + others[2].time + others[3].time + tuple.x +
                 float(tile) + jitter.x + accum.time + accum.offset.x + accum.lens.y + bc_rotate_unit(jitter.x, jitter.y) +

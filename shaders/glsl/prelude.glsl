@@ -39,6 +39,8 @@
 // the screen bound (screen_bound_body.inl)
 #define screen_bound bc_screen_bound
 #define stratum_screen_box bc_stratum_screen_box
+#define depth_floor_scale bc_depth_floor_scale
+#define depth_floor bc_depth_floor
 #define screen_footprint bc_screen_footprint
 #define screen_contains bc_screen_contains
 // the per-footprint sample bounds (sample_bounds_body.inl)

@@ -171,32 +171,39 @@ BC_FN ScreenBound screen_bound(BC_IN(MovingTriangle) tri, real near, int cull) {
     return b;
 }
 
-// Screen extent along one axis of the samples with time in [time.x, time.y]
-// and lens coordinate along the axis (u for x, v for y) in [lens.x, lens.y]
-// (sub-ranges of [0, 1] and [-1, 1]). At such a (t, l) a vertex's clip (x + l c, w)
-// is bilinear in (t, l), so it lies in the convex hull of its four corner
-// points (time ends by lens ends); with every corner in front of the near
-// plane x / w is extremal at one of the 12 corners of the triangle. A
-// corner behind it: bc_axis_extent's whole-shutter extent (it clips).
-BC_FN vec2 bc_stratum_axis_extent(BC_IN(MovingTriangle) tri, int axis, real near_plane, vec2 time, vec2 lens) {
+// Screen box (lo.x, lo.y, hi.x, hi.y) of the samples with time in
+// [time.x, time.y], u in [u_range.x, u_range.y] and v in [v_range.x,
+// v_range.y] (sub-ranges of [0, 1] and [-1, 1]). At such a (t, u) a vertex's
+// clip (x + u c_x, w) is bilinear in (t, u), so it lies in the convex hull of
+// its four corner points (time ends by lens ends); with every corner in front
+// of the near plane x / w is extremal at one of the 12 corners of the
+// triangle; y likewise with v. A corner behind it: bc_axis_extent's
+// whole-shutter extents (they clip). Both axes in one pass: they share each
+// corner's w and its reciprocal.
+BC_FN vec4 bc_stratum_extent(BC_IN(MovingTriangle) tri, real near_plane, vec2 time, vec2 u_range, vec2 v_range) {
     real near = near_plane - bc_err(near_plane);
-    real lo = bc_huge();
-    real hi = -bc_huge();
-    real magnitude = real(0);
+    vec2 lo = vec2(bc_huge());
+    vec2 hi = vec2(-bc_huge());
+    vec2 magnitude = vec2(real(0));
     for (int i = 0; i < 3; ++i) {
         // What the corners are computed from: their rounding is relative to it.
-        real size = abs(tri.p[i][axis]) + abs(tri.p[i + 3][axis]) + abs(tri.c[i][axis]) + abs(tri.c[i + 3][axis]);
+        vec2 size = abs(vec2(tri.p[i].x, tri.p[i].y)) + abs(vec2(tri.p[i + 3].x, tri.p[i + 3].y)) + abs(tri.c[i]) +
+                    abs(tri.c[i + 3]);
         real depth_size = abs(tri.p[i].z) + abs(tri.p[i + 3].z);
         for (int e = 0; e < 2; ++e) {
             real t = e == 0 ? time.x : time.y;
-            real x = (real(1) - t) * tri.p[i][axis] + t * tri.p[i + 3][axis];
-            real c = (real(1) - t) * tri.c[i][axis] + t * tri.c[i + 3][axis];
+            vec2 x = (real(1) - t) * vec2(tri.p[i].x, tri.p[i].y) + t * vec2(tri.p[i + 3].x, tri.p[i + 3].y);
+            vec2 c = (real(1) - t) * tri.c[i] + t * tri.c[i + 3];
             real w = (real(1) - t) * tri.p[i].z + t * tri.p[i + 3].z;
-            if (!(w >= near)) return bc_axis_extent(tri, axis, near_plane);
+            if (!(w >= near)) {
+                vec2 ex = bc_axis_extent(tri, 0, near_plane);
+                vec2 ey = bc_axis_extent(tri, 1, near_plane);
+                return vec4(ex.x, ey.x, ex.y, ey.y);
+            }
             // One division per corner pair (the product's rounding is in the margin).
             real inv_w = real(1) / w;
-            real s0 = (x + lens.x * c) * inv_w;
-            real s1 = (x + lens.y * c) * inv_w;
+            vec2 s0 = (x + vec2(u_range.x, v_range.x) * c) * inv_w;
+            vec2 s1 = (x + vec2(u_range.y, v_range.y) * c) * inv_w;
             lo = min(lo, min(s0, s1));
             hi = max(hi, max(s0, s1));
             magnitude = max(magnitude, (size + max(abs(s0), abs(s1)) * depth_size) * inv_w);
@@ -204,11 +211,17 @@ BC_FN vec2 bc_stratum_axis_extent(BC_IN(MovingTriangle) tri, int axis, real near
     }
     // Twice bc_axis_extent's margin: the corners' interpolation and the
     // division by an interpolated w round too.
-    real pad = bc_err(real(8) * magnitude + real(2) * max(abs(lo), abs(hi)));
-    lo = lo - pad;
-    hi = hi + pad;
-    if (!bc_finite(lo) || !bc_finite(hi) || !bc_finite(pad)) return vec2(-bc_huge(), bc_huge());
-    return vec2(lo, hi);
+    vec4 box = vec4(-bc_huge(), -bc_huge(), bc_huge(), bc_huge());
+    for (int axis = 0; axis < 2; ++axis) {
+        real pad = bc_err(real(8) * magnitude[axis] + real(2) * max(abs(lo[axis]), abs(hi[axis])));
+        real a = lo[axis] - pad;
+        real b = hi[axis] + pad;
+        if (bc_finite(a) && bc_finite(b) && bc_finite(pad)) {
+            box[axis] = a;
+            box[axis + 2] = b;
+        }
+    }
+    return box;
 }
 
 // The screen box of the samples in one stratum of lens and shutter: time in
@@ -222,33 +235,18 @@ BC_FN vec4 stratum_screen_box(BC_IN(MovingTriangle) tri, real near, BC_IN(Screen
     if (whole.empty) return vec4(real(1), real(1), real(-1), real(-1));
     vec4 box = vec4(whole.lo.x, whole.lo.y, whole.hi.x, whole.hi.y);
     if (!(near > real(0)) || !bc_triangle_boundable(tri)) return box;
-    vec2 ex = bc_stratum_axis_extent(tri, 0, near, time, u_range);
-    vec2 ey = bc_stratum_axis_extent(tri, 1, near, time, v_range);
-    box = vec4(max(box.x, ex.x), max(box.y, ey.x), min(box.z, ex.y), min(box.w, ey.y));
+    vec4 e = bc_stratum_extent(tri, near, time, u_range, v_range);
+    box = vec4(max(box.x, e.x), max(box.y, e.y), min(box.z, e.z), min(box.w, e.w));
     if (box.x > box.z || box.y > box.w) return vec4(real(1), real(1), real(-1), real(-1));
     return box;
 }
 
-// The determinant of the triangle's sheared vertices at (t, u, v), as covers
-// computes it: v0 . (v1 x v2).
-BC_FN real bc_sheared_det(BC_IN(MovingTriangle) tri, real t, vec2 uv) {
-    vec3 v0 = vertex_at(tri, 0, t, uv);
-    vec3 v1 = vertex_at(tri, 1, t, uv);
-    vec3 v2 = vertex_at(tri, 2, t, uv);
-    return bc_dot3(v0, cross(v1, v2));
-}
-
 // The smallest |det| of the sheared vertices over time in [time.x, time.y]
-// at one lens corner uv, or 0 when the range may hold a sign change: det is
-// a cubic in t (each sheared coordinate is linear in t), so it lies between
-// the smallest and largest of its four Bernstein coefficients on the range,
-// which come from its values at the range's ends and thirds.
-BC_FN real bc_det_floor_in_time(BC_IN(MovingTriangle) tri, vec2 time, vec2 uv) {
-    real h = time.y - time.x;
-    real f0 = bc_sheared_det(tri, time.x, uv);
-    real f1 = bc_sheared_det(tri, time.x + h / real(3), uv);
-    real f2 = bc_sheared_det(tri, time.x + real(2) * h / real(3), uv);
-    real f3 = bc_sheared_det(tri, time.y, uv);
+// for one lens corner, from det's values f0..f3 at the range's ends and
+// thirds, or 0 when the range may hold a sign change: det is a cubic in t
+// (each sheared coordinate is linear in t), so it lies between the smallest
+// and largest of its four Bernstein coefficients on the range.
+BC_FN real bc_cubic_floor(real f0, real f1, real f2, real f3) {
     real b1 = (real(-5) * f0 + real(18) * f1 - real(9) * f2 + real(2) * f3) / real(6);
     real b2 = (real(2) * f0 - real(9) * f1 + real(18) * f2 - real(5) * f3) / real(6);
     real lo = min(min(f0, f3), min(b1, b2));
@@ -256,6 +254,38 @@ BC_FN real bc_det_floor_in_time(BC_IN(MovingTriangle) tri, vec2 time, vec2 uv) {
     if (lo > real(0)) return lo;
     if (hi < real(0)) return -hi;
     return real(0);
+}
+
+// The smallest |det| of the sheared vertices (as covers computes det:
+// v0 . (v1 x v2), each vertex as vertex_at gives it) over time in
+// [time.x, time.y] and the lens box u_range x v_range, or 0 when it may
+// vanish there. det is bilinear in (u, v) (each term has one x and one y
+// entry), so its extremes over the lens box are at the box's corners; per
+// corner, bc_cubic_floor in t. The vertices at each of the four times are
+// interpolated once for the four corners.
+BC_FN real bc_det_floor(BC_IN(MovingTriangle) tri, vec2 time, vec2 u_range, vec2 v_range) {
+    real h = time.y - time.x;
+    real f[16];
+    for (int n = 0; n < 4; ++n) {
+        real t = n == 0 ? time.x : (n == 3 ? time.y : time.x + real(n) * h / real(3));
+        vec3 p[3];
+        vec2 c[3];
+        for (int i = 0; i < 3; ++i) {
+            p[i] = (real(1) - t) * tri.p[i] + t * tri.p[i + 3];
+            c[i] = (real(1) - t) * tri.c[i] + t * tri.c[i + 3];
+        }
+        for (int k = 0; k < 4; ++k) {
+            real u = (k % 2) == 0 ? u_range.x : u_range.y;
+            real v = k < 2 ? v_range.x : v_range.y;
+            vec3 v0 = vec3(p[0].x + u * c[0].x, p[0].y + v * c[0].y, p[0].z);
+            vec3 v1 = vec3(p[1].x + u * c[1].x, p[1].y + v * c[1].y, p[1].z);
+            vec3 v2 = vec3(p[2].x + u * c[2].x, p[2].y + v * c[2].y, p[2].z);
+            f[k * 4 + n] = bc_dot3(v0, cross(v1, v2));
+        }
+    }
+    real d = bc_huge();
+    for (int k = 0; k < 4; ++k) d = min(d, bc_cubic_floor(f[k * 4], f[k * 4 + 1], f[k * 4 + 2], f[k * 4 + 3]));
+    return d;
 }
 
 // The scale of a depth floor (depth_floor below): a number in [0, 1] such
@@ -296,14 +326,9 @@ BC_FN real depth_floor_scale(BC_IN(MovingTriangle) tri, vec2 time, vec2 u_range,
         if (i == 0) terms = bc_dot3(size[0], n);
     }
     err = (err + terms) * (real(64) * eps);
-    // D: det is bilinear in (u, v) (each term has one x and one y entry), so
-    // its extremes over the lens box are at the box's corners.
-    real d = bc_det_floor_in_time(tri, time, vec2(u_range.x, v_range.x));
-    d = min(d, bc_det_floor_in_time(tri, time, vec2(u_range.y, v_range.x)));
-    d = min(d, bc_det_floor_in_time(tri, time, vec2(u_range.x, v_range.y)));
-    d = min(d, bc_det_floor_in_time(tri, time, vec2(u_range.y, v_range.y)));
-    // The corners' own rounding (vertices, products, the coefficients' sums).
-    d = d - terms * (real(1024) * eps);
+    // D, less the rounding of its own computation (vertices, products, the
+    // coefficients' sums).
+    real d = bc_det_floor(tri, time, u_range, v_range) - terms * (real(1024) * eps);
     if (!(d > real(0)) || !bc_finite(err)) return real(0);
     real scale = (real(1) - real(16) * eps) * (d / (d + err));
     return bc_finite(scale) ? clamp(scale, real(0), real(1)) : real(0);
