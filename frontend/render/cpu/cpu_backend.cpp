@@ -118,12 +118,12 @@ struct FrameSetup {
     HugePageVector<typename K::vec3> hull_edges;
     // bbox and hull: the strata the tiles group their samples by, and per
     // moving or defocused triangle (one motion segment) the pixels of each
-    // stratum's screen box, strata.count() rectangles from
-    // stratum_rect_offset[i] (none_offset: the triangle is not drawn by strata).
+    // stratum's screen box: strata.count() boxes from stratum_boxes[i]
+    // (nullptr: the triangle is not drawn by strata), in the setup chunks'
+    // arrays (each reserved whole first, so the pointers stay valid).
     SampleStrata strata;
-    HugePageVector<StratumBox<K>> stratum_rects;
-    HugePageVector<std::size_t> stratum_rect_offset;
-    static constexpr std::size_t none_offset = ~std::size_t(0);
+    std::vector<HugePageVector<StratumBox<K>>> stratum_chunks;
+    HugePageVector<const StratumBox<K>*> stratum_boxes;
     std::size_t invalid = 0;  // triangles skipped: their clip coordinates overflow
     int tiles_x = 0, tiles_y = 0;
     std::vector<std::vector<std::uint32_t>> bins;  // per work tile, the triangles whose rectangle meets it
@@ -185,10 +185,11 @@ void set_up_triangles(const Scene& scene, const CameraModel& model, int method, 
     setup.bounds.resize(count);
     setup.fast_tests.resize(count);
     setup.strata = strata;
-    setup.stratum_rect_offset.assign(count, FrameSetup<Real>::none_offset);
+    setup.stratum_boxes.assign(count, nullptr);
     const std::size_t chunks = static_cast<std::size_t>(std::max(1, std::min(threads, 64)));
     std::vector<std::vector<typename K::vec3>> chunk_edges(chunks);
-    std::vector<HugePageVector<StratumBox<K>>> chunk_rects(chunks);
+    std::vector<HugePageVector<StratumBox<K>>>& chunk_rects = setup.stratum_chunks;
+    chunk_rects.assign(chunks, {});
     std::vector<std::size_t> chunk_invalid(chunks, 0);
     auto set_up = [&](std::size_t chunk) {
         const std::size_t first = count * chunk / chunks, last = count * (chunk + 1) / chunks;
@@ -211,7 +212,7 @@ void set_up_triangles(const Scene& scene, const CameraModel& model, int method, 
                 if (strata.count() > 1 && setup.classes[i] != 0 && setup.pieces[i].segments == 1) {
                     const std::size_t offset = chunk_rects[chunk].size();
                     if (add_stratum_rects<Real>(model, setup.triangles[i], near, bound, r, strata, chunk_rects[chunk]))
-                        setup.stratum_rect_offset[i] = offset;
+                        setup.stratum_boxes[i] = chunk_rects[chunk].data() + offset;
                     else
                         chunk_rects[chunk].resize(offset);
                 }
@@ -232,10 +233,6 @@ void set_up_triangles(const Scene& scene, const CameraModel& model, int method, 
         const std::size_t base = setup.hull_edges.size();
         for (std::size_t i = count * c / chunks; i < count * (c + 1) / chunks; ++i) setup.bounds[i].hull_offset += base;
         setup.hull_edges.insert(setup.hull_edges.end(), chunk_edges[c].begin(), chunk_edges[c].end());
-        const std::size_t rect_base = setup.stratum_rects.size();
-        for (std::size_t i = count * c / chunks; i < count * (c + 1) / chunks; ++i)
-            if (setup.stratum_rect_offset[i] != FrameSetup<Real>::none_offset) setup.stratum_rect_offset[i] += rect_base;
-        setup.stratum_rects.insert(setup.stratum_rects.end(), chunk_rects[c].begin(), chunk_rects[c].end());
         setup.invalid += chunk_invalid[c];
     }
 }
@@ -620,8 +617,8 @@ private:
         // bbox, hull: a moving or defocused triangle stratum by stratum (the
         // setup gives strata only to one-segment pieces, whose samples keep
         // their shutter times).
-        if (frame_.setup.stratum_rect_offset[index] != FrameSetup<Real>::none_offset) {
-            rasterize_by_strata(current, &frame_.setup.stratum_rects[frame_.setup.stratum_rect_offset[index]]);
+        if (const StratumBox<K>* boxes = frame_.setup.stratum_boxes[index]) {
+            rasterize_by_strata(current, boxes);
             flush_exact(current);
             return;
         }
@@ -681,7 +678,7 @@ private:
 
     // A moving or defocused triangle under bbox or hull, stratum by stratum:
     // each stratum's samples only in the pixels of its screen box (the
-    // setup's stratum_rects), through test_run with the stratum's box as the
+    // setup's stratum_boxes), through test_run with the stratum's box as the
     // screen bound. Its per-sample test runs only with a hull (hull): for
     // bbox the box chose the pixels, and the few samples per pixel it would
     // cull cost more to test than the fast test spends on them.
