@@ -235,6 +235,8 @@ TEST_CASE("blurcull render refuses an option the backend cannot honour") {
         {"--backend gl --footprint 2", "--footprint: only the cpu backend takes it (backend gl)"},
         {"--backend embree --precision float", "--precision: only the cpu backend takes it (backend embree)"},
         {"--backend gl --precision double", "--precision: only the cpu backend takes it (backend gl)"},
+        {"--backend embree --occlusion off", "--occlusion: only the cpu backend takes it (backend embree)"},
+        {"--backend gl --occlusion on", "--occlusion: only the cpu backend takes it (backend gl)"},
         {"--backend cpu --gl-cell 4", "--gl-cell: only the gl backend takes it (backend cpu)"},
         {"--backend embree --gl-cell 4", "--gl-cell: only the gl backend takes it (backend embree)"},
         {"--backend cpu --method dof-secondary --layer-images host",
@@ -269,6 +271,29 @@ TEST_CASE("blurcull render refuses an option the backend cannot honour") {
     Run embree = run_cli("render --backend embree --scene car --size 32x24 --spp 2 -q --json -o embree_defaults.png");
     INFO(embree.err);
     CHECK(embree.status == 0);
+}
+
+// --occlusion: the same image either way; off tests every covered sample
+// (samples_hit counts them all), on reports what it skipped.
+TEST_CASE("blurcull render --occlusion on|off") {
+    Run on = run_cli("render --scene forest --size 64x48 --spp 4 --json -q -o occlusion_on.png");
+    Run off = run_cli("render --scene forest --size 64x48 --spp 4 --occlusion off --json -q -o occlusion_off.png");
+    REQUIRE(on.status == 0);
+    REQUIRE(off.status == 0);
+    const nlohmann::json a = nlohmann::json::parse(on.out), b = nlohmann::json::parse(off.out);
+    CHECK(a["counters"]["samples_occluded"].get<double>() > 0);
+    CHECK_FALSE(b.contains("counters"));
+    CHECK(a["samples_tested"].get<double>() < b["samples_tested"].get<double>());
+    CHECK(a["samples_hit"].get<double>() < b["samples_hit"].get<double>());
+    const blurcull::frontend::Image image_on =
+        blurcull::frontend::read_png((scratch_folder() / "occlusion_on.png").string());
+    const blurcull::frontend::Image image_off =
+        blurcull::frontend::read_png((scratch_folder() / "occlusion_off.png").string());
+    CHECK(image_on.pixels == image_off.pixels);
+    Run bad = run_cli("render --scene hand --size 32x24 --occlusion maybe -q -o refused.png");
+    CHECK(bad.status == 2);
+    CHECK(lines(bad.err) == 1);
+    CHECK(bad.err.find("--occlusion") != std::string::npos);
 }
 
 TEST_CASE("--cull clip2 is twostage under its old name") {

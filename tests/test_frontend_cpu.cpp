@@ -178,7 +178,7 @@ TEST_CASE("occlusion culling changes no sample's winner, and spares exact tests 
         for (float blur : {1.0f, 2.0f}) {
             for (KernelPrecision precision : {KernelPrecision::float64, KernelPrecision::float32}) {
                 for (CullMethod method : {CullMethod::bbox, CullMethod::hull}) {
-                    for (const auto& [time, lens] : {std::pair{4, 1}, {16, 1}, {4, 2}}) {
+                    for (const auto& [time, lens] : {std::pair{4, 1}, {16, 2}}) {
                         Scene scene = small_scene(name, width, height, blur);
                         RenderSettings settings = quiet_settings(width, height, 8);
                         settings.cull = method;

@@ -66,14 +66,18 @@ TEST_CASE("sobol samplers on the cpu: every cull, footprint and thread count giv
             const Scene scene = small_scene(name, width, height);
             RenderSettings settings = with_sampler(width, height, 16, sampler);
             settings.cull = CullMethod::bbox;
-            const RenderResult reference = render_cpu(scene, settings);
+            // Occlusion culling off: samples_hit counts every covered sample
+            // (with it, those its path left to test).
+            CpuOptions every_hit;
+            every_hit.occlusion = false;
+            const RenderResult reference = render_cpu(scene, settings, every_hit);
             REQUIRE(reference.stats.samples_hit > 0);
             for (CullMethod cull : {CullMethod::hull, CullMethod::dualspace, CullMethod::two_stage, CullMethod::edges}) {
                 for (int footprint : {1, CpuOptions{}.footprint}) {
                     RenderSettings culled = settings;
                     culled.cull = cull;
                     culled.threads = footprint == 1 ? 1 : 0;
-                    CpuOptions options;
+                    CpuOptions options = every_hit;
                     options.footprint = footprint;
                     const RenderResult result = render_cpu(scene, culled, options);
                     INFO(name, " ", blurcull::sample_pattern_name(sampler), " ", to_string(cull), " footprint ",

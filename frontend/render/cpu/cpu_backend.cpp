@@ -323,8 +323,8 @@ struct FrameContext {
 
 // One worker's rasterization of work tiles: its sample, depth and hit
 // buffers, and its counters. A tile is loaded (its samples, sorted by time
-// per footprint when that pays), its binned triangles rasterized in index
-// order with the strict depth test, and resolved into the image.
+// per footprint when that pays), its binned triangles rasterized nearest
+// first with the depth rule, and resolved into the image.
 template <class Real>
 class TileRasterizer {
 public:
@@ -965,8 +965,8 @@ private:
 };
 
 // Rasterization: tiles are handed out dynamically; within a tile the
-// triangles run in index order and the depth test is strict, so the result
-// does not depend on the schedule.
+// triangles run nearest first, and the depth rule (nearest, then lowest
+// index) makes the result independent of that order and of the schedule.
 // The workers' summed time in the raster and the resolve steps of their tiles.
 struct RasterSplit {
     double raster_seconds, resolve_seconds;
