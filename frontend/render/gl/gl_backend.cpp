@@ -23,6 +23,7 @@
 #include <cstdint>
 #include <optional>
 #include <stdexcept>
+#include <filesystem>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -596,7 +597,34 @@ bool gl_available(std::string* reason) {
     }
 }
 
+// Whether the machine has a device a hardware OpenGL driver could drive: a
+// DRM node (/dev/dri/renderD*, /dev/dri/card*: Mesa's drivers) or an NVIDIA
+// device (/dev/nvidia*). Without one every context is software, and making
+// one to ask costs tens of milliseconds (loading and initialising the driver).
+static bool gpu_device_present() {
+#if defined(__linux__)
+    namespace fs = std::filesystem;
+    std::error_code error;
+    for (const char* folder : {"/dev/dri", "/dev"}) {
+        for (fs::directory_iterator it(folder, error), end; !error && it != end; it.increment(error)) {
+            const std::string name = it->path().filename().string();
+            const bool drm = std::string(folder) == "/dev/dri" &&
+                             (name.rfind("renderD", 0) == 0 || name.rfind("card", 0) == 0);
+            if (drm || (std::string(folder) == "/dev" && name.rfind("nvidia", 0) == 0)) return true;
+        }
+        error.clear();
+    }
+    return false;
+#else
+    return true;  // elsewhere: ask a context
+#endif
+}
+
 bool gl_hardware_available(std::string* reason) {
+    if (!gpu_device_present()) {
+        if (reason != nullptr) *reason = "no GPU device (/dev/dri, /dev/nvidia*), only software OpenGL";
+        return false;
+    }
     try {
         const gl::HeadlessContext context = gl::HeadlessContext::create();
         const std::string renderer = context.renderer();
