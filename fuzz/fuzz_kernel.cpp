@@ -3,7 +3,9 @@
 // samples (raw floats, so NaN, Inf, denormals and FLT_MAX all occur). For
 // every method, in float and in double, a sample that the double oracle
 // covers (on the same rounded input) and that the bounds cull aborts: the
-// oracle must never be beaten. The documented NaN/Inf fallback is checked too.
+// oracle must never be beaten. The documented NaN/Inf fallback is checked too,
+// and so is the depth floor (occlusion culling): no covered sample, in float
+// or double, gets a depth from covers below depth_floor of its time.
 //
 // Layout: 36 floats (p[6] as x, y, w; c[6] as cx, cy), near, footprint lo and
 // hi (4 floats), then samples of 5 floats (s.x, s.y, u, v, t) until the end.
@@ -11,6 +13,7 @@
 // into the footprint, the way a renderer's samples are.
 #include <blurcull/blurcull.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -138,6 +141,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         return env && std::strcmp(env, "1") == 0;
     }();
     const bool assert_oracle = full_range || in_documented_range(tri, near);
+    // The depth floors over the whole shutter and lens, for the footprint's
+    // screen positions (any finite input: the scale is 0 where it cannot say).
+    const float extent = std::max(std::max(std::abs(lo.x), std::abs(lo.y)), std::max(std::abs(hi.x), std::abs(hi.y)));
+    const float scale_f = Kf::depth_floor_scale(tri, Kf::vec2(0, 1), Kf::vec2(-1, 1), Kf::vec2(-1, 1), extent);
+    const double scale_d =
+        Kd::depth_floor_scale(tri_d, Kd::vec2(0, 1), Kd::vec2(-1, 1), Kd::vec2(-1, 1), double(extent));
     while (in.more(5)) {
         const float fx = fold_unit(in.next()), fy = fold_unit(in.next());
         const Kf::vec2 s(lo.x + fx * (hi.x - lo.x), lo.y + fy * (hi.y - lo.y));
@@ -145,6 +154,19 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         const float t = fold_unit(in.next());
         if (!std::isfinite(s.x) || !std::isfinite(s.y) || s.x < lo.x || s.x > hi.x || s.y < lo.y || s.y > hi.y)
             continue;  // the footprint was too wide for its own arithmetic
+        const float floor_f = Kf::depth_floor(tri, Kf::vec2(t, t), scale_f);
+        const double floor_d = Kd::depth_floor(tri_d, Kd::vec2(double(t)), scale_d);
+        float depth_f = 0.0f;
+        double depth_d = 0.0;
+        if (floor_f > 0.0f && std::isfinite(extent) && Kf::covers(tri, s, uv, t, near, depth_f) && depth_f < floor_f) {
+            std::fprintf(stderr, "float depth %.9g below its floor %.9g\n", double(depth_f), double(floor_f));
+            std::abort();
+        }
+        if (floor_d > 0.0 && std::isfinite(extent) &&
+            Kd::covers(tri_d, Kd::vec2(s), Kd::vec2(uv), double(t), double(near), depth_d) && depth_d < floor_d) {
+            std::fprintf(stderr, "double depth %.17g below its floor %.17g\n", depth_d, floor_d);
+            std::abort();
+        }
         double depth = 0.0;
         if (!assert_oracle) {
             (void)Kd::covers(tri_d, Kd::vec2(s), Kd::vec2(uv), double(t), double(near), depth);
