@@ -174,36 +174,43 @@ TEST_CASE("strata of shutter and lens (bbox, hull) change nothing in the image, 
 TEST_CASE("occlusion culling changes no sample's winner, and spares exact tests where triangles hide others") {
     const int width = 64, height = 48;
     std::uint64_t tested_off = 0, tested_on = 0, occluded = 0;
+    struct Variant {
+        KernelPrecision precision;
+        CullMethod method;
+        int time, lens;
+    };
+    // The default, and the other precision, cull and a finer grouping.
+    const Variant variants[] = {{KernelPrecision::float64, CullMethod::bbox, 4, 1},
+                                {KernelPrecision::float32, CullMethod::hull, 16, 2}};
     for (const std::string& name : builtin_scene_names()) {
         for (float blur : {1.0f, 2.0f}) {
-            for (KernelPrecision precision : {KernelPrecision::float64, KernelPrecision::float32}) {
-                for (CullMethod method : {CullMethod::bbox, CullMethod::hull}) {
-                    for (const auto& [time, lens] : {std::pair{4, 1}, {16, 2}}) {
-                        Scene scene = small_scene(name, width, height, blur);
-                        RenderSettings settings = quiet_settings(width, height, 8);
-                        settings.cull = method;
-                        CpuOptions off = counting_every_hit();
-                        off.precision = precision;
-                        off.time_strata = time;
-                        off.lens_strata = lens;
-                        CpuOptions on = off;
-                        on.occlusion = true;
-                        std::vector<std::uint32_t> ids_off, ids_on;
-                        const RenderResult reference = render_cpu(scene, settings, off, &ids_off);
-                        const RenderResult result = render_cpu(scene, settings, on, &ids_on);
-                        INFO(name, " x", blur, " ", to_string(method), " ", to_string(precision), " strata ", time,
-                             "x", lens, "x", lens);
-                        // The same triangle wins every sample: the same image, bit for bit.
-                        CHECK(ids_on == ids_off);
-                        CHECK(same_pixels(result.image, reference.image));
-                        CHECK(result.stats.samples_tested <= reference.stats.samples_tested);
-                        CHECK(result.stats.samples_hit <= reference.stats.samples_hit);
-                        tested_off += reference.stats.samples_tested;
-                        tested_on += result.stats.samples_tested;
-                        for (const auto& [counter, value] : result.stats.counters)
-                            if (counter == "samples_occluded") occluded += static_cast<std::uint64_t>(value);
-                    }
-                }
+            for (const Variant& variant : variants) {
+                const KernelPrecision precision = variant.precision;
+                const CullMethod method = variant.method;
+                const int time = variant.time, lens = variant.lens;
+                Scene scene = small_scene(name, width, height, blur);
+                RenderSettings settings = quiet_settings(width, height, 8);
+                settings.cull = method;
+                CpuOptions off = counting_every_hit();
+                off.precision = precision;
+                off.time_strata = time;
+                off.lens_strata = lens;
+                CpuOptions on = off;
+                on.occlusion = true;
+                std::vector<std::uint32_t> ids_off, ids_on;
+                const RenderResult reference = render_cpu(scene, settings, off, &ids_off);
+                const RenderResult result = render_cpu(scene, settings, on, &ids_on);
+                INFO(name, " x", blur, " ", to_string(method), " ", to_string(precision), " strata ", time,
+                     "x", lens, "x", lens);
+                // The same triangle wins every sample: the same image, bit for bit.
+                CHECK(ids_on == ids_off);
+                CHECK(same_pixels(result.image, reference.image));
+                CHECK(result.stats.samples_tested <= reference.stats.samples_tested);
+                CHECK(result.stats.samples_hit <= reference.stats.samples_hit);
+                tested_off += reference.stats.samples_tested;
+                tested_on += result.stats.samples_tested;
+                for (const auto& [counter, value] : result.stats.counters)
+                    if (counter == "samples_occluded") occluded += static_cast<std::uint64_t>(value);
             }
         }
     }
