@@ -8,6 +8,7 @@
 
 #include <blurcull/blurcull.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -237,6 +238,19 @@ inline Config make_config(Rng& rng, Family family) {
     cfg.s_lo = cfg.anchor - offset * extent;
     cfg.s_hi = cfg.s_lo + extent;
     return cfg;
+}
+
+// A sub-range of [lo, hi]: one of `parts` equal parts (a power of two, so
+// the ends are exact, as the CPU backend's strata), or random ends (the
+// stratum-box and depth-floor property tests' time and lens ranges).
+inline glm::dvec2 sub_range(Rng& rng, double lo, double hi) {
+    if (rng.chance(0.75)) {
+        const int parts = 1 << rng.below(4);
+        const int k = rng.below(parts);
+        return glm::dvec2(lo + (hi - lo) * k / parts, lo + (hi - lo) * (k + 1) / parts);
+    }
+    const double a = rng.uniform(lo, hi), b = rng.uniform(lo, hi);
+    return glm::dvec2(std::min(a, b), std::max(a, b));
 }
 
 // A value in [lo, hi]: lo or hi, each with chance 1 / choices, else uniform

@@ -27,18 +27,6 @@ struct Tally {
     std::uint64_t ranges = 0, floored = 0, covered = 0, below = 0, below_vertex_depth = 0;
 };
 
-// A sub-range of [lo, hi]: one of `parts` equal parts (a power of two, so
-// the ends are exact, as the CPU backend's strata), or random ends.
-glm::dvec2 sub_range(Rng& rng, double lo, double hi) {
-    if (rng.chance(0.75)) {
-        const int parts = 1 << rng.below(4);
-        const int k = rng.below(parts);
-        return glm::dvec2(lo + (hi - lo) * k / parts, lo + (hi - lo) * (k + 1) / parts);
-    }
-    const double a = rng.uniform(lo, hi), b = rng.uniform(lo, hi);
-    return glm::dvec2(std::min(a, b), std::max(a, b));
-}
-
 template <class Real>
 Real nudged(Rng& rng, double x) {
     Real r = static_cast<Real>(x);

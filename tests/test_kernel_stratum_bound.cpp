@@ -25,18 +25,6 @@ struct Tally {
 // A value in [lo, hi]: an end (chance 1/6 each) or uniform between.
 double in_range(Rng& rng, double lo, double hi) { return value_or_end(rng, lo, hi, 6); }
 
-// A sub-range of [lo, hi]: one of `parts` equal parts (parts a power of
-// two, so the ends are exact), or random ends.
-glm::dvec2 sub_range(Rng& rng, double lo, double hi) {
-    if (rng.chance(0.75)) {
-        const int parts = 1 << rng.below(4);
-        const int k = rng.below(parts);
-        return glm::dvec2(lo + (hi - lo) * k / parts, lo + (hi - lo) * (k + 1) / parts);
-    }
-    const double a = rng.uniform(lo, hi), b = rng.uniform(lo, hi);
-    return glm::dvec2(std::min(a, b), std::max(a, b));
-}
-
 // A screen position at or a few units in the last place beside the
 // projection of a vertex at (uv, t): where the box's sides are decided.
 template <class Real>
