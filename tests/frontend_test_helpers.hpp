@@ -7,6 +7,8 @@
 #include "scene/builtin_scenes.hpp"
 #include "scene/scene.hpp"
 
+#include "kernel_generators.hpp"
+
 #include <doctest/doctest.h>
 #include <glm/glm.hpp>
 
@@ -25,6 +27,14 @@ namespace blurcull::frontend::test {
 inline bool is_ci() {
     const char* ci = std::getenv("CI");
     return ci != nullptr && (std::string(ci) == "true" || std::string(ci) == "1");
+}
+
+// Whether a sweep over scenes x variants runs the variant whose indices sum
+// to `index_sum`: always in a full run; in a scaled-down one (CI's sanitizer
+// pass, BLURCULL_PROPERTY_SCALE < 1) one in `stride`, rotated over the
+// scenes so that every variant still runs on some scene.
+inline bool sweeps_variant(std::size_t index_sum, std::size_t stride) {
+    return blurcull::testing::property_scale() >= 1.0 || index_sum % stride == 0;
 }
 
 // A built-in scene framed for a width x height image, its blur scaled.
