@@ -5,6 +5,7 @@
 #include "render/common/method_plan.hpp"
 #include "render/cpu/coverage_test.hpp"
 #include "render/cpu/exact_test.hpp"
+#include "render/cpu/farthest_depths.hpp"
 #include "render/common/moving_triangle.hpp"
 #include "render/common/motion_segments.hpp"
 #include "render/common/pixel_samples.hpp"
@@ -359,7 +360,6 @@ public:
         x1_ = std::min(x0_ + tile_size, frame_.settings.width) - 1;
         y1_ = std::min(y0_ + tile_size, frame_.settings.height) - 1;
         tw_ = x1_ - x0_ + 1;
-        tile_pixels_ = static_cast<std::size_t>(tw_) * static_cast<std::size_t>(y1_ - y0_ + 1);
         load_samples();
         strata_grouped_ = false;
         footprints_x_ = (tw_ + frame_.footprint - 1) / frame_.footprint;
@@ -432,24 +432,8 @@ private:
             strata_lanes_.copy(q, lanes_, k);
             strata_slot_[q] = static_cast<std::uint32_t>(k);
         }
-        // Every (stratum, pixel)'s farthest depth is due: triangles may have
-        // drawn before the grouping.
-        farthest_.assign(static_cast<std::size_t>(strata.count()) * pixels, Real(0));
-        farthest_due_.assign(farthest_.size(), 1);
-    }
-
-    // The farthest depth held by the samples of stratum-pixel p (an index of
-    // strata_start_), infinite while one of them is uncovered; recomputed
-    // only when a hit there made it due (a stale value is larger: safe).
-    Real farthest_depth(std::size_t p) {
-        if (farthest_due_[p]) {
-            Real far = Real(0);
-            for (std::uint32_t q = strata_start_[p]; q < strata_start_[p + 1]; ++q)
-                far = std::max(far, depth_[strata_slot_[q]]);
-            farthest_[p] = far;
-            farthest_due_[p] = 0;
-        }
-        return farthest_[p];
+        // Every farthest depth is due: triangles may have drawn before the grouping.
+        farthest_.reset(strata.count(), tw_, y1_ - y0_ + 1, strata_start_.data(), strata_slot_.data(), depth_.data());
     }
 
     // Motion segments: the tile's samples as seen by the pieces of one window,
@@ -700,31 +684,49 @@ private:
             stratum.bound.hi = typename K::vec2(strata[s].box.z, strata[s].box.w);
             // Occlusion off: a floor no stored depth is below.
             const Real floor = frame_.occlusion ? strata[s].depth_floor : Real(0);
-            for (int py = y0; py <= y1; ++py) {
+            const bool occludable = floor > Real(0);
+            // Stratum s's samples of pixels [from, to) of tile row py: one
+            // contiguous run of strata_lanes_ (first, count).
+            const auto run = [&](int py, int from, int to) {
                 const std::size_t row = static_cast<std::size_t>(s) * pixels +
                                         static_cast<std::size_t>(py - y0_) * static_cast<std::size_t>(tw_) -
                                         static_cast<std::size_t>(x0_);
-                if (!(floor > Real(0))) {
-                    const std::uint32_t first = strata_start_[row + static_cast<std::size_t>(x0)];
-                    const std::uint32_t last = strata_start_[row + static_cast<std::size_t>(x1) + 1];
-                    test_run(stratum, no_bounds, strata_lanes_, first, last - first, slot_of);
+                const std::uint32_t first = strata_start_[row + static_cast<std::size_t>(from)];
+                return std::pair<std::uint32_t, std::uint32_t>{first,
+                                                               strata_start_[row + static_cast<std::size_t>(to)] - first};
+            };
+            // Every sample of the stratum's rectangle is nearer than the
+            // triangle can be: nothing to test.
+            if (occludable && farthest_.tile(s) < floor) {
+                for (int py = y0; py <= y1; ++py) occluded += run(py, x0, x1 + 1).second;
+                continue;
+            }
+            for (int py = y0; py <= y1; ++py) {
+                if (!occludable) {
+                    const auto [first, count] = run(py, x0, x1 + 1);
+                    test_run(stratum, no_bounds, strata_lanes_, first, count, slot_of);
+                    continue;
+                }
+                const std::size_t ly = static_cast<std::size_t>(py - y0_);
+                if (farthest_.row(s, ly) < floor) {
+                    occluded += run(py, x0, x1 + 1).second;
                     continue;
                 }
                 // Runs of pixels whose samples of this stratum are not all
                 // nearer than the triangle can be.
+                const auto hidden = [&](int px) {
+                    return farthest_.pixel(s, static_cast<std::size_t>(px - x0_), ly) < floor;
+                };
                 int px = x0;
                 while (px <= x1) {
-                    while (px <= x1 && farthest_depth(row + static_cast<std::size_t>(px)) < floor) {
-                        const std::size_t p = row + static_cast<std::size_t>(px);
-                        occluded += strata_start_[p + 1] - strata_start_[p];
-                        ++px;
-                    }
+                    const int hidden_from = px;
+                    while (px <= x1 && hidden(px)) ++px;
+                    occluded += run(py, hidden_from, px).second;
                     if (px > x1) break;
                     const int run_start = px;
-                    while (px <= x1 && !(farthest_depth(row + static_cast<std::size_t>(px)) < floor)) ++px;
-                    const std::uint32_t first = strata_start_[row + static_cast<std::size_t>(run_start)];
-                    const std::uint32_t last = strata_start_[row + static_cast<std::size_t>(px)];
-                    test_run(stratum, no_bounds, strata_lanes_, first, last - first, slot_of);
+                    while (px <= x1 && !hidden(px)) ++px;
+                    const auto [first, count] = run(py, run_start, px);
+                    test_run(stratum, no_bounds, strata_lanes_, first, count, slot_of);
                 }
             }
         }
@@ -901,8 +903,11 @@ private:
         if (K::depth_nearer(z, depth_[k]) || (z == depth_[k] && source < hit_[k])) {
             depth_[k] = z;
             hit_[k] = source;
-            if (strata_grouped_)
-                farthest_due_[static_cast<std::size_t>(stratum_[k]) * tile_pixels_ + k / frame_.spp] = 1;
+            if (strata_grouped_) {
+                const std::size_t pixel = k / frame_.spp;
+                farthest_.changed(stratum_[k], pixel % static_cast<std::size_t>(tw_),
+                                  pixel / static_cast<std::size_t>(tw_));
+            }
         }
     }
 
@@ -954,9 +959,7 @@ private:
     std::vector<std::uint32_t> strata_start_;  // first strata_lanes_ sample of each (stratum, pixel)
     std::vector<std::uint32_t> strata_next_;   // group_by_stratum's scratch
     bool strata_grouped_ = false;              // strata_lanes_ hold this tile's samples
-    std::vector<Real> farthest_;               // per (stratum, pixel): farthest_depth
-    std::vector<char> farthest_due_;           // per (stratum, pixel): farthest_ needs recomputing
-    std::size_t tile_pixels_ = 0;
+    FarthestDepths<Real> farthest_;            // the occlusion test's depths (group_by_stratum)
     std::array<std::size_t, 4> pending_{};  // samples waiting for covers4 (double only)
     std::size_t pending_count_ = 0;
     int window_segment_ = 0, window_segments_ = 1;  // the window samples_ are loaded for
