@@ -37,6 +37,10 @@ BC_FN vec2 bc_axis_extent(BC_IN(MovingTriangle) tri, int axis, real near_plane) 
     real lo = bc_huge();
     real hi = -bc_huge();
     real magnitude = real(0);
+    // Crossings need a point behind the plane: most triangles have none,
+    // and the 66 pairs are then skipped (they would add nothing).
+    bool any_behind = false;
+    for (int i = 0; i < 6; ++i) any_behind = any_behind || tri.p[i].z < near;
     for (int j = 0; j < 12; ++j) {
         int ij = j / 2;
         real xj = tri.p[ij][axis] + (j % 2 == 0 ? real(-1) : real(1)) * abs(tri.c[ij][axis]);
@@ -49,6 +53,7 @@ BC_FN vec2 bc_axis_extent(BC_IN(MovingTriangle) tri, int axis, real near_plane) 
             magnitude = max(magnitude, mj / wj);
         }
         for (int m = j + 1; m < 12; ++m) {
+            if (!any_behind) break;
             int im = m / 2;
             real wm = tri.p[im].z;
             if ((wj < near && wm > near) || (wj > near && wm < near)) {
