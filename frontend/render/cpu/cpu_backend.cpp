@@ -129,16 +129,15 @@ struct FrameSetup {
     int tiles_x = 0, tiles_y = 0;
     std::vector<std::vector<std::uint32_t>> bins;  // per work tile, the triangles whose rectangle meets it
 
-    // The stored bound of triangle i as the kernel's ScreenBound.
-    typename K::ScreenBound screen_bound(std::size_t i) const {
+    // The stored bound of triangle i into the kernel's ScreenBound `bound`
+    // (its hull edges past hull_count are left as they were: unused).
+    void screen_bound(std::size_t i, typename K::ScreenBound& bound) const {
         const StoredBound& stored = bounds[i];
-        typename K::ScreenBound bound;
         bound.empty = false;
         bound.lo = stored.lo;
         bound.hi = stored.hi;
         bound.hull_count = stored.hull_count;
         for (int e = 0; e < stored.hull_count; ++e) bound.hull_edge[e] = hull_edges[stored.hull_offset + e];
-        return bound;
     }
 };
 
@@ -334,19 +333,19 @@ public:
 
     explicit TileRasterizer(const FrameContext<Real>& frame)
         : frame_(frame),
-          samples_(static_cast<std::size_t>(tile_size) * tile_size * frame.spp),
-          by_time_(samples_.size()),
-          by_time_t_(samples_.size()),
-          depth_(samples_.size()),
-          hit_(samples_.size()),
-          lanes_(samples_.size()),
-          time_lanes_(samples_.size()),
-          shutter_time_(samples_.size()),
-          in_window_(samples_.size()),
+          sample_count_(static_cast<std::size_t>(tile_size) * tile_size * frame.spp),
+          by_time_(sample_count_),
+          by_time_t_(sample_count_),
+          depth_(sample_count_),
+          hit_(sample_count_),
+          lanes_(sample_count_),
+          time_lanes_(sample_count_),
+          shutter_time_(sample_count_),
+          in_window_(sample_count_),
           pixel_samples_(frame.spp),
-          strata_lanes_(frame.setup.strata.count() > 1 ? samples_.size() : 0),
-          strata_slot_(frame.setup.strata.count() > 1 ? samples_.size() : 0),
-          stratum_(frame.setup.strata.count() > 1 ? samples_.size() : 0) {}
+          strata_lanes_(frame.setup.strata.count() > 1 ? sample_count_ : 0),
+          strata_slot_(frame.setup.strata.count() > 1 ? sample_count_ : 0),
+          stratum_(frame.setup.strata.count() > 1 ? sample_count_ : 0) {}
 
     // Rasterizes work tile `tile` (row-major over the tiles) into its pixels of `image`.
     void render_tile(int tile, Image& image) {
@@ -385,6 +384,15 @@ public:
 private:
     static constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
 
+    // Sample k of the tile in the kernel's precision, from lanes_ (its
+    // coordinates are floats: exact in either precision); its time is the
+    // current motion-segment window's local time.
+    Sample sample(std::size_t k) const {
+        return Sample{typename K::vec2(static_cast<Real>(lanes_.sx()[k]), static_cast<Real>(lanes_.sy()[k])),
+                      typename K::vec2(static_cast<Real>(lanes_.u()[k]), static_cast<Real>(lanes_.v()[k])),
+                      static_cast<Real>(lanes_.t()[k])};
+    }
+
     std::size_t slot(int px, int py, std::uint32_t j) const {
         return (static_cast<std::size_t>(py - y0_) * tw_ + (px - x0_)) * frame_.spp + j;
     }
@@ -401,7 +409,6 @@ private:
                     const kernelf::PixelSample& s = pixel_samples_[j];
                     const std::size_t k = slot(px, py, j);
                     const glm::vec2 ndc = frame_.model.sample_ndc(px, py, s.offset);
-                    samples_[k] = Sample{typename K::vec2(ndc), typename K::vec2(s.lens), static_cast<Real>(s.time)};
                     lanes_.set(k, ndc.x, ndc.y, s.lens.x, s.lens.y, s.time);
                     shutter_time_[k] = s.time;
                     in_window_[k] = 1;
@@ -445,10 +452,9 @@ private:
         window_segment_ = piece.segment;
         window_segments_ = piece.segments;
         window_ = kernelf::segment_window(piece.segment, piece.segments);
-        for (std::size_t k = 0; k < samples_.size(); ++k) {
+        for (std::size_t k = 0; k < sample_count_; ++k) {
             const float local = kernelf::segment_local_time(window_, shutter_time_[k]);
             in_window_[k] = kernelf::segment_holds(window_, shutter_time_[k]) ? 1 : 0;
-            samples_[k].time = static_cast<Real>(local);
             lanes_.set_time(k, local);
         }
         if (frame_.time_sorted)
@@ -474,7 +480,7 @@ private:
                             by_time_[next++] = static_cast<std::uint32_t>(slot(px, py, j));
                 std::sort(by_time_.begin() + static_cast<std::ptrdiff_t>(first),
                           by_time_.begin() + static_cast<std::ptrdiff_t>(next),
-                          [&](std::uint32_t a, std::uint32_t b) { return samples_[a].time < samples_[b].time; });
+                          [&](std::uint32_t a, std::uint32_t b) { return lanes_.ft()[a] < lanes_.ft()[b]; });
                 for (std::size_t q = first; q < next; ++q) {
                     time_lanes_.copy(q, lanes_, by_time_[q]);
                     by_time_t_[q] = shutter_time_[by_time_[q]];
@@ -489,7 +495,9 @@ private:
         std::uint32_t index;
         const typename K::MovingTriangle* tri;
         const CoverageSetup* fast;  // its fast coverage test
-        typename K::ScreenBound bound;
+        // Its screen bound (bound_, or a stratum's in stratum_bound_): held
+        // by the rasterizer, so that the 24 hull edges are not copied per triangle.
+        const typename K::ScreenBound* bound;
         bool needs_bounds;  // the method bounds lens and time, and the triangle moves or is defocused
         bool check_screen;  // false while the footprint is inside the screen bound
         bool share_axes;    // footprint bounds from per-column and per-row axis bounds
@@ -582,8 +590,8 @@ private:
     // two-stage bounds with the block's edge planes, set up once per block).
     void rasterize_triangle(std::uint32_t index) {
         const PixelRect& r = frame_.setup.rects[index];
-        Current current{index, &frame_.setup.triangles[index], &frame_.setup.fast_tests[index],
-                        frame_.setup.screen_bound(index),
+        frame_.setup.screen_bound(index, bound_);
+        Current current{index, &frame_.setup.triangles[index], &frame_.setup.fast_tests[index], &bound_,
                         frame_.cull_bounds && frame_.setup.classes[index] != 0, true, false};
         const int rx0 = std::max(r.x0, x0_), rx1 = std::min(r.x1, x1_);
         const int ry0 = std::max(r.y0, y0_), ry1 = std::min(r.y1, y1_);
@@ -674,14 +682,18 @@ private:
         const std::size_t pixels = static_cast<std::size_t>(tw_) * static_cast<std::size_t>(y1_ - y0_ + 1);
         const auto slot_of = [this](std::size_t q) { return static_cast<std::size_t>(strata_slot_[q]); };
         Current stratum = current;
-        stratum.check_screen = current.bound.hull_count > 0;
+        stratum.check_screen = bound_.hull_count > 0;
+        stratum_bound_.empty = false;
+        stratum_bound_.hull_count = bound_.hull_count;
+        for (int e = 0; e < bound_.hull_count; ++e) stratum_bound_.hull_edge[e] = bound_.hull_edge[e];
+        stratum.bound = &stratum_bound_;
         for (int s = 0; s < frame_.setup.strata.count(); ++s) {
             const PixelRect& r = strata[s].rect;
             const int x0 = std::max(r.x0, x0_), x1 = std::min(r.x1, x1_);
             const int y0 = std::max(r.y0, y0_), y1 = std::min(r.y1, y1_);
             if (x0 > x1 || y0 > y1) continue;
-            stratum.bound.lo = typename K::vec2(strata[s].box.x, strata[s].box.y);
-            stratum.bound.hi = typename K::vec2(strata[s].box.z, strata[s].box.w);
+            stratum_bound_.lo = typename K::vec2(strata[s].box.x, strata[s].box.y);
+            stratum_bound_.hi = typename K::vec2(strata[s].box.z, strata[s].box.w);
             // Occlusion off: a floor no stored depth is below.
             const Real floor = frame_.occlusion ? strata[s].depth_floor : Real(0);
             const bool occludable = floor > Real(0);
@@ -738,7 +750,7 @@ private:
         // samples the per-sample screen test.
         const typename K::vec4 box = footprint(px0, py0, px1, py1);
         const int state =
-            K::screen_footprint(current.bound, typename K::vec2(box.x, box.y), typename K::vec2(box.z, box.w));
+            K::screen_footprint(*current.bound, typename K::vec2(box.x, box.y), typename K::vec2(box.z, box.w));
         if (state == BC_FOOTPRINT_OUTSIDE) return;
         if (edge_planes_cull_footprint(sb, px0, py0, px1, py1)) return;
         current.check_screen = state != BC_FOOTPRINT_INSIDE;
@@ -832,8 +844,8 @@ private:
             const std::size_t at = first + done;
             const int n = static_cast<int>(std::min<std::size_t>(32, count - done));
             std::uint32_t passed =
-                current.needs_bounds ? samples_passing<Real>(current.bound, current.check_screen, sb, lanes, at, n)
-                                     : samples_passing_screen<Real>(current.bound, current.check_screen, lanes, at, n);
+                current.needs_bounds ? samples_passing<Real>(*current.bound, current.check_screen, sb, lanes, at, n)
+                                     : samples_passing_screen<Real>(*current.bound, current.check_screen, lanes, at, n);
             if (window_segments_ > 1) {
                 // Another motion segment's time: culled.
                 for (std::uint32_t bits = passed; bits != 0; bits &= bits - 1) {
@@ -860,7 +872,7 @@ private:
             pending_[pending_count_++] = k;
             if (pending_count_ == pending_.size()) flush_exact(current);
         } else {
-            const Sample& s = samples_[k];
+            const Sample s = sample(k);
             Real z = Real(0);
             if (K::covers(*current.tri, s.ndc, s.lens, s.time, frame_.near, z)) record_hit(current, k, z);
         }
@@ -872,7 +884,7 @@ private:
             if (pending_count_ == 0) return;
             double sx[4], sy[4], u[4], v[4], t[4], z[4];
             for (std::size_t i = 0; i < 4; ++i) {
-                const Sample& s = samples_[pending_[std::min(i, pending_count_ - 1)]];
+                const Sample s = sample(pending_[std::min(i, pending_count_ - 1)]);
                 sx[i] = s.ndc.x;
                 sy[i] = s.ndc.y;
                 u[i] = s.lens.x;
@@ -890,7 +902,7 @@ private:
 
     // A covered sample at depth z: the alpha mask, the count, the depth rule.
     void record_hit(const Current& current, std::size_t k, Real z) {
-        const Sample& s = samples_[k];
+        const Sample s = sample(k);
         // The scene triangle wins, lowest index on equal depths also across
         // the motion-segment groups (within one group the order does it).
         const std::uint32_t source = frame_.setup.pieces[current.index].source;
@@ -922,7 +934,7 @@ private:
                 std::uint32_t covered = frame_.sums != nullptr ? frame_.sums->covered[at] : 0;
                 for (std::uint32_t j = 0; j < frame_.spp; ++j) {
                     const std::size_t k = slot(px, py, j);
-                    const Sample& s = samples_[k];
+                    const Sample s = sample(k);
                     sum += frame_.shader.sample_colour(hit_[k], glm::vec2(s.ndc), glm::vec2(s.lens), shutter_time_[k]);
                     covered += hit_[k] != none;
                     if (frame_.sample_ids != nullptr) {
@@ -941,28 +953,29 @@ private:
     }
 
     const FrameContext<Real>& frame_;
-    std::vector<Sample> samples_;
+    std::size_t sample_count_;  // samples of a whole tile
     std::vector<std::uint32_t> by_time_;  // slot of each time_lanes_ sample
     std::vector<double> by_time_t_;       // its shutter time (the sort key)
     std::vector<std::size_t> footprint_start_;
     std::vector<Real> depth_;
     std::vector<std::uint32_t> hit_;
-    SampleLanes lanes_;       // samples_ as arrays, in slot order
+    SampleLanes lanes_;       // the tile's samples, in slot order
     SampleLanes time_lanes_;  // the same, per footprint sorted by time (time_sorted)
     AxisCache columns_, rows_;  // the current triangle's axis bounds (share_axes)
-    std::vector<float> shutter_time_;  // each sample's own time (samples_ hold the window's local time)
+    std::vector<float> shutter_time_;  // each sample's own time (lanes_ hold the window's local time)
     std::vector<char> in_window_;      // whether the current motion-segment window holds the sample
     std::vector<kernelf::PixelSample> pixel_samples_;  // load_samples' scratch: one pixel's samples
-    SampleLanes strata_lanes_;                 // samples_ grouped by stratum (group_by_stratum)
+    SampleLanes strata_lanes_;                 // lanes_ grouped by stratum (group_by_stratum)
     std::vector<std::uint32_t> strata_slot_;   // slot of each strata_lanes_ sample
     std::vector<std::uint8_t> stratum_;        // stratum of each slot
     std::vector<std::uint32_t> strata_start_;  // first strata_lanes_ sample of each (stratum, pixel)
     std::vector<std::uint32_t> strata_next_;   // group_by_stratum's scratch
     bool strata_grouped_ = false;              // strata_lanes_ hold this tile's samples
     FarthestDepths<Real> farthest_;            // the occlusion test's depths (group_by_stratum)
+    typename K::ScreenBound bound_{}, stratum_bound_{};  // the current triangle's, and its stratum's
     std::array<std::size_t, 4> pending_{};  // samples waiting for covers4 (double only)
     std::size_t pending_count_ = 0;
-    int window_segment_ = 0, window_segments_ = 1;  // the window samples_ are loaded for
+    int window_segment_ = 0, window_segments_ = 1;  // the window lanes_ are loaded for
     glm::vec2 window_{0.0f, 1.0f};
     int x0_ = 0, y0_ = 0, x1_ = -1, y1_ = -1, tw_ = 0, footprints_x_ = 0;
 };

@@ -17,30 +17,6 @@ SampleLanes::SampleLanes(std::size_t size)
     : dsx_(size + 32), dsy_(size + 32), du_(size + 32), dv_(size + 32), dt_(size + 32), fsx_(size + 32),
       fsy_(size + 32), fu_(size + 32), fv_(size + 32), ft_(size + 32) {}
 
-void SampleLanes::set(std::size_t k, float sx, float sy, float u, float v, float t) {
-    dsx_[k] = sx;
-    dsy_[k] = sy;
-    du_[k] = u;
-    dv_[k] = v;
-    dt_[k] = t;
-    fsx_[k] = sx;
-    fsy_[k] = sy;
-    fu_[k] = u;
-    fv_[k] = v;
-    ft_[k] = t;
-    in_unit_range_ = in_unit_range_ && u >= -1.0f && u <= 1.0f && v >= -1.0f && v <= 1.0f && t >= 0.0f && t <= 1.0f;
-}
-
-void SampleLanes::set_time(std::size_t k, float t) {
-    dt_[k] = t;
-    ft_[k] = t;
-    in_unit_range_ = in_unit_range_ && t >= 0.0f && t <= 1.0f;
-}
-
-void SampleLanes::copy(std::size_t k, const SampleLanes& other, std::size_t from) {
-    set(k, other.fsx_[from], other.fsy_[from], other.fu_[from], other.fv_[from], other.ft_[from]);
-}
-
 template <class Real>
 std::uint32_t samples_passing_scalar(const typename kernel<Real>::ScreenBound& screen, bool check_screen,
                                      const typename kernel<Real>::SampleBounds& bounds, const SampleLanes& lanes,

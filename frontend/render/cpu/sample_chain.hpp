@@ -19,11 +19,32 @@ namespace blurcull::frontend {
 class SampleLanes {
 public:
     explicit SampleLanes(std::size_t size);
-    void set(std::size_t k, float sx, float sy, float u, float v, float t);
+    // Inline: the tiles set every sample once and copy it once more.
+    void set(std::size_t k, float sx, float sy, float u, float v, float t) {
+        dsx_[k] = sx;
+        dsy_[k] = sy;
+        du_[k] = u;
+        dv_[k] = v;
+        dt_[k] = t;
+        fsx_[k] = sx;
+        fsy_[k] = sy;
+        fu_[k] = u;
+        fv_[k] = v;
+        ft_[k] = t;
+        // & rather than &&: no branch per sample.
+        in_unit_range_ = in_unit_range_ & (u >= -1.0f) & (u <= 1.0f) & (v >= -1.0f) & (v <= 1.0f) & (t >= 0.0f) &
+                         (t <= 1.0f);
+    }
     // Sets sample k's time (a motion segment's local time).
-    void set_time(std::size_t k, float t);
+    void set_time(std::size_t k, float t) {
+        dt_[k] = t;
+        ft_[k] = t;
+        in_unit_range_ = in_unit_range_ & (t >= 0.0f) & (t <= 1.0f);
+    }
     // Copies sample `from` of `other` into slot k.
-    void copy(std::size_t k, const SampleLanes& other, std::size_t from);
+    void copy(std::size_t k, const SampleLanes& other, std::size_t from) {
+        set(k, other.fsx_[from], other.fsy_[from], other.fu_[from], other.fv_[from], other.ft_[from]);
+    }
     const double* sx() const { return dsx_.data(); }
     const double* sy() const { return dsy_.data(); }
     const double* u() const { return du_.data(); }
