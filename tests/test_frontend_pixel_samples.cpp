@@ -57,3 +57,27 @@ TEST_CASE("pixel_samples draws exactly the kernel's samples for every pattern") 
     CHECK(compared > 500000);
     CHECK(differing == 0);
 }
+
+TEST_CASE("a pinhole camera's samples: the kernel's offsets and times, the lens (0, 0), on both paths") {
+    CHECK(lens_samples_for(0.0f) == LensSamples::skipped);
+    CHECK(lens_samples_for(0.07f) == LensSamples::drawn);
+    std::uint64_t compared = 0;
+    for (int pattern = 0; pattern < BC_PATTERN_COUNT; ++pattern) {
+        for (std::uint32_t spp : {1u, 8u, 16u, 17u, 64u}) {
+            for (std::uint32_t px : {0u, 5u, 1023u}) {
+                const patternsf::SamplerSetup setup = patternsf::sampler_setup(pattern, px, 3u * px + 1u, spp, 7u);
+                std::vector<kernelf::PixelSample> fast(spp), scalar(spp);
+                pixel_samples(setup, 0, spp, fast.data(), LensSamples::skipped);
+                pixel_samples_scalar(setup, 0, spp, scalar.data(), LensSamples::skipped);
+                for (std::uint32_t i = 0; i < spp; ++i) {
+                    kernelf::PixelSample expected = patternsf::sampler_sample(setup, i);
+                    expected.lens = glm::vec2(0.0f);
+                    CHECK(same_bits(fast[i], expected));
+                    CHECK(same_bits(scalar[i], expected));
+                    ++compared;
+                }
+            }
+        }
+    }
+    CHECK(compared > 1000);
+}

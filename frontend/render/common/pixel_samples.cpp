@@ -15,8 +15,11 @@
 namespace blurcull::frontend {
 
 void pixel_samples_scalar(const patternsf::SamplerSetup& setup, std::uint32_t first, std::uint32_t count,
-                          kernelf::PixelSample* out) {
-    for (std::uint32_t i = 0; i < count; ++i) out[i] = patternsf::sampler_sample(setup, first + i);
+                          kernelf::PixelSample* out, LensSamples lens) {
+    for (std::uint32_t i = 0; i < count; ++i) {
+        out[i] = patternsf::sampler_sample(setup, first + i);
+        if (lens == LensSamples::skipped) out[i].lens = glm::vec2(0.0f);
+    }
 }
 
 namespace {
@@ -99,7 +102,7 @@ struct Lanes8 {
 // Eight samples of a Sobol pattern from index `first`: the coordinates on
 // eight lanes, then the kernel's own lens mapping per sample.
 __attribute__((target("avx2"))) void sobol8(const P::SamplerSetup& setup, std::uint32_t first,
-                                            kernelf::PixelSample* out) {
+                                            kernelf::PixelSample* out, LensSamples lens) {
     static const DirectionNumbers numbers;
     const P::SobolSetup& p = setup.sobol;
     int bits = 0;
@@ -114,6 +117,14 @@ __attribute__((target("avx2"))) void sobol8(const P::SamplerSetup& setup, std::u
     Lanes8::unit(position, 0, p.dim_key0, bits, numbers, x);
     Lanes8::unit(position, 1, p.dim_key1, bits, numbers, y);
     Lanes8::unit(lens_time, 2, p.dim_key2, bits, numbers, t);
+    if (lens == LensSamples::skipped) {
+        for (int i = 0; i < 8; ++i) {
+            out[i].offset = glm::vec2(x[i], y[i]);
+            out[i].time = t[i];
+            out[i].lens = glm::vec2(0.0f);
+        }
+        return;
+    }
     Lanes8::unit(lens_time, padded ? 0 : 3, p.dim_key3, bits, numbers, u);
     Lanes8::unit(lens_time, padded ? 1 : 4, p.dim_key4, bits, numbers, v);
     for (int i = 0; i < 8; ++i) {
@@ -127,20 +138,20 @@ __attribute__((target("avx2"))) void sobol8(const P::SamplerSetup& setup, std::u
 }  // namespace
 
 void pixel_samples(const patternsf::SamplerSetup& setup, std::uint32_t first, std::uint32_t count,
-                   kernelf::PixelSample* out) {
+                   kernelf::PixelSample* out, LensSamples lens) {
 #if BLURCULL_SAMPLES_X86
     if (has_avx2 && (setup.pattern == BC_PATTERN_SOBOL || setup.pattern == BC_PATTERN_PADDED_SOBOL)) {
         std::uint32_t done = 0;
-        for (; done + 8 <= count; done += 8) sobol8(setup, first + done, out + done);
+        for (; done + 8 <= count; done += 8) sobol8(setup, first + done, out + done, lens);
         if (done < count) {
             kernelf::PixelSample rest[8];
-            sobol8(setup, first + done, rest);
+            sobol8(setup, first + done, rest, lens);
             std::copy(rest, rest + (count - done), out + done);
         }
         return;
     }
 #endif
-    pixel_samples_scalar(setup, first, count, out);
+    pixel_samples_scalar(setup, first, count, out, lens);
 }
 
 const char* pixel_samples_isa() {

@@ -404,7 +404,8 @@ private:
                 const patternsf::SamplerSetup pattern = patternsf::sampler_setup(
                     frame_.settings.sampler, static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py),
                     static_cast<std::uint32_t>(frame_.settings.spp), frame_.settings.seed);
-                pixel_samples(pattern, frame_.first_sample, frame_.spp, pixel_samples_.data());
+                pixel_samples(pattern, frame_.first_sample, frame_.spp, pixel_samples_.data(),
+                              lens_samples_for(frame_.model.lens_radius));
                 for (std::uint32_t j = 0; j < frame_.spp; ++j) {
                     const kernelf::PixelSample& s = pixel_samples_[j];
                     const std::size_t k = slot(px, py, j);

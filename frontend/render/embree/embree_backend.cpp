@@ -268,7 +268,7 @@ private:
         for (int px = 0; px < settings_.width; ++px) {
             const patternsf::SamplerSetup pattern = patternsf::sampler_setup(
                 settings_.sampler, static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py), spp, settings_.seed);
-            pixel_samples(pattern, 0, spp, pixel_buffer.data());
+            pixel_samples(pattern, 0, spp, pixel_buffer.data(), lens_samples_for(model_.lens_radius));
             for (std::uint32_t j = 0; j < spp; ++j) {
                 const kernelf::PixelSample& sample = pixel_buffer[j];
                 const glm::vec2 ndc = model_.sample_ndc(px, py, sample.offset);
