@@ -5,11 +5,19 @@
 // per 4 KiB page. On the default forest render that was 52,000 page faults
 // and about 10% of the process's CPU time (docs/cpu-renderer.md, "Memory").
 // Smaller blocks, and systems without madvise, take the ordinary allocator.
+//
+// resize() leaves trivially copyable elements uninitialized (their objects
+// begin implicitly in the allocated memory) instead of zeroing them: the
+// setup writes every element on the worker thread that owns it before
+// anything reads it, so the pages are first touched in parallel and once,
+// not zeroed by one thread first and written again by the workers.
 #pragma once
 
 #include <cstddef>
 #include <cstdlib>
 #include <new>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #if defined(__linux__)
@@ -46,13 +54,21 @@ struct HugePageAllocator {
         else
             std::free(p);
     }
+    template <class U, class... Args>
+    void construct(U* p, Args&&... args) {
+        if constexpr (sizeof...(Args) == 0 && std::is_trivially_copyable_v<U> && std::is_trivially_destructible_v<U>)
+            (void)p;  // left for the owner to write
+        else
+            ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+    }
     template <class U>
     bool operator==(const HugePageAllocator<U>&) const noexcept { return true; }
     template <class U>
     bool operator!=(const HugePageAllocator<U>&) const noexcept { return false; }
 };
 
-// A std::vector whose large buffers live on huge pages.
+// A std::vector whose large buffers live on huge pages (and whose resize()
+// leaves trivially copyable elements for the caller to write).
 template <class T>
 using HugePageVector = std::vector<T, HugePageAllocator<T>>;
 

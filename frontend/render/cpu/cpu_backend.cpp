@@ -185,7 +185,9 @@ void set_up_triangles(const Scene& scene, const CameraModel& model, int method, 
     setup.bounds.resize(count);
     setup.fast_tests.resize(count);
     setup.strata = strata;
-    setup.stratum_boxes.assign(count, nullptr);
+    // Every element of these arrays is written by the worker of its chunk
+    // below (HugePageVector's resize leaves them unwritten).
+    setup.stratum_boxes.resize(count);
     const std::size_t chunks = static_cast<std::size_t>(std::max(1, std::min(threads, 64)));
     std::vector<std::vector<typename K::vec3>> chunk_edges(chunks);
     std::vector<HugePageVector<StratumBox<K>>>& chunk_rects = setup.stratum_chunks;
@@ -199,6 +201,9 @@ void set_up_triangles(const Scene& scene, const CameraModel& model, int method, 
             setup.triangles[i] = make_segment_triangle<Real>(scene, model, setup.pieces[i]);
             setup.classes[i] = K::classify(setup.triangles[i]);
             setup.rects[i] = PixelRect{0, 0, -1, -1};
+            setup.bounds[i] = typename FrameSetup<Real>::StoredBound{};
+            setup.fast_tests[i] = CoverageSetup{};
+            setup.stratum_boxes[i] = nullptr;
             if (setup.classes[i] == BC_INVALID) {
                 ++chunk_invalid[chunk];  // validate_scene checked the input; only overflow gets here
                 continue;
