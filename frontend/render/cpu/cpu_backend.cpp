@@ -397,6 +397,9 @@ private:
                       typename K::vec2(static_cast<Real>(lanes_.u()[k]), static_cast<Real>(lanes_.v()[k])),
                       static_cast<Real>(lanes_.t()[k])};
     }
+    // Its screen position and lens position as the shader takes them (floats).
+    glm::vec2 ndc_of(std::size_t k) const { return glm::vec2(lanes_.fsx()[k], lanes_.fsy()[k]); }
+    glm::vec2 lens_of(std::size_t k) const { return glm::vec2(lanes_.fu()[k], lanes_.fv()[k]); }
 
     std::size_t slot(int px, int py, std::uint32_t j) const {
         return (static_cast<std::size_t>(py - y0_) * tw_ + (px - x0_)) * frame_.spp + j;
@@ -890,12 +893,12 @@ private:
             if (pending_count_ == 0) return;
             double sx[4], sy[4], u[4], v[4], t[4], z[4];
             for (std::size_t i = 0; i < 4; ++i) {
-                const Sample s = sample(pending_[std::min(i, pending_count_ - 1)]);
-                sx[i] = s.ndc.x;
-                sy[i] = s.ndc.y;
-                u[i] = s.lens.x;
-                v[i] = s.lens.y;
-                t[i] = s.time;
+                const std::size_t k = pending_[std::min(i, pending_count_ - 1)];
+                sx[i] = lanes_.sx()[k];
+                sy[i] = lanes_.sy()[k];
+                u[i] = lanes_.u()[k];
+                v[i] = lanes_.v()[k];
+                t[i] = lanes_.t()[k];
             }
             const std::uint32_t covered = covers4(*current.tri, sx, sy, u, v, t, frame_.near, z);
             for (std::size_t i = 0; i < pending_count_; ++i)
@@ -908,14 +911,13 @@ private:
 
     // A covered sample at depth z: the alpha mask, the count, the depth rule.
     void record_hit(const Current& current, std::size_t k, Real z) {
-        const Sample s = sample(k);
         // The scene triangle wins, lowest index on equal depths also across
         // the motion-segment groups (within one group the order does it).
         const std::uint32_t source = frame_.setup.pieces[current.index].source;
         // alphaMode MASK: a masked-out sample is not covered (before the
         // depth test); the shader takes the sample's shutter time.
         if (frame_.shader.masked(source) &&
-            !frame_.shader.sample_kept(source, glm::vec2(s.ndc), glm::vec2(s.lens), shutter_time_[k]))
+            !frame_.shader.sample_kept(source, ndc_of(k), lens_of(k), shutter_time_[k]))
             return;
         ++hits;
         if (K::depth_nearer(z, depth_[k]) || (z == depth_[k] && source < hit_[k])) {
@@ -940,8 +942,7 @@ private:
                 std::uint32_t covered = frame_.sums != nullptr ? frame_.sums->covered[at] : 0;
                 for (std::uint32_t j = 0; j < frame_.spp; ++j) {
                     const std::size_t k = slot(px, py, j);
-                    const Sample s = sample(k);
-                    sum += frame_.shader.sample_colour(hit_[k], glm::vec2(s.ndc), glm::vec2(s.lens), shutter_time_[k]);
+                    sum += frame_.shader.sample_colour(hit_[k], ndc_of(k), lens_of(k), shutter_time_[k]);
                     covered += hit_[k] != none;
                     if (frame_.sample_ids != nullptr) {
                         const std::size_t pixel = static_cast<std::size_t>(py) * frame_.settings.width + px;
