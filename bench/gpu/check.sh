@@ -51,7 +51,7 @@ for t in "${gl_tests[@]}"; do
   say "$t: exit $rc in ${secs}s; $summary_line"
   [ "$rc" -eq 0 ] || failed=$((failed + 1))
   if [ "$rc" -gt 128 ] && [ "$rc" -ne 124 ] && [ -n "$debugger" ]; then
-    timeout 300 "$debugger" -batch -ex run -ex bt -ex 'info sharedlibrary' --args "$exe" \
+    timeout 300 "$debugger" -batch -ex run -ex bt -ex 'info sharedlibrary' --args "$exe" --no-breaks=true \
       >"$out/$t.backtrace" 2>&1
     say "  backtrace: $(grep -m 3 -E '^#[0-9]' "$out/$t.backtrace" | tr '\n' ' ')"
   fi
