@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -309,10 +310,29 @@ TEST_CASE("--cull clip2 is twostage under its old name") {
     CHECK(new_name["samples_hit"] == old_name["samples_hit"]);
 }
 
-TEST_CASE("blurcull scenes lists the built-in scenes; --version and --help exit 0") {
+TEST_CASE("blurcull scenes lists every built-in scene with a description; --version and --help exit 0") {
     Run scenes = run_cli("scenes");
     CHECK(scenes.status == 0);
-    CHECK(scenes.out == "hand\ncar\ndragonfly\nforest\n");
+    // One line each: the name, spaces, the description; every name renders.
+    std::istringstream listed(scenes.out);
+    std::vector<std::string> names;
+    for (std::string line; std::getline(listed, line);) {
+        INFO(line);
+        const std::size_t space = line.find(' ');
+        REQUIRE(space != std::string::npos);
+        names.push_back(line.substr(0, space));
+        const std::size_t description = line.find_first_not_of(' ', space);
+        REQUIRE(description != std::string::npos);
+        CHECK(line.size() - description >= 20);  // a sentence, not a word
+    }
+    CHECK(names == std::vector<std::string>{"hand", "car", "dragonfly", "forest", "mirror-sphere", "water",
+                                            "curved-mirror"});
+    CHECK(scenes.out.find("mirror-sphere  a mirror sphere") != std::string::npos);
+    for (const std::string& name : names) {
+        Run render = run_cli("render --backend cpu --scene " + name + " --size 8x6 --spp 1 -q -o listed_" + name + ".png");
+        INFO(name << ": " << render.err);
+        CHECK(render.status == 0);
+    }
     CHECK(run_cli("--version").status == 0);
     Run help = run_cli("render --help");
     CHECK(help.status == 0);

@@ -12,6 +12,7 @@
 
 #include <glm/glm.hpp>
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -109,6 +110,29 @@ void write_bytes(const std::string& path, const std::vector<char>& bytes) {
 
 // ---------------------------------------------------------------------------
 // Built-in scenes
+
+TEST_CASE("built-in scenes: the catalogue lists every scene once, its description's triangle count true") {
+    const std::vector<BuiltinSceneInfo> catalogue = builtin_scene_catalogue();
+    std::vector<std::string> expected = builtin_scene_names();
+    for (const std::string& name : secondary_scene_names()) expected.push_back(name);
+    std::vector<std::string> names;
+    for (const BuiltinSceneInfo& scene : catalogue) {
+        CAPTURE(scene.name);
+        names.push_back(scene.name);
+        CHECK(scene.description.find('\n') == std::string::npos);
+        // "(... 54k triangles)": within 1k (rounding) of the scene's count.
+        const std::size_t at = scene.description.find("k triangles)");
+        REQUIRE(at != std::string::npos);
+        std::size_t digits = at;
+        while (digits > 0 && std::isdigit(static_cast<unsigned char>(scene.description[digits - 1]))) --digits;
+        REQUIRE(digits < at);
+        const double thousands = std::stod(scene.description.substr(digits, at - digits));
+        const auto triangles = static_cast<double>(make_builtin_scene(scene.name, SceneOptions{}).triangles.size());
+        CHECK(std::abs(triangles / 1000.0 - thousands) <= 1.0);
+    }
+    CHECK(names == expected);
+    CHECK(expected.size() == 7);
+}
 
 TEST_CASE("built-in scenes: names, sizes near the thesis workloads, determinism, validity") {
     const std::vector<std::string> names = builtin_scene_names();
