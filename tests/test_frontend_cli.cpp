@@ -2,6 +2,7 @@
 // PNG, and refuses bad input with one line naming the problem and a non-zero
 // exit. BLURCULL_CLI is the path of the built executable.
 #include "render/common/image.hpp"
+#include "test_data_dirs.hpp"
 
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
@@ -14,6 +15,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -61,7 +63,10 @@ std::size_t lines(const std::string& text) {
     return n;
 }
 
-const std::string shared_dir = BLURCULL_SHARED_DIR;
+// BoxAnimated.gltf: an animated Khronos model (tests/data/khronos). The
+// cases that read it are in test suite "scene_files", which .ci/run runs
+// again without ../shared.
+const std::string box = blurcull::testing::khronos_test_dir() + "/BoxAnimated.gltf";
 const std::string data_dir = std::string(BLURCULL_SOURCE_DIR) + "/tests/data/gltf";
 
 }  // namespace
@@ -108,23 +113,18 @@ TEST_CASE("blurcull render --precision float: kernel<float>, the same image but 
     CHECK(std::abs(hits_float - hits_double) <= 1e-4 * hits_double);
 }
 
-TEST_CASE("blurcull render: the Embree backend and a glTF scene") {
+TEST_CASE("blurcull render: the Embree backend and a glTF scene" * doctest::test_suite("scene_files")) {
     Run embree = run_cli("render --scene hand --size 48x36 --spp 2 --backend embree --json -o hand_embree.png");
     INFO(embree.err);
     REQUIRE(embree.status == 0);
     CHECK(nlohmann::json::parse(embree.out)["backend"] == "embree");
-    const std::string box = shared_dir + "/scenes/khronos/BoxAnimated.gltf";
-    if (!std::filesystem::exists(box)) {
-        MESSAGE("skipped the Khronos model: " << box << " is missing");
-        return;
-    }
     Run gltf = run_cli("render --scene '" + box + "' --size 48x36 --spp 2 --shutter 0.5,0.9 --json -o box.png");
     INFO(gltf.err);
     REQUIRE(gltf.status == 0);
     CHECK(nlohmann::json::parse(gltf.out)["triangles"] == 254);
 }
 
-TEST_CASE("bad input: one line naming the problem, non-zero exit, no output file") {
+TEST_CASE("bad input: one line naming the problem, non-zero exit, no output file" * doctest::test_suite("scene_files")) {
     struct Case {
         std::string arguments;
         std::string expected;  // a word the message must contain
@@ -191,9 +191,7 @@ TEST_CASE("bad input: one line naming the problem, non-zero exit, no output file
         {"render --frames 0:2 -o should_not_exist_%04d.jpg", "unknown image type '.jpg'"},
         {"render --frames 0:2 -o should_not_exist_%04d/x.png", "not its folder"},
         {"render -o should_not_exist_%04d.png", "needs --frames"},
-        {"render --frames 100:110 -o should_not_exist_%04d.png --scene '" + shared_dir +
-             "/scenes/khronos/BoxAnimated.gltf'",
-         "after the animation of"},
+        {"render --frames 100:110 -o should_not_exist_%04d.png --scene '" + box + "'", "after the animation of"},
     };
     // Left by an older build, they would fail the check below.
     run_cli("scenes");  // makes the folder
@@ -309,10 +307,29 @@ TEST_CASE("--cull clip2 is twostage under its old name") {
     CHECK(new_name["samples_hit"] == old_name["samples_hit"]);
 }
 
-TEST_CASE("blurcull scenes lists the built-in scenes; --version and --help exit 0") {
+TEST_CASE("blurcull scenes lists every built-in scene with a description; --version and --help exit 0") {
     Run scenes = run_cli("scenes");
     CHECK(scenes.status == 0);
-    CHECK(scenes.out == "hand\ncar\ndragonfly\nforest\n");
+    // One line each: the name, spaces, the description; every name renders.
+    std::istringstream listed(scenes.out);
+    std::vector<std::string> names;
+    for (std::string line; std::getline(listed, line);) {
+        INFO(line);
+        const std::size_t space = line.find(' ');
+        REQUIRE(space != std::string::npos);
+        names.push_back(line.substr(0, space));
+        const std::size_t description = line.find_first_not_of(' ', space);
+        REQUIRE(description != std::string::npos);
+        CHECK(line.size() - description >= 20);  // a sentence, not a word
+    }
+    CHECK(names == std::vector<std::string>{"hand", "car", "dragonfly", "forest", "mirror-sphere", "water",
+                                            "curved-mirror"});
+    CHECK(scenes.out.find("mirror-sphere  a mirror sphere") != std::string::npos);
+    for (const std::string& name : names) {
+        Run render = run_cli("render --backend cpu --scene " + name + " --size 8x6 --spp 1 -q -o listed_" + name + ".png");
+        INFO(name << ": " << render.err);
+        CHECK(render.status == 0);
+    }
     CHECK(run_cli("--version").status == 0);
     Run help = run_cli("render --help");
     CHECK(help.status == 0);
@@ -391,9 +408,7 @@ TEST_CASE("--backend auto with --method accum and no GL context: the cpu backend
     CHECK(summary["method"] == "accum");
 }
 
-TEST_CASE("blurcull render --motion-segments: K or auto reaches the scene, bad values are one line") {
-    const std::string box = shared_dir + "/scenes/khronos/BoxAnimated.gltf";
-    if (!std::filesystem::exists(box)) return;  // the shared scenes are optional
+TEST_CASE("blurcull render --motion-segments: K or auto reaches the scene, bad values are one line" * doctest::test_suite("scene_files")) {
     Run three = run_cli("render --scene '" + box + "' --backend cpu --size 48x36 --spp 2 --shutter 0.5,1.5 " +
                         "--motion-segments 3 --json -q -o box_segments.png");
     REQUIRE(three.status == 0);
@@ -481,12 +496,7 @@ TEST_CASE("-o out.exr: linear RGBA with alpha = coverage, the PNG's pixels befor
     CHECK(read_exr(cli_folder + "/triangle_half.exr").coverage == linear.coverage);
 }
 
-TEST_CASE("--frames: numbered files on the glTF clock, each frame independent of the range") {
-    const std::string box = shared_dir + "/scenes/khronos/BoxAnimated.gltf";
-    if (!std::filesystem::exists(box)) {
-        MESSAGE("skipped: " << box << " is missing");
-        return;
-    }
+TEST_CASE("--frames: numbered files on the glTF clock, each frame independent of the range" * doctest::test_suite("scene_files")) {
     const std::string args = "render --scene '" + box + "' --size 48x36 --spp 2 --json --fps 24 --shutter-angle 180 ";
     Run run = run_cli(args + "--frames 10:14:2 -o box_seq_%04d.png");
     INFO(run.err);

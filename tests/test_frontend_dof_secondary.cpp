@@ -116,8 +116,24 @@ TEST_CASE("dof-secondary: a scene without reflectors is the stochastic rasterize
     const RenderSettings settings = quiet_settings(32, 24, 4);
     const Scene scene = mirrored_scene(0.1f);
     SecondaryStats stats;
-    CHECK(same_pixels(render_dof_secondary(scene, settings, {}, &stats).image, render_cpu(scene, settings).image));
+    const RenderResult got = render_dof_secondary(scene, settings, {}, &stats);
+    const RenderResult primary = render_cpu(scene, settings);
+    CHECK(same_pixels(got.image, primary.image));
     CHECK(stats.rays == 0);
+    // The bounce's counters are added to the primary pass's (RenderStats::add),
+    // which keep theirs: the occlusion culling's samples_occluded.
+    REQUIRE(!primary.stats.counters.empty());
+    for (const auto& [name, value] : primary.stats.counters) {
+        INFO(name);
+        bool found = false;
+        for (const auto& [got_name, got_value] : got.stats.counters) {
+            if (got_name != name) continue;
+            found = true;
+            CHECK(got_value == value);
+        }
+        CHECK(found);
+    }
+    CHECK(got.stats.samples_tested == primary.stats.samples_tested);
 }
 
 TEST_CASE("dof-secondary: options out of range are refused in one line") {

@@ -4,10 +4,11 @@
 // (handed to the caller, never printed) or throws one SceneError line naming
 // the file and the problem. Also the conformance cases (versions, required
 // extensions, KHR_mesh_quantization, missing images) and morph targets as
-// motion, on files of its own and on ../shared/scenes/khronos/SparseMorphCube
-// when present (docs/scenes.md, "glTF support").
+// motion, on files of its own and on the Khronos SparseMorphCube
+// (tests/data/khronos; docs/scenes.md, "glTF support").
 #include "render/cpu/cpu_backend.hpp"
 #include "scene/gltf/gltf_loader.hpp"
+#include "test_data_dirs.hpp"
 
 #include <doctest/doctest.h>
 #include <glm/glm.hpp>
@@ -380,12 +381,8 @@ std::vector<glm::vec3> expected_cube(const Glb& glb, float weight) {
 }  // namespace
 
 TEST_CASE("glTF morph targets: Khronos SparseMorphCube (a sparse target), as the file's weights say") {
-    const std::string path = std::string(BLURCULL_SHARED_DIR) + "/scenes/khronos/SparseMorphCube/"
-                             "singleBlendshapeCube_sparse.glb";
-    if (!std::filesystem::exists(path)) {
-        MESSAGE("SparseMorphCube not found at " << path << "; skipping");
-        return;
-    }
+    const std::string path =
+        blurcull::testing::khronos_test_dir() + "/SparseMorphCube/singleBlendshapeCube_sparse.glb";
     Glb glb = read_glb(path);
     // The file's own weights: mesh.weights and an animation of one key; a
     // single key holds at every time, so the cube is morphed but static.

@@ -11,9 +11,11 @@
 #include <doctest/doctest.h>
 
 #include <atomic>
+#include <cstdint>
 #include <numeric>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 using namespace blurcull::frontend;
@@ -32,6 +34,13 @@ RenderResult render_in_passes(const Scene& scene, const RenderSettings& settings
 }
 
 bool same_coverage(const Image& a, const Image& b) { return a.coverage == b.coverage; }
+
+// The counter `name` of `stats`, or -1 when it has none of that name.
+double counter(const RenderStats& stats, const std::string& name) {
+    for (const auto& [counter_name, value] : stats.counters)
+        if (counter_name == name) return value;
+    return -1.0;
+}
 
 // One-shot against progressive in each split of `splits`, pixels, coverage and counts.
 void check_splits(const Scene& scene, const RenderSettings& settings, const CpuOptions& options,
@@ -168,4 +177,95 @@ TEST_CASE("the pass schedule doubles the samples within the time budget") {
     CHECK(next_pass_samples(8, 32, 100.0, 500.0) == 5);
     // Slower than the budget: still one sample.
     CHECK(next_pass_samples(8, 32, 900.0, 500.0) == 1);
+}
+
+TEST_CASE("a progressive render's statistics are its passes' summed, the occlusion counter included") {
+    // The car on bbox: occlusion culling (on by default) skips samples its
+    // own nearer triangles already hide.
+    const int width = 48, height = 36, spp = 16;
+    const Scene scene = small_scene("car", width, height);
+    RenderSettings settings = quiet_settings(width, height, spp);
+    settings.cull = CullMethod::bbox;
+    const CpuOptions options;
+    REQUIRE(options.occlusion);
+    // Each pass drawn again on its own (render_cpu on sums of its own, as the
+    // progressive render draws it): the render's totals are their sums.
+    ProgressiveRender progressive(scene, settings, options);
+    SampleSums sums;
+    sums.reset(width, height);
+    double occluded = 0.0;
+    std::uint64_t tested = 0, hit = 0, visited = 0, bounded = 0;
+    for (int count : {1, 1, 2, 4, 8}) {
+        CpuOptions pass = options;
+        pass.sums = &sums;
+        pass.pass_samples = count;
+        const RenderResult alone = render_cpu(scene, settings, pass);
+        REQUIRE(counter(alone.stats, "samples_occluded") >= 0.0);
+        occluded += counter(alone.stats, "samples_occluded");
+        tested += alone.stats.samples_tested;
+        hit += alone.stats.samples_hit;
+        visited += alone.stats.samples_visited;
+        bounded += alone.stats.bounds_computed;
+        const RenderStats& total = progressive.next_pass(count).stats;
+        INFO("after " << progressive.samples() << " spp");
+        CHECK(counter(total, "samples_occluded") == occluded);
+        CHECK(total.samples_tested == tested);
+        CHECK(total.samples_hit == hit);
+        CHECK(total.samples_visited == visited);
+        CHECK(total.bounds_computed == bounded);
+        CHECK(total.counters.size() == alone.stats.counters.size());
+    }
+    // Not vacuous: the later passes' skipped samples are counted too.
+    CHECK(occluded > counter(ProgressiveRender(scene, settings, options).next_pass(1).stats, "samples_occluded"));
+    // One pass of every sample does the one-shot render's work, counters included.
+    ProgressiveRender whole(scene, settings, options);
+    const RenderStats& one_pass = whole.next_pass(spp).stats;
+    const RenderResult one_shot = render_cpu(scene, settings, options);
+    CHECK(counter(one_shot.stats, "samples_occluded") > 0.0);
+    CHECK(one_pass.counters == one_shot.stats.counters);
+    CHECK(one_pass.samples_tested == one_shot.stats.samples_tested);
+    CHECK(one_pass.samples_hit == one_shot.stats.samples_hit);
+}
+
+TEST_CASE("RenderStats::add sums every count, and the phases and counters by name") {
+    RenderStats a;
+    a.samples_tested = 10;
+    a.samples_hit = 4;
+    a.samples_visited = 20;
+    a.bounds_computed = 3;
+    a.bounds_empty = 1;
+    a.secondary_rays = 7;
+    a.ms_total = 1.5;
+    a.ms_per_phase = {{"setup", 1.0}, {"raster", 0.5}};
+    a.counters = {{"samples_occluded", 5.0}};
+    a.triangles = 100;
+    RenderStats b;
+    b.samples_tested = 1;
+    b.samples_hit = 2;
+    b.samples_visited = 3;
+    b.bounds_computed = 4;
+    b.bounds_empty = 5;
+    b.secondary_rays = 6;
+    b.ms_total = 0.25;
+    b.ms_per_phase = {{"raster", 2.0}, {"resolve", 0.125}};
+    b.counters = {{"clusters", 2.0}, {"samples_occluded", 1.0}};
+    b.triangles = 50;
+    a.add(b);
+    CHECK(a.samples_tested == 11);
+    CHECK(a.samples_hit == 6);
+    CHECK(a.samples_visited == 23);
+    CHECK(a.bounds_computed == 7);
+    CHECK(a.bounds_empty == 6);
+    CHECK(a.secondary_rays == 13);
+    CHECK(a.ms_total == 1.75);
+    using Named = std::vector<std::pair<std::string, double>>;
+    CHECK(a.ms_per_phase == Named{{"setup", 1.0}, {"raster", 2.5}, {"resolve", 0.125}});
+    CHECK(a.counters == Named{{"samples_occluded", 6.0}, {"clusters", 2.0}});
+    CHECK(a.triangles == 100);  // the scene's size, not summed
+    // Into empty statistics: a copy.
+    RenderStats empty;
+    empty.add(b);
+    CHECK(empty.counters == b.counters);
+    CHECK(empty.ms_per_phase == b.ms_per_phase);
+    CHECK(empty.triangles == 50);
 }

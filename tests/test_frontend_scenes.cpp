@@ -7,11 +7,13 @@
 #include "scene/load_scene.hpp"
 #include "scene/scene_checks.hpp"
 #include "scene/scene_name.hpp"
+#include "test_data_dirs.hpp"
 
 #include <doctest/doctest.h>
 
 #include <glm/glm.hpp>
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -27,7 +29,8 @@ using namespace blurcull::frontend;
 namespace {
 
 const std::string kDataDir = std::string(BLURCULL_SOURCE_DIR) + "/tests/data/gltf/";
-const std::string kKhronosDir = std::string(BLURCULL_SHARED_DIR) + "/scenes/khronos/";
+// The Khronos sample models the tests read (tests/data/khronos/README.md).
+const std::string kKhronosDir = blurcull::testing::khronos_test_dir() + "/";
 
 bool same_scene(const Scene& a, const Scene& b) {
     if (a.position_open != b.position_open || a.position_close != b.position_close ||
@@ -82,12 +85,6 @@ std::string error_of(Load load) {
     return "";
 }
 
-bool khronos_available() {
-    if (std::filesystem::exists(kKhronosDir + "AnimatedTriangle.gltf")) return true;
-    MESSAGE("Khronos sample models not found in " << kKhronosDir << "; skipping");
-    return false;
-}
-
 GltfOptions shutter(float open, float close) {
     GltfOptions options;
     options.shutter_open = open;
@@ -109,6 +106,29 @@ void write_bytes(const std::string& path, const std::vector<char>& bytes) {
 
 // ---------------------------------------------------------------------------
 // Built-in scenes
+
+TEST_CASE("built-in scenes: the catalogue lists every scene once, its description's triangle count true") {
+    const std::vector<BuiltinSceneInfo> catalogue = builtin_scene_catalogue();
+    std::vector<std::string> expected = builtin_scene_names();
+    for (const std::string& name : secondary_scene_names()) expected.push_back(name);
+    std::vector<std::string> names;
+    for (const BuiltinSceneInfo& scene : catalogue) {
+        CAPTURE(scene.name);
+        names.push_back(scene.name);
+        CHECK(scene.description.find('\n') == std::string::npos);
+        // "(... 54k triangles)": within 1k (rounding) of the scene's count.
+        const std::size_t at = scene.description.find("k triangles)");
+        REQUIRE(at != std::string::npos);
+        std::size_t digits = at;
+        while (digits > 0 && std::isdigit(static_cast<unsigned char>(scene.description[digits - 1]))) --digits;
+        REQUIRE(digits < at);
+        const double thousands = std::stod(scene.description.substr(digits, at - digits));
+        const auto triangles = static_cast<double>(make_builtin_scene(scene.name, SceneOptions{}).triangles.size());
+        CHECK(std::abs(triangles / 1000.0 - thousands) <= 1.0);
+    }
+    CHECK(names == expected);
+    CHECK(expected.size() == 7);
+}
 
 TEST_CASE("built-in scenes: names, sizes near the thesis workloads, determinism, validity") {
     const std::vector<std::string> names = builtin_scene_names();
@@ -345,7 +365,6 @@ TEST_CASE("validate_scene rejects inconsistent scenes, describe summarises") {
 // glTF: Khronos sample models
 
 TEST_CASE("glTF: the Khronos sample models load with their triangle counts") {
-    if (!khronos_available()) return;
     const std::pair<const char*, std::size_t> models[] = {
         {"AnimatedTriangle.gltf", 1}, {"BoxAnimated.gltf", 254}, {"RiggedSimple.gltf", 188},
         {"Cameras.gltf", 2}, {"RiggedFigure.gltf", 256}};
@@ -357,8 +376,31 @@ TEST_CASE("glTF: the Khronos sample models load with their triangle counts") {
     }
 }
 
+// The team's scene folder (../shared/scenes/khronos, optional; a clone
+// outside the team has none): every model in it, whatever it holds.
+TEST_CASE("glTF: every model of the shared scene folder loads and validates, when there is one") {
+    const std::filesystem::path folder = blurcull::testing::shared_dir() + "/scenes/khronos";
+    if (!std::filesystem::is_directory(folder)) {
+        MESSAGE("skipped: no shared scene folder " << folder.string()
+                                                   << " (optional; BLURCULL_SHARED_DIR names another)");
+        return;
+    }
+    std::size_t models = 0;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(folder)) {
+        const std::string extension = entry.path().extension().string();
+        if (extension != ".gltf" && extension != ".glb") continue;
+        CAPTURE(entry.path().string());
+        Scene scene;
+        CHECK_NOTHROW(scene = load_gltf_scene(entry.path().string(), GltfOptions{}));
+        CHECK(!scene.triangles.empty());
+        CHECK_NOTHROW(validate_scene(scene));
+        ++models;
+    }
+    MESSAGE(models << " models in " << folder.string());
+    CHECK(models > 0);
+}
+
 TEST_CASE("glTF: AnimatedTriangle moves inside its animation, not for a zero-length shutter") {
-    if (!khronos_available()) return;
     const std::string path = kKhronosDir + "AnimatedTriangle.gltf";
     const SceneStats moving = describe(load_gltf_scene(path, shutter(0.1f, 0.3f)));
     CHECK(moving.object_motion);
@@ -385,7 +427,6 @@ TEST_CASE("glTF: AnimatedTriangle moves inside its animation, not for a zero-len
 }
 
 TEST_CASE("glTF: Cameras.gltf uses its perspective camera, rejects the orthographic one") {
-    if (!khronos_available()) return;
     const std::string path = kKhronosDir + "Cameras.gltf";
     const Scene scene = load_gltf_scene(path, GltfOptions{});
     CHECK(scene.camera.yfov == doctest::Approx(0.7f));
@@ -405,7 +446,6 @@ TEST_CASE("glTF: Cameras.gltf uses its perspective camera, rejects the orthograp
 }
 
 TEST_CASE("glTF: skinned vertices of RiggedSimple and RiggedFigure move") {
-    if (!khronos_available()) return;
     const Scene simple = load_gltf_scene(kKhronosDir + "RiggedSimple.gltf", shutter(0.5f, 0.7f));
     const SceneStats stats = describe(simple);
     CHECK(stats.object_motion);
@@ -627,14 +667,12 @@ TEST_CASE("load_scene: settings over the scene's own, validated once at the end"
     CHECK(error_of([&] { load_scene("car", settings); }).find("scene 'car': vertex ") == 0);
 
     // glTF: the shutter is in animation seconds; warnings go to the sink only.
-    if (khronos_available()) {
-        settings = SceneSettings{};
-        settings.has_shutter = true;
-        settings.shutter_open = 0.1f;
-        settings.shutter_close = 0.3f;
-        CHECK(same_scene(load_scene(kKhronosDir + "AnimatedTriangle.gltf", settings),
-                         load_gltf_scene(kKhronosDir + "AnimatedTriangle.gltf", shutter(0.1f, 0.3f))));
-    }
+    settings = SceneSettings{};
+    settings.has_shutter = true;
+    settings.shutter_open = 0.1f;
+    settings.shutter_close = 0.3f;
+    CHECK(same_scene(load_scene(kKhronosDir + "AnimatedTriangle.gltf", settings),
+                     load_gltf_scene(kKhronosDir + "AnimatedTriangle.gltf", shutter(0.1f, 0.3f))));
     std::vector<std::string> warnings;
     const Scene modes = load_scene(kDataDir + "modes.gltf", SceneSettings{},
                                    [&](const std::string& line) { warnings.push_back(line); });

@@ -4,6 +4,7 @@
 // loader's surface attributes and texture fallbacks; CPU = Embree on a
 // textured Khronos model and on a file with COLOR_0, NORMAL and MASK.
 #include "frontend_test_helpers.hpp"
+#include "test_data_dirs.hpp"
 
 #include "render/common/method_plan.hpp"
 #include "render/common/render_method.hpp"
@@ -32,6 +33,9 @@ using namespace blurcull::frontend::test;
 namespace {
 
 const std::string kData = std::string(BLURCULL_SOURCE_DIR) + "/tests/data/shading/";
+// The Khronos Cube: a .bin and two PNG files beside it, its base colour
+// reduced to 64x64 (tests/data/khronos/README.md).
+const std::string kCube = blurcull::testing::khronos_test_dir() + "/Cube/Cube.gltf";
 
 std::uint32_t rgba(int r, int g, int b, int a) {
     return static_cast<std::uint32_t>(r) | static_cast<std::uint32_t>(g) << 8 | static_cast<std::uint32_t>(b) << 16 |
@@ -237,7 +241,7 @@ TEST_CASE("alpha mask: masked-out samples lose the depth test, and CPU = Embree"
 TEST_CASE("a textured Khronos model (Cube) renders its texture, CPU = Embree") {
     std::vector<std::string> warnings;
     GltfOptions options;
-    const Scene scene = load_gltf_scene(std::string(BLURCULL_SHARED_DIR) + "/scenes/khronos/Cube/Cube.gltf", options,
+    const Scene scene = load_gltf_scene(kCube, options,
                                         [&](const std::string& w) { warnings.push_back(w); });
     REQUIRE(scene.textures.size() == 1);
     CHECK(scene.textures[0].width > 16);
@@ -334,7 +338,7 @@ TEST_CASE("gl: textures, vertex colours and normals shade as on the cpu backend 
     if (gl == nullptr) return;
     GltfOptions options;
     const Scene opaque = without_mask(load("attributes.gltf"));
-    const Scene cube = load_gltf_scene(std::string(BLURCULL_SHARED_DIR) + "/scenes/khronos/Cube/Cube.gltf", options);
+    const Scene cube = load_gltf_scene(kCube, options);
     for (const Scene* scene : std::initializer_list<const Scene*>{&opaque, &cube}) {
         INFO(scene->name);
         check_gl_equals_cpu(*gl, *scene, quiet_settings(96, 72, 8));
@@ -425,16 +429,9 @@ void check_samples_where_tested(const Scene& scene, const RenderSettings& settin
 
 TEST_CASE("interleave, interval, accum: textures, COLOR_0, NORMAL and MASK per sample, cpu = gl") {
     GlRenderer* gl = renderer_or_skip();
-    const std::string cube_path = std::string(BLURCULL_SHARED_DIR) + "/scenes/khronos/Cube/Cube.gltf";
-    std::vector<Scene> scenes{load("attributes.gltf"), load("mask_texture.gltf")};
-    std::FILE* cube_file = std::fopen(cube_path.c_str(), "rb");
-    if (cube_file != nullptr) {
-        std::fclose(cube_file);
-        GltfOptions options;
-        scenes.push_back(load_gltf_scene(cube_path, options));
-    } else {
-        MESSAGE("SKIPPED the Khronos Cube: " << cube_path << " is absent");
-    }
+    GltfOptions cube_options;
+    const std::vector<Scene> scenes{load("attributes.gltf"), load("mask_texture.gltf"),
+                                    load_gltf_scene(kCube, cube_options)};
     for (const RenderMethod method : {RenderMethod::interleave, RenderMethod::interval, RenderMethod::accum}) {
         for (const Scene& scene : scenes) {
             RenderSettings settings = quiet_settings(96, 72, 4);

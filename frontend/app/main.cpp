@@ -29,7 +29,7 @@ int main(int argc, char** argv) {
     RenderCommand render;
     CLI::App* render_app = app.add_subcommand("render", "render a scene to a PNG (the default command)");
     render.add_options(*render_app);
-    CLI::App* scenes_app = app.add_subcommand("scenes", "list the built-in scenes");
+    CLI::App* scenes_app = app.add_subcommand("scenes", "list the built-in scenes, a line on each");
 #if BLURCULL_HAVE_VIEW
     ViewCommand view;
     view_app = app.add_subcommand("view", "render a scene interactively in a window (GLFW, OpenGL 4.5)");

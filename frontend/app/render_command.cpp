@@ -633,7 +633,13 @@ int RenderCommand::run() const {
 }
 
 int list_scenes() {
-    for (const std::string& name : builtin_scene_names()) std::printf("%s\n", name.c_str());
+    // One scene a line: the name, spaces to a common column, the description
+    // (`blurcull scenes | cut -d' ' -f1` gives the names).
+    const std::vector<BuiltinSceneInfo> scenes = builtin_scene_catalogue();
+    std::size_t width = 0;
+    for (const BuiltinSceneInfo& scene : scenes) width = std::max(width, scene.name.size());
+    for (const BuiltinSceneInfo& scene : scenes)
+        std::printf("%-*s  %s\n", static_cast<int>(width), scene.name.c_str(), scene.description.c_str());
     return 0;
 }
 

@@ -69,7 +69,8 @@ struct RenderCommand : SceneFlags, SecondaryFlags {
     int run() const;
 };
 
-// Prints the built-in scenes' names, one a line; returns the exit status.
+// Prints every built-in scene, one a line: its name, then its one-line
+// description (builtin_scene_catalogue). Returns the exit status.
 int list_scenes();
 
 }  // namespace blurcull::frontend

@@ -27,9 +27,51 @@ Scene build_scene(const std::string& name, const SceneOptions& options) {
 
 }  // namespace builtin
 
-std::vector<std::string> builtin_scene_names() { return {"hand", "car", "dragonfly", "forest"}; }
+namespace {
 
-std::vector<std::string> secondary_scene_names() { return {"mirror-sphere", "water", "curved-mirror"}; }
+// Every built-in scene once: the name lists and `blurcull scenes` read this
+// table, so a scene added here is listed everywhere (build_scene above makes it).
+struct SceneEntry {
+    const char* name;
+    bool secondary;  // mirrors or dielectrics: secondary_scene_names()
+    const char* description;
+};
+
+constexpr SceneEntry kScenes[] = {
+    {"hand", false, "a hand before a wall; defocus only (the thesis's Hand; 15k triangles)"},
+    {"car", false, "a car driving down a street; object motion only (the thesis's Car; 54k triangles)"},
+    {"dragonfly", false, "a dragonfly on a plant stem; camera motion only (the thesis's Dragonfly; 85k triangles)"},
+    {"forest", false,
+     "a walk through 236 trees; camera motion and defocus (the thesis's FairyForest; 168k triangles); the default"},
+    {"mirror-sphere", true,
+     "a mirror sphere on a chessboard; defocus; reflections with --method dof-secondary (29k triangles)"},
+    {"water", true,
+     "a waved water surface over a pool floor; defocus; refraction with --method dof-secondary (36k triangles)"},
+    {"curved-mirror", true,
+     "a chessboard before flat and convex mirrors (JCST 2013 Fig. 6); defocus; with --method dof-secondary "
+     "(12k triangles)"},
+};
+
+std::vector<std::string> scene_names(bool secondary) {
+    std::vector<std::string> names;
+    for (const SceneEntry& entry : kScenes)
+        if (entry.secondary == secondary) names.emplace_back(entry.name);
+    return names;
+}
+
+}  // namespace
+
+std::vector<std::string> builtin_scene_names() { return scene_names(false); }
+
+std::vector<std::string> secondary_scene_names() { return scene_names(true); }
+
+std::vector<BuiltinSceneInfo> builtin_scene_catalogue() {
+    std::vector<BuiltinSceneInfo> catalogue;
+    for (bool secondary : {false, true})
+        for (const SceneEntry& entry : kScenes)
+            if (entry.secondary == secondary) catalogue.push_back({entry.name, entry.description});
+    return catalogue;
+}
 
 Scene make_builtin_scene(const std::string& name, const SceneOptions& options) {
     Scene scene = builtin::build_scene(name, options);

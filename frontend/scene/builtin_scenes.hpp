@@ -27,8 +27,9 @@ struct SceneOptions {
 // of scene/builtin/mesh_builder.hpp.
 Scene make_builtin_scene(const std::string& name, const SceneOptions& options);
 
-// The built-in scene names, in the order `blurcull scenes` lists them: the
-// four stand-ins for the thesis workloads (all diffuse).
+// The four stand-ins for the thesis workloads (all diffuse), in the order
+// `blurcull scenes` lists them first; the thesis tables and benchmarks
+// iterate these.
 std::vector<std::string> builtin_scene_names();
 
 // The built-in secondary-ray scenes, made by make_builtin_scene like the
@@ -36,6 +37,17 @@ std::vector<std::string> builtin_scene_names();
 // secondary_scenes.hpp, docs/secondary-rays.md "Scenes"). They have mirror
 // or dielectric materials and the sky environment; static, defocus only.
 std::vector<std::string> secondary_scene_names();
+
+// One built-in scene as `blurcull scenes` lists it.
+struct BuiltinSceneInfo {
+    std::string name;
+    std::string description;  // one line: what it shows, its blur, how to see it
+};
+
+// Every built-in scene, builtin_scene_names() then secondary_scene_names(),
+// with a one-line description each: what `blurcull scenes` prints (name, then
+// description). The three lists come from one table (builtin_scenes.cpp).
+std::vector<BuiltinSceneInfo> builtin_scene_catalogue();
 
 // `source` with the lens closed, the camera still, and every triangle given
 // its own vertices: triangle t with t % moving_every == 0 keeps the motion it

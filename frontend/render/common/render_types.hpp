@@ -84,6 +84,39 @@ struct RenderStats {
     double ste() const {
         return samples_tested == 0 ? 0.0 : static_cast<double>(samples_hit) / static_cast<double>(samples_tested);
     }
+
+    // Adds the statistics of more work on the same scene (a progressive
+    // render's next pass, a method's later stage): every count and ms_total
+    // summed; ms_per_phase and counters summed by name, a name these lack
+    // appended in other's order; triangles, the scene's size and not work,
+    // the larger. The one way RenderStats are summed, so a field added here
+    // is summed everywhere (a sum that skipped counters lost samples_occluded).
+    void add(const RenderStats& other) {
+        samples_tested += other.samples_tested;
+        samples_hit += other.samples_hit;
+        samples_visited += other.samples_visited;
+        bounds_computed += other.bounds_computed;
+        bounds_empty += other.bounds_empty;
+        secondary_rays += other.secondary_rays;
+        ms_total += other.ms_total;
+        add_by_name(ms_per_phase, other.ms_per_phase);
+        add_by_name(counters, other.counters);
+        if (other.triangles > triangles) triangles = other.triangles;
+    }
+
+private:
+    static void add_by_name(std::vector<std::pair<std::string, double>>& into,
+                            const std::vector<std::pair<std::string, double>>& from) {
+        for (const auto& [name, value] : from) {
+            auto it = into.begin();
+            while (it != into.end() && it->first != name) ++it;
+            if (it == into.end()) {
+                into.emplace_back(name, value);
+            } else {
+                it->second += value;
+            }
+        }
+    }
 };
 
 struct RenderResult {

@@ -25,16 +25,7 @@ const RenderResult& ProgressiveRender::next_pass(int count) {
     RenderResult rendered = render_cpu(scene_, settings_, pass);
     broken_ = false;
     scene_.validated = true;  // render_cpu checked it; the next passes need not
-    RenderStats& total = result_.stats;
-    const RenderStats& stats = rendered.stats;
-    total.samples_tested += stats.samples_tested;
-    total.samples_hit += stats.samples_hit;
-    total.samples_visited += stats.samples_visited;
-    total.bounds_computed += stats.bounds_computed;
-    total.bounds_empty += stats.bounds_empty;
-    total.ms_total += stats.ms_total;
-    total.ms_per_phase = stats.ms_per_phase;
-    total.triangles = stats.triangles;
+    result_.stats.add(rendered.stats);
     result_.image = std::move(rendered.image);
     if (result_.warnings.empty()) result_.warnings = std::move(rendered.warnings);  // the same every pass
     return result_;

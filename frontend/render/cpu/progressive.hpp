@@ -25,8 +25,8 @@ public:
 
     // Renders the next min(count, what is left) samples per pixel (count >=
     // 1) and returns the image of every sample so far, with the statistics
-    // summed over the passes (ms_total: the passes' times; ms_per_phase: the
-    // last pass's). Throws std::logic_error when done(), RenderCancelled when
+    // summed over the passes (RenderStats::add: counts, counters such as
+    // samples_occluded, ms_total and ms_per_phase). Throws std::logic_error when done(), RenderCancelled when
     // the cancel flag was set (the render cannot go on after that), and what
     // render_cpu throws.
     const RenderResult& next_pass(int count);

@@ -336,23 +336,26 @@ RenderResult render_dof_secondary(const Scene& scene, const RenderSettings& sett
                                   " clusters had rays no virtual view of this field of view holds; their " +
                                   std::to_string(stats.rays_exact) + " rays were traced against the scene");
     }
-    result.stats.secondary_rays = stats.rays;
-    result.stats.counters = {{"reflector_samples", double(stats.reflector_samples)},
-                             {"secondary_rays", double(stats.rays)},
-                             {"rays_image_space", double(stats.rays_image_space)},
-                             {"rays_exact", double(stats.rays_exact)},
-                             {"rays_hit", double(stats.rays_hit)},
-                             {"trace_steps", double(stats.trace_steps)},
-                             {"clusters", double(stats.clusters)},
-                             {"clusters_refit_on_normal", double(stats.clusters_refit_on_normal)},
-                             {"clusters_split", double(stats.clusters_split)},
-                             {"clusters_unusable", double(stats.clusters_unusable)},
-                             {"layer_fragments", double(stats.layers.fragments)},
-                             {"culled_near_triangles", double(stats.layers.culled_near)},
-                             {"culled_in_front_fragments", double(stats.layers.culled_in_front)},
-                             {"culled_normal_triangles", double(stats.layers.culled_normal)},
-                             {"dropped_fragments", double(stats.layers.dropped)},
-                             {"layer_build_ms", stats.layer_build_ms}};
+    // Added to the primary pass's statistics, whose counters (samples_occluded) stay.
+    RenderStats bounce;
+    bounce.secondary_rays = stats.rays;
+    bounce.counters = {{"reflector_samples", double(stats.reflector_samples)},
+                       {"secondary_rays", double(stats.rays)},
+                       {"rays_image_space", double(stats.rays_image_space)},
+                       {"rays_exact", double(stats.rays_exact)},
+                       {"rays_hit", double(stats.rays_hit)},
+                       {"trace_steps", double(stats.trace_steps)},
+                       {"clusters", double(stats.clusters)},
+                       {"clusters_refit_on_normal", double(stats.clusters_refit_on_normal)},
+                       {"clusters_split", double(stats.clusters_split)},
+                       {"clusters_unusable", double(stats.clusters_unusable)},
+                       {"layer_fragments", double(stats.layers.fragments)},
+                       {"culled_near_triangles", double(stats.layers.culled_near)},
+                       {"culled_in_front_fragments", double(stats.layers.culled_in_front)},
+                       {"culled_normal_triangles", double(stats.layers.culled_normal)},
+                       {"dropped_fragments", double(stats.layers.dropped)},
+                       {"layer_build_ms", stats.layer_build_ms}};
+    result.stats.add(bounce);
     if (stats_out != nullptr) *stats_out = stats;
     return result;
 }
