@@ -306,6 +306,7 @@ struct FrameContext {
     const FrameSetup<Real>& setup;
     const SurfaceShader& shader;  // the alpha test of the raster decision and the resolve
     int method;
+    int cull_traits;  // kernel cull_traits(method)
     Real near;
     std::uint32_t spp;  // samples per pixel drawn: a progressive pass's, else settings.spp
     int footprint;
@@ -553,23 +554,33 @@ private:
         return sb;
     }
 
-    // edges' bounds of a block: its two-stage bounds, and the edge planes
-    // only where the samples it leaves to visit (its pixels' samples in its
-    // shutter interval) are enough to repay their setup; elsewhere the
-    // block's footprints are culled as clip2's (fewer culls, never a wrong one).
+    // Edge-plane bounds of a block (BC_CULL_EDGE_PLANES_PER_BLOCK): its
+    // bounds without planes, and the planes only where the samples it leaves
+    // to visit (its pixels' samples in its shutter interval) are enough to
+    // repay their setup; elsewhere the block's footprints are culled without
+    // them (fewer culls, never a wrong one).
     typename K::SampleBounds edge_block_bounds(const Current& current, int px0, int py0, int px1, int py1) {
         const typename K::vec4 box = footprint(px0, py0, px1, py1);
         const typename K::vec2 lo(box.x, box.y), hi(box.z, box.w);
-        typename K::SampleBounds sb = K::sample_bounds(*current.tri, lo, hi, BC_CULL_TWO_STAGE);
+        typename K::SampleBounds sb = K::sample_bounds_without_planes(*current.tri, lo, hi, frame_.method);
         ++bounded;
         if (!sb.empty) {
             const typename K::vec2 range = K::sample_time_range(sb);
             const double share = std::clamp(double(range.y) - double(range.x), 0.0, 1.0);
             const double visits = double((px1 - px0 + 1) * (py1 - py0 + 1)) * double(frame_.spp) * share;
-            if (visits >= frame_.edge_min_samples) sb = K::bc_add_edge_planes(*current.tri, lo, hi, sb);
+            if (visits >= frame_.edge_min_samples) sb = K::add_sample_planes(*current.tri, lo, hi, frame_.method, sb);
         }
         if (sb.empty) ++bounded_empty;
         return sb;
+    }
+
+    // A footprint's shared-axes bounds with its block's planes (kernel
+    // with_tile_planes on the footprint's box).
+    typename K::SampleBounds with_block_planes(const typename K::SampleBounds& own, int px0, int py0, int px1, int py1,
+                                               const typename K::SampleBounds& block) const {
+        const typename K::vec4 box = footprint(px0, py0, px1, py1);
+        return K::with_tile_planes(typename K::vec2(box.x, box.y), typename K::vec2(box.z, box.w), frame_.method, own,
+                                   block);
     }
 
     // The sample bounds of a footprint, counted: with share_axes from its
@@ -604,13 +615,14 @@ private:
                         frame_.cull_bounds && frame_.setup.classes[index] != 0, true, false};
         const int rx0 = std::max(r.x0, x0_), rx1 = std::min(r.x1, x1_);
         const int ry0 = std::max(r.y0, y0_), ry1 = std::min(r.y1, y1_);
-        // edges shares its footprints' two-stage axes too where the planes
-        // come from the block (bc_with_tile_edges adds them).
-        const bool edges_in_blocks = frame_.method == BC_CULL_EDGES && frame_.block > frame_.footprint;
-        current.share_axes = current.needs_bounds &&
-                             (frame_.method == BC_CULL_DUALSPACE || frame_.method == BC_CULL_TWO_STAGE ||
-                              edges_in_blocks) &&
-                             K::bc_triangle_boundable(*current.tri);
+        // Footprints share their axis bounds where they carry no planes of
+        // their own: a cull without planes, or edge planes that come from
+        // the block (with_tile_planes adds them). The hyperplanes' footprint
+        // test needs each footprint's own bounds.
+        const int traits = frame_.cull_traits;
+        const bool edges_in_blocks = (traits & BC_CULL_EDGE_PLANES_PER_BLOCK) != 0 && frame_.block > frame_.footprint;
+        current.share_axes = current.needs_bounds && ((traits & BC_CULL_ADDS_PLANES) == 0 || edges_in_blocks) &&
+                             K::sample_bounds_apply(*current.tri);
         if (current.share_axes) {
             columns_.reset(rx0, rx1, frame_.footprint);
             rows_.reset(ry0, ry1, frame_.footprint);
@@ -640,8 +652,8 @@ private:
                 // edges: a block with too few samples for its planes to pay
                 // (even all of them visited) is culled as clip2 culls it.
                 // hyperplane: its planes always come from the block.
-                const bool edges_method = frame_.method == BC_CULL_EDGES;
-                const bool hyperplane = frame_.method == BC_CULL_HYPERPLANE;
+                const bool edges_method = (traits & BC_CULL_EDGE_PLANES_PER_BLOCK) != 0;
+                const bool hyperplane = (traits & BC_CULL_HYPERPLANES_PER_TILE) != 0;
                 const double block_samples = double((bx1 - bx0 + 1) * (by1 - by0 + 1)) * double(frame_.spp);
                 const bool edges = (edges_method && block_samples >= frame_.edge_min_samples) || hyperplane;
                 typename K::SampleBounds block_bounds = K::no_sample_bounds();
@@ -657,7 +669,7 @@ private:
                         continue;
                     }
                 }
-                const bool planes = (edges_method || hyperplane) && block_bounds.edges.piece[0].mode != BC_EDGE_NONE;
+                const bool planes = (traits & BC_CULL_ADDS_PLANES) != 0 && K::plane_pieces(block_bounds) > 0;
                 for (int fy = by0 - (by0 % footprint); fy <= by1; fy += footprint) {
                     for (int fx = bx0 - (bx0 % footprint); fx <= bx1; fx += footprint) {
                         const int px0 = std::max(fx, bx0), px1 = std::min(fx + footprint - 1, bx1);
@@ -667,7 +679,8 @@ private:
                         const typename K::SampleBounds sb =
                             !planes ? footprint_bounds(current, px0, py0, px1, py1)
                             : current.share_axes
-                                ? K::bc_with_tile_edges(footprint_bounds(current, px0, py0, px1, py1), block_bounds)
+                                ? with_block_planes(footprint_bounds(current, px0, py0, px1, py1), px0, py0, px1, py1,
+                                                    block_bounds)
                                 : bounds_of(current, px0, py0, px1, py1, &block_bounds);
                         if (!sb.empty) test_samples(current, px0, py0, px1, py1, sb);
                     }
@@ -800,17 +813,18 @@ private:
         const auto slot_of = [this](std::size_t i) { return static_cast<std::size_t>(by_time_[i]); };
         // edges: the runs of the shutter pieces whose planes cull the whole
         // footprint are skipped (not visited).
-        if (sb.edges.piece[0].mode != BC_EDGE_NONE && window_segments_ == 1) {
+        const int pieces = K::plane_pieces(sb);
+        if (pieces > 0 && window_segments_ == 1) {
             const typename K::vec4 pad_box = padded_footprint(px0, py0, px1, py1);
             const typename K::vec2 s_lo(pad_box.x, pad_box.y), s_hi(pad_box.z, pad_box.w);
-            for (int q = 0; q < sb.edges.pieces; ++q) {
-                const typename K::BcEdgePlanes& piece = sb.edges.piece[q];
-                if (!K::bc_edge_piece_culls_box(piece, s_lo, s_hi, sb.u_range, sb.v_range)) continue;
+            for (int q = 0; q < pieces; ++q) {
+                if (!K::plane_piece_culls_box(sb, q, s_lo, s_hi)) continue;
                 // The piece's samples: after the previous piece's end (which
                 // holds its own end), up to its own end.
-                const double* from = q == 0 ? std::lower_bound(lo, hi, double(piece.time.x))
-                                            : std::upper_bound(lo, hi, double(piece.time.x));
-                const double* to = std::max(from, std::upper_bound(lo, hi, double(piece.time.y)));
+                const typename K::vec2 piece_time = K::plane_piece_time(sb, q);
+                const double* from = q == 0 ? std::lower_bound(lo, hi, double(piece_time.x))
+                                            : std::upper_bound(lo, hi, double(piece_time.x));
+                const double* to = std::max(from, std::upper_bound(lo, hi, double(piece_time.y)));
                 test_run(current, sb, time_lanes_, static_cast<std::size_t>(lo - times),
                          static_cast<std::size_t>(from - lo), slot_of);
                 lo = to;
@@ -824,11 +838,12 @@ private:
     // edges: whether every shutter piece's planes cull the whole footprint
     // (then none of its samples can pass; not visited).
     bool edge_planes_cull_footprint(const typename K::SampleBounds& sb, int px0, int py0, int px1, int py1) const {
-        if (sb.edges.piece[0].mode == BC_EDGE_NONE) return false;
+        const int pieces = K::plane_pieces(sb);
+        if (pieces == 0) return false;
         const typename K::vec4 box = padded_footprint(px0, py0, px1, py1);
         const typename K::vec2 s_lo(box.x, box.y), s_hi(box.z, box.w);
-        for (int q = 0; q < sb.edges.pieces; ++q)
-            if (!K::bc_edge_piece_culls_box(sb.edges.piece[q], s_lo, s_hi, sb.u_range, sb.v_range)) return false;
+        for (int q = 0; q < pieces; ++q)
+            if (!K::plane_piece_culls_box(sb, q, s_lo, s_hi)) return false;
         return true;
     }
 
@@ -1076,6 +1091,7 @@ RenderResult render_cpu_in(const Scene& scene, const RenderSettings& settings, c
                                    setup,
                                    shader,
                                    cull.kernel_method,
+                                   blurcull::kernel<Real>::cull_traits(cull.kernel_method),
                                    static_cast<Real>(model.znear),
                                    static_cast<std::uint32_t>(options.sums != nullptr ? options.pass_samples
                                                                                       : settings.spp),
