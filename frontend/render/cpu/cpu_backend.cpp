@@ -3,8 +3,8 @@
 #include "render/common/camera_model.hpp"
 #include "render/common/huge_page_allocator.hpp"
 #include "render/common/method_plan.hpp"
-#include "render/cpu/coverage_test.hpp"
-#include "render/cpu/exact_test.hpp"
+#include "render/cpu/fast_coverage.hpp"
+#include "render/cpu/exact_lanes.hpp"
 #include "render/cpu/farthest_depths.hpp"
 #include "render/common/moving_triangle.hpp"
 #include "render/common/motion_segments.hpp"
@@ -113,7 +113,7 @@ struct FrameSetup {
     HugePageVector<PixelRect> rects;
     HugePageVector<int> classes;
     HugePageVector<StoredBound> bounds;
-    // The fast coverage test's setup (render/cpu/coverage_test.hpp), for the
+    // The fast coverage test's setup (render/cpu/fast_coverage.hpp), for the
     // samples of the triangle's pixel rectangle.
     HugePageVector<CoverageSetup> fast_tests;
     HugePageVector<typename K::vec3> hull_edges;
@@ -305,8 +305,8 @@ struct FrameContext {
     const CameraModel& model;
     const FrameSetup<Real>& setup;
     const SurfaceShader& shader;  // the alpha test of the raster decision and the resolve
-    int method;
-    int cull_traits;  // kernel cull_traits(method)
+    int cull;         // the cull method, BC_CULL_*
+    int cull_traits;  // kernel cull_traits(cull)
     Real near;
     std::uint32_t spp;  // samples per pixel drawn: a progressive pass's, else settings.spp
     int footprint;
@@ -547,8 +547,8 @@ private:
                                        const typename K::SampleBounds* tile = nullptr) {
         const typename K::vec4 box = footprint(px0, py0, px1, py1);
         const typename K::vec2 lo(box.x, box.y), hi(box.z, box.w);
-        typename K::SampleBounds sb = tile ? K::sample_bounds_in_tile(*current.tri, lo, hi, frame_.method, *tile)
-                                           : K::sample_bounds(*current.tri, lo, hi, frame_.method);
+        typename K::SampleBounds sb = tile ? K::sample_bounds_in_tile(*current.tri, lo, hi, frame_.cull, *tile)
+                                           : K::sample_bounds(*current.tri, lo, hi, frame_.cull);
         ++bounded;
         if (sb.empty) ++bounded_empty;
         return sb;
@@ -562,13 +562,13 @@ private:
     typename K::SampleBounds edge_block_bounds(const Current& current, int px0, int py0, int px1, int py1) {
         const typename K::vec4 box = footprint(px0, py0, px1, py1);
         const typename K::vec2 lo(box.x, box.y), hi(box.z, box.w);
-        typename K::SampleBounds sb = K::sample_bounds_without_planes(*current.tri, lo, hi, frame_.method);
+        typename K::SampleBounds sb = K::sample_bounds_without_planes(*current.tri, lo, hi, frame_.cull);
         ++bounded;
         if (!sb.empty) {
             const typename K::vec2 range = K::sample_time_range(sb);
             const double share = std::clamp(double(range.y) - double(range.x), 0.0, 1.0);
             const double visits = double((px1 - px0 + 1) * (py1 - py0 + 1)) * double(frame_.spp) * share;
-            if (visits >= frame_.edge_min_samples) sb = K::add_sample_planes(*current.tri, lo, hi, frame_.method, sb);
+            if (visits >= frame_.edge_min_samples) sb = K::add_sample_planes(*current.tri, lo, hi, frame_.cull, sb);
         }
         if (sb.empty) ++bounded_empty;
         return sb;
@@ -579,7 +579,7 @@ private:
     typename K::SampleBounds with_block_planes(const typename K::SampleBounds& own, int px0, int py0, int px1, int py1,
                                                const typename K::SampleBounds& block) const {
         const typename K::vec4 box = footprint(px0, py0, px1, py1);
-        return K::with_tile_planes(typename K::vec2(box.x, box.y), typename K::vec2(box.z, box.w), frame_.method, own,
+        return K::with_tile_planes(typename K::vec2(box.x, box.y), typename K::vec2(box.z, box.w), frame_.cull, own,
                                    block);
     }
 
@@ -589,7 +589,7 @@ private:
     typename K::SampleBounds footprint_bounds(const Current& current, int px0, int py0, int px1, int py1) {
         if (!current.share_axes) return bounds_of(current, px0, py0, px1, py1);
         const typename K::vec4 box = footprint(px0, py0, px1, py1);
-        const int fp = frame_.footprint, method = frame_.method;
+        const int fp = frame_.footprint, method = frame_.cull;
         const typename K::MovingTriangle& tri = *current.tri;
         ++bounded;
         const auto& x = columns_.get(px0, fp, [&] { return K::sample_axis_bounds(tri, 0, box.x, box.z, method); });

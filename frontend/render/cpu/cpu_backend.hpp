@@ -68,6 +68,8 @@ struct CpuOptions {
     int footprint = 4;
     // Side, in pixels, of the blocks bounded first: a block whose bounds hold
     // nothing is skipped without bounding its footprints. <= footprint: off.
+    // A block is what the kernel calls a tile (sample_bounds_in_tile); the
+    // CPU's "work tile" is the binning unit (render/cpu/frame_context.hpp).
     int block = 16;
     // kernel<double> (default) or kernel<float>. In float every culling
     // method is still conservative against the double oracle (property
