@@ -1,11 +1,11 @@
-// The CPU backend's fast coverage test (render/cpu/coverage_test.hpp) against
+// The CPU backend's fast coverage test (render/cpu/fast_coverage.hpp) against
 // the oracle it stands in front of: on the kernel's property generators, in
 // float and in double, it must never reject a sample that kernel<Real>::covers
 // accepts (0 disagreements), and its AVX2 and scalar paths must give the
 // same decision for every sample. Prints how many non-covered samples it
 // rejects (the rest go to the oracle). BLURCULL_PROPERTY_SCALE=k scales it.
 #include "kernel_generators.hpp"
-#include "render/cpu/coverage_test.hpp"
+#include "render/cpu/fast_coverage.hpp"
 
 #include <doctest/doctest.h>
 
@@ -104,7 +104,7 @@ void check_families(const char* precision, bool float_samples) {
 }  // namespace
 
 TEST_CASE("fast coverage test: never rejects a sample the double oracle covers") {
-    std::printf("fast coverage test runs on: %s\n", frontend::coverage_test_isa());
+    std::printf("fast coverage test runs on: %s\n", frontend::fast_coverage_isa());
     check_families<double>("double", false);
     check_families<double>("double", true);
 }

@@ -1,4 +1,5 @@
-// bc_edge_piece_culls_box (edge_bounds_body.inl), which lets the CPU backend
+// plane_piece_culls_box (sample_bounds_body.inl, over the internal
+// bc_edge_piece_culls_box of edge_bounds_body.inl), which lets the CPU backend
 // skip a shutter piece's run of time-sorted samples: where it says a piece
 // culls the footprint, no sample of the piece (in the footprint, inside the
 // lens ranges) may pass sample_passes_at, and none is covered by the double
@@ -29,18 +30,18 @@ void check_config(const Config& cfg, Rng& rng, Tally& tally) {
     const Kd::MovingTriangle tri_d = to_double<Real>(tri);
     const typename K::vec2 lo(cfg.s_lo), hi(cfg.s_hi);
     const typename K::SampleBounds b = K::sample_bounds(tri, lo, hi, BC_CULL_EDGES);
-    if (b.empty || b.edges.piece[0].mode == BC_EDGE_NONE) return;
-    for (int q = 0; q < b.edges.pieces; ++q) {
+    if (b.empty || K::plane_pieces(b) == 0) return;
+    for (int q = 0; q < K::plane_pieces(b); ++q) {
         ++tally.pieces;
-        const typename K::BcEdgePlanes& piece = b.edges.piece[q];
-        if (!K::bc_edge_piece_culls_box(piece, lo, hi, b.u_range, b.v_range)) continue;
+        const typename K::vec2 piece_time = K::plane_piece_time(b, q);
+        if (!K::plane_piece_culls_box(b, q, lo, hi)) continue;
         ++tally.culled_pieces;
         for (int n = 0; n < 64; ++n) {
             const typename K::vec2 s(static_cast<Real>(in_range(rng, double(lo.x), double(hi.x))),
                                      static_cast<Real>(in_range(rng, double(lo.y), double(hi.y))));
             const typename K::vec2 uv(static_cast<Real>(in_range(rng, double(b.u_range.x), double(b.u_range.y))),
                                       static_cast<Real>(in_range(rng, double(b.v_range.x), double(b.v_range.y))));
-            const Real t = static_cast<Real>(in_range(rng, double(piece.time.x), double(piece.time.y)));
+            const Real t = static_cast<Real>(in_range(rng, double(piece_time.x), double(piece_time.y)));
             // Only the piece's own samples (an end shared with a neighbour is the neighbour's).
             if (K::bc_edge_piece(b.edges, t) != q || !(glm::all(glm::lessThanEqual(lo, s)) && glm::all(glm::lessThanEqual(s, hi))))
                 continue;

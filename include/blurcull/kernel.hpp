@@ -35,7 +35,9 @@
 //           bounds"), BC_CULL_HYPERPLANE 5 (two-stage, plus one hyperplane in
 //           (x, y, u, v, t) per edge and footprint and the tile test, after
 //           Munkberg and Akenine-Moller 2012; docs/kernel.md, "Hyperplane
-//           culling"). Switching is this one value.
+//           culling"). Switching is this one value; what a method needs is
+//           its record cull_traits(cull), which the bodies and the backends
+//           read (never lists of methods).
 //
 // Types
 //   MovingTriangle  p[6]: clip (x, y, w) of vertex i at shutter open (p[i]) and
@@ -107,11 +109,24 @@
 //
 // ---- The per-triangle screen bound (detail/screen_bound_body.inl) ----------------------
 //
+// int cull_traits(int cull)
+//   What cull method `cull` needs, as flags: BC_CULL_BUILDS_HULL (screen_bound
+//   adds the convex hull), BC_CULL_DUAL_SPACE_AXES or BC_CULL_TWO_STAGE_AXES
+//   (sample_bounds bounds lens and time per footprint axis by that method;
+//   BC_CULL_BOUNDS_SAMPLES is either), BC_CULL_EDGE_PLANES_PER_BLOCK (plus an
+//   edge plane in (u, v, t) per edge over that box, set up per tile and shared
+//   by its footprints, and optional: a renderer may leave them out where they
+//   do not pay) and BC_CULL_HYPERPLANES_PER_TILE (plus one hyperplane per edge
+//   per tile and the tile test on each footprint); BC_CULL_ADDS_PLANES is
+//   either plane flag. bbox 0, hull BUILDS_HULL, dualspace DUAL_SPACE_AXES,
+//   twostage BUILDS_HULL | TWO_STAGE_AXES, edges and hyperplane twostage's
+//   plus their planes. 0 for an unknown id. A new method is a line here, the
+//   body of what it adds, and its registry entry (frontend cull_method.cpp).
+//
 // ScreenBound screen_bound(MovingTriangle tri, real near, int cull)
 //   Where on the screen the triangle can cover anything, over every t and uv:
 //   the box of its part in front of the near plane, grown by the CoC and the
-//   rounding margins, and with cull BC_CULL_HULL, BC_CULL_TWO_STAGE, BC_CULL_EDGES or
-//   BC_CULL_HYPERPLANE also the
+//   rounding margins, and for a cull with BC_CULL_BUILDS_HULL also the
 //   convex hull of the lens-shifted vertices (McGuire et al. 2010) when every
 //   vertex is in front of the near plane (else hull_count = 0, the box alone).
 //   empty = true: never in front of the near plane. Fallback, the whole screen
@@ -169,8 +184,8 @@
 //   finite), BC_CULL_HYPERPLANE as two-stage plus one plane per edge over that
 //   box (detail/hyperplane_body.inl), empty also when a plane leaves nothing
 //   of the box. empty = true: no sample
-//   of the footprint can be covered. Fallback, no_sample_bounds(): cull
-//   BC_CULL_BBOX or BC_CULL_HULL (they bound only the screen), non-finite input,
+//   of the footprint can be covered. Fallback, no_sample_bounds(): a cull
+//   without BC_CULL_BOUNDS_SAMPLES (bbox, hull: only the screen), non-finite input,
 //   a swamped triangle (as for screen_bound). An axis whose bound cannot be
 //   computed (a vertex behind the eye for dual-space's lens bound, an
 //   overflow) keeps the whole lens or shutter on that axis.
@@ -188,9 +203,45 @@
 //   sample_bounds's two halves: the lens range and time lines along one
 //   axis (0: x and u, 1: y and v) depend only on the footprint's extent
 //   [s0, s1] along it, so a renderer can share them between the footprints
-//   of one column (row); combine_axis_bounds(x, y) is then sample_bounds for
-//   BC_CULL_DUALSPACE and BC_CULL_TWO_STAGE on a bc_triangle_boundable
-//   triangle (not BC_CULL_EDGES, whose planes need the whole box).
+//   of one column (row); combine_axis_bounds(x, y) is then
+//   sample_bounds_without_planes (and so sample_bounds for a cull without
+//   BC_CULL_ADDS_PLANES) on a triangle that sample_bounds_apply accepts
+//   (planes need the whole box).
+//
+// bool sample_bounds_apply(MovingTriangle tri)
+//   Whether the per-footprint bounds say anything for tri: false for
+//   non-finite input or a swamped triangle (sample_bounds then gives
+//   no_sample_bounds, and sample_axis_bounds must not be used).
+//
+// SampleBounds sample_bounds_without_planes(MovingTriangle tri, vec2 s_lo, vec2 s_hi, int cull)
+// SampleBounds add_sample_planes(MovingTriangle tri, vec2 s_lo, vec2 s_hi, int cull, SampleBounds without)
+//   sample_bounds in two steps: the cull's axis bounds (both axes combined;
+//   no_sample_bounds() without BC_CULL_BOUNDS_SAMPLES or where the bounds do
+//   not apply), then the cull's planes over the box they leave (edge planes
+//   or hyperplanes and the hyperplanes' box test; `without` unchanged for a
+//   cull without planes or an empty one). sample_bounds(tri, lo, hi, cull) is
+//   add_sample_planes of the first where sample_bounds_apply(tri), else the
+//   first, bit for bit. A renderer that bounds a tile first may add the edge
+//   planes only where their setup pays: leaving them out culls less, never a
+//   covered sample.
+//
+// SampleBounds with_tile_planes(vec2 s_lo, vec2 s_hi, int cull, SampleBounds footprint, SampleBounds tile)
+//   A footprint [s_lo, s_hi]'s bounds without planes (sample_bounds_without_planes
+//   or combine_axis_bounds of its axes) inside a tile whose bounds `tile`
+//   carry the cull's planes: the footprint's bounds with the tile's planes,
+//   and with BC_CULL_HYPERPLANES_PER_TILE the tile test on the footprint's
+//   box. sample_bounds_in_tile is this of the footprint's own bounds.
+//
+// int plane_pieces(SampleBounds b)
+// vec2 plane_piece_time(SampleBounds b, int q)
+// bool plane_piece_culls_box(SampleBounds b, int q, vec2 s_lo, vec2 s_hi)
+//   The planes b carries, in pieces of the shutter (0 pieces: none, as for
+//   a cull without planes or planes that could not be set up), piece q's
+//   shutter interval [lo, hi] in the bounds' time, and whether piece q's
+//   planes leave no sample of the screen box [s_lo, s_hi] (holding the
+//   samples' positions, their rounding included) inside b's lens ranges and
+//   the piece's interval: then none of them passes sample_passes_at, and a
+//   renderer may skip them unvisited (false when unsure).
 //
 // SampleBounds no_sample_bounds()
 //   Bounds that keep every sample: lens [-1, 1]^2, time [0, 1], empty = false.

@@ -76,9 +76,18 @@ void main() {
     SampleAxisBounds axis_x = bc_sample_axis_bounds(tri, 0, s.x - 0.01, s.x + 0.01, cull);
     SampleAxisBounds axis_y = bc_sample_axis_bounds(tri, 1, s.y - 0.01, s.y + 0.01, cull);
     SampleBounds combined = bc_combine_axis_bounds(axis_x, axis_y);
+    int traits = bc_cull_traits(cull);
+    SampleBounds without_planes = bc_sample_bounds_without_planes(tri, s - vec2(0.01), s + vec2(0.01), cull);
+    SampleBounds with_planes = bc_add_sample_planes(tri, s - vec2(0.01), s + vec2(0.01), cull, without_planes);
+    SampleBounds tile_planes = bc_with_tile_planes(s - vec2(0.005), s + vec2(0.005), cull, without_planes, edge_bounds);
+    bool piece_culls = bc_sample_bounds_apply(tri) && bc_plane_pieces(edge_bounds) > 0 &&
+                       bc_plane_piece_culls_box(edge_bounds, 0, s - vec2(0.01), s + vec2(0.01));
+    float piece_start = bc_plane_piece_time(edge_bounds, 0).x;
     bool passes = bc_sample_passes(bounds, uv, t) || bc_sample_passes(none, uv, t) || bc_sample_passes(edge_bounds, uv, t) ||
                   bc_sample_passes_at(edge_bounds, s, uv, t) || bc_sample_passes_at(in_tile, s, uv, t) ||
-                  bc_sample_passes(combined, uv, t);
+                  bc_sample_passes(combined, uv, t) || bc_sample_passes(with_planes, uv, t) ||
+                  bc_sample_passes_at(tile_planes, s, uv, t) || piece_culls || (traits & BC_CULL_BUILDS_HULL) != 0 ||
+                  piece_start > 0.5;
     vec2 time_range = bc_sample_time_range(bounds);
     uint px = uint(values[43]);
     uint py = uint(values[44]);

@@ -37,6 +37,7 @@
 #define covers bc_covers
 #define covers_hit bc_covers_hit
 // the screen bound (screen_bound_body.inl)
+#define cull_traits bc_cull_traits
 #define screen_bound bc_screen_bound
 #define stratum_screen_box bc_stratum_screen_box
 #define depth_floor_scale bc_depth_floor_scale
@@ -52,6 +53,13 @@
 #define sample_passes bc_sample_passes
 #define sample_passes_at bc_sample_passes_at
 #define sample_bounds_in_tile bc_sample_bounds_in_tile
+#define sample_bounds_apply bc_sample_bounds_apply
+#define sample_bounds_without_planes bc_sample_bounds_without_planes
+#define add_sample_planes bc_add_sample_planes
+#define with_tile_planes bc_with_tile_planes
+#define plane_pieces bc_plane_pieces
+#define plane_piece_time bc_plane_piece_time
+#define plane_piece_culls_box bc_plane_piece_culls_box
 // the raster glue both backends share (raster_body.inl)
 #define raster_to_ndc bc_raster_to_ndc
 #define ndc_to_raster bc_ndc_to_raster

@@ -3,8 +3,23 @@
 #include <blurcull/kernel.hpp>
 
 #include <stdexcept>
+#include <utility>
 
 namespace blurcull::frontend {
+
+namespace {
+
+// A registry entry; what the method needs comes from the kernel's record
+// (kernel cull_traits), so that no list of methods is written twice.
+CullMethodInfo entry(CullMethod method, const char* name, std::vector<std::string> aliases, const char* help,
+                     int kernel_method, BackendSet backends) {
+    CullMethodInfo info{method, name, std::move(aliases), help, kernel_method, backends, 0, false};
+    info.traits = kernelf::cull_traits(kernel_method);
+    info.bounds_samples = (info.traits & BC_CULL_BOUNDS_SAMPLES) != 0;
+    return info;
+}
+
+}  // namespace
 
 const std::vector<CullMethodInfo>& cull_methods() {
     static const BackendSet rasterizers = backend_bit(Backend::cpu) | backend_bit(Backend::gl);
@@ -12,24 +27,25 @@ const std::vector<CullMethodInfo>& cull_methods() {
     // sample_bounds (include/blurcull/detail/sample_bounds_body.inl) runs
     // screen_bound (screen_bound_body.inl: bbox, hull) and, for the methods
     // that bound samples, dual_space_body.inl or two_stage_body.inl (and for
-    // edges edge_bounds_body.inl after it, for hyperplane hyperplane_body.inl).
+    // edges edge_bounds_body.inl after it, for hyperplane hyperplane_body.inl),
+    // as the kernel's cull_traits of the method say.
     static const std::vector<CullMethodInfo> methods = {
-        {CullMethod::bbox, "bbox", {}, "the clipped screen box of the triangle over shutter and lens", BC_CULL_BBOX, false,
-         rasterizers},
-        {CullMethod::hull, "hull", {}, "the screen box and the convex hull", BC_CULL_HULL, false,
-         rasterizers},
-        {CullMethod::dualspace, "dualspace", {}, "the screen box, then lens and time bounds per footprint (Laine et al. 2011)",
-         BC_CULL_DUALSPACE, true, rasterizers},
-        {CullMethod::two_stage, "twostage", {"clip2"}, "the hull, then lens and time bounds per footprint in two stages",
-         BC_CULL_TWO_STAGE, true, rasterizers},
+        entry(CullMethod::bbox, "bbox", {}, "the clipped screen box of the triangle over shutter and lens", BC_CULL_BBOX,
+              rasterizers),
+        entry(CullMethod::hull, "hull", {}, "the screen box and the convex hull", BC_CULL_HULL, rasterizers),
+        entry(CullMethod::dualspace, "dualspace", {},
+              "the screen box, then lens and time bounds per footprint (Laine et al. 2011)", BC_CULL_DUALSPACE,
+              rasterizers),
+        entry(CullMethod::two_stage, "twostage", {"clip2"},
+              "the hull, then lens and time bounds per footprint in two stages", BC_CULL_TWO_STAGE, rasterizers),
         // The GL backend's per-cell bounds carry the two-stage part, not the edge planes.
-        {CullMethod::edges, "edges", {}, "two-stage, then a plane per triangle edge in lens and time per footprint",
-         BC_CULL_EDGES, true, rasterizers},
+        entry(CullMethod::edges, "edges", {}, "two-stage, then a plane per triangle edge in lens and time per footprint",
+              BC_CULL_EDGES, rasterizers),
         // Munkberg and Akenine-Moller 2012 (hyperplane_body.inl); on GL its planes cull whole cells only.
-        {CullMethod::hyperplane, "hyperplane", {},
-         "two-stage, then one hyperplane per triangle edge per tile in (x, y, u, v, t) (Munkberg and "
-         "Akenine-Moller 2012)",
-         BC_CULL_HYPERPLANE, true, rasterizers},
+        entry(CullMethod::hyperplane, "hyperplane", {},
+              "two-stage, then one hyperplane per triangle edge per tile in (x, y, u, v, t) (Munkberg and "
+              "Akenine-Moller 2012)",
+              BC_CULL_HYPERPLANE, rasterizers),
     };
     return methods;
 }

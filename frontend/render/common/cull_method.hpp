@@ -19,10 +19,14 @@ struct CullMethodInfo {
     std::vector<std::string> aliases;  // older names still accepted
     const char* help;                  // one line
     int kernel_method;                 // the kernel's BC_CULL_* constant
-    // Whether it bounds lens and time per footprint (kernel::sample_bounds)
-    // besides the triangle's screen bound.
-    bool bounds_samples;
     BackendSet backends;               // the backends that take it
+    // What it needs, from the kernel's record of it (kernel cull_traits:
+    // BC_CULL_BUILDS_HULL, BC_CULL_TWO_STAGE_AXES, ...); the backends read
+    // these flags, never lists of methods.
+    int traits = 0;
+    // Whether it bounds lens and time per footprint (kernel::sample_bounds)
+    // besides the triangle's screen bound (traits & BC_CULL_BOUNDS_SAMPLES).
+    bool bounds_samples = false;
 };
 
 // Every cull method, in the order of the enum.

@@ -2,6 +2,7 @@
 // per-sample z-buffer, culling by the kernel (docs/cpu-renderer.md).
 #pragma once
 
+#include "render/common/kernel_precision.hpp"
 #include "render/common/render_types.hpp"
 #include "scene/scene.hpp"
 
@@ -14,29 +15,6 @@
 #include <vector>
 
 namespace blurcull::frontend {
-
-// The kernel's arithmetic: kernel<double> (the reference) or kernel<float>,
-// the arithmetic of the kernel's GLSL and so of the GL backend.
-enum class KernelPrecision { float64, float32 };
-
-struct KernelPrecisionInfo {
-    KernelPrecision precision;
-    const char* name;  // what the command takes and prints
-    const char* help;  // one line
-};
-
-// Every precision, in the order of the enum: the one list of their names.
-const std::vector<KernelPrecisionInfo>& kernel_precisions();
-
-// "double" or "float".
-const char* to_string(KernelPrecision precision);
-
-// The names of kernel_precisions(), in order.
-std::vector<std::string> kernel_precision_names();
-
-// "double" or "float"; throws std::invalid_argument("kernel precision 'x' is
-// not double or float") otherwise.
-KernelPrecision parse_kernel_precision(const std::string& name);
 
 // Progressive rendering (render/cpu/progressive.hpp): the running per-pixel
 // sums of the samples drawn so far, the pattern's samples 0 .. samples-1 of
@@ -68,6 +46,8 @@ struct CpuOptions {
     int footprint = 4;
     // Side, in pixels, of the blocks bounded first: a block whose bounds hold
     // nothing is skipped without bounding its footprints. <= footprint: off.
+    // A block is what the kernel calls a tile (sample_bounds_in_tile); the
+    // CPU's "work tile" is the binning unit (render/cpu/frame_context.hpp).
     int block = 16;
     // kernel<double> (default) or kernel<float>. In float every culling
     // method is still conservative against the double oracle (property

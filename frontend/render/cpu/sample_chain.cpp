@@ -107,7 +107,7 @@ __attribute__((target("avx"))) std::uint32_t passing_avx(const kernel<double>::S
                           bool check_bounds, const kernel<double>::SampleBounds& bounds, const SampleLanes& lanes,
                           std::size_t first, int count) {
     const std::uint32_t wanted = count >= 32 ? ~0u : (1u << count) - 1u;
-    const bool check_edges = bounds.edges.piece[0].mode != BC_EDGE_NONE;
+    const bool check_edges = kernel<double>::plane_pieces(bounds) > 0;
     if (!check_bounds && !check_screen && !check_edges) return wanted;
     std::uint32_t culled = 0;
     for (int i = 0; i < count; i += 4) {

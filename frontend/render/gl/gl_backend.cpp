@@ -294,7 +294,7 @@ private:
     const std::size_t count_, pixels_;
     const std::uint32_t spp_;
     const bool keep_ids_;
-    const int method_;              // BC_CULL_*
+    const int cull_;                // the cull method, BC_CULL_*
     const int cells_per_triangle_;  // 1, or cells_max when the method bounds lens and time
     const FrameTriangles triangles_;
     const std::size_t cell_count_;
@@ -325,7 +325,7 @@ StochasticFrame::StochasticFrame(const GlRenderer::State& state, const Scene& sc
       pixels_(static_cast<std::size_t>(settings.width) * static_cast<std::size_t>(settings.height)),
       spp_(static_cast<std::uint32_t>(settings.spp)),
       keep_ids_(keep_ids),
-      method_(kernel_cull_method(settings.cull)),
+      cull_(kernel_cull_method(settings.cull)),
       cells_per_triangle_(cells_per_triangle_for(settings.cull)),
       triangles_(frame_triangles(scene, model_, options.force_full_path)),
       cell_count_(triangles_.moving_count * static_cast<std::size_t>(cells_per_triangle_)),
@@ -361,14 +361,14 @@ void StochasticFrame::run_setup() {
     if (count_ > 0) {
         set_common(gl_, state_.setup, model_, settings_, 0);
         set_int(gl_, state_.setup, "triangle_count", static_cast<int>(count_));
-        set_int(gl_, state_.setup, "method", method_);
+        set_int(gl_, state_.setup, "method", cull_);
         set_int(gl_, state_.setup, "force_full", options_.force_full_path ? 1 : 0);
         gl_.DispatchCompute(static_cast<GLuint>((count_ + 63) / 64), 1, 1);
         gl_.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         set_common(gl_, state_.bounds, model_, settings_, 0);
         set_int(gl_, state_.bounds, "moving_count", static_cast<int>(triangles_.moving_count));
         set_int(gl_, state_.bounds, "cells_per_triangle", cells_per_triangle_);
-        set_int(gl_, state_.bounds, "method", method_);
+        set_int(gl_, state_.bounds, "method", cull_);
         set_int(gl_, state_.bounds, "cell_pixels", options_.cell_pixels);
         gl_.DispatchCompute(static_cast<GLuint>((cell_count_ + 63) / 64), 1, 1);
         gl_.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);

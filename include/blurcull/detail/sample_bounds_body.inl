@@ -1,7 +1,7 @@
 // Shared C++/GLSL text (see dialect.hpp): the per-footprint sample bounds
 // that a renderer tests each sample against, dispatched by cull mode to
-// dual_space_body.inl, two_stage_body.inl or (two-stage plus edge planes)
-// edge_bounds_body.inl (hyperplane_body.inl for BC_CULL_HYPERPLANE), and the
+// dual_space_body.inl or two_stage_body.inl and then the planes of
+// edge_bounds_body.inl or hyperplane_body.inl, by the cull's traits, and the
 // shutter interval they leave. Needs every other kernel body.
 
 struct SampleBounds {
@@ -69,9 +69,10 @@ struct SampleAxisBounds {
 
 // The dual-space and two-stage bounds along one axis depend on the
 // footprint's extent [s0, s1] along that axis alone (a renderer may share
-// them between footprints in one row or column). For BC_CULL_DUALSPACE and
-// BC_CULL_TWO_STAGE (the two-stage part of BC_CULL_EDGES); the triangle must
-// be bc_triangle_boundable.
+// them between footprints in one row or column). For a cull with
+// BC_CULL_BOUNDS_SAMPLES (the axes part of every such cull: dual-space's for
+// BC_CULL_DUAL_SPACE_AXES, two-stage's otherwise); the triangle must be
+// bc_triangle_boundable (sample_bounds_apply).
 BC_FN SampleAxisBounds sample_axis_bounds(BC_IN(MovingTriangle) tri, int axis, real s0, real s1, int cull) {
     SampleAxisBounds r;
     r.empty = false;
@@ -81,7 +82,7 @@ BC_FN SampleAxisBounds sample_axis_bounds(BC_IN(MovingTriangle) tri, int axis, r
     real pad = bc_err(max(real(1), max(abs(s0), abs(s1))));
     s0 = s0 - pad;
     s1 = s1 + pad;
-    if (cull == BC_CULL_DUALSPACE) {
+    if ((cull_traits(cull) & BC_CULL_DUAL_SPACE_AXES) != 0) {
         vec2 tr;
         if (!bc_dual_time_bounds(tri, axis, s0, s1, tr)) {
             r.empty = true;
@@ -134,10 +135,8 @@ BC_FN vec2 bc_footprint_pad(vec2 s_lo, vec2 s_hi) {
 }
 
 // The edge planes over the box the two-stage bounds r of the footprint
-// [s_lo, s_hi] leave (on the padded footprint), added to r: sample_bounds
-// with BC_CULL_EDGES is this of its BC_CULL_TWO_STAGE bounds. A renderer
-// may bound first and add the planes only where their setup pays (skipping
-// them loses culling, never a covered sample).
+// [s_lo, s_hi] leave (on the padded footprint), added to r (add_sample_planes
+// for BC_CULL_EDGE_PLANES_PER_BLOCK).
 BC_FN SampleBounds bc_add_edge_planes(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi,
                                       BC_IN(SampleBounds) two_stage) {
     SampleBounds r = two_stage;
@@ -153,14 +152,18 @@ BC_FN SampleBounds bc_add_edge_planes(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2
     return r;
 }
 
-// Bounds on the lens and time of every sample in the screen footprint
-// [s_lo, s_hi] (a pixel or a tile) that the triangle can cover.
-// BC_CULL_BBOX and BC_CULL_HULL bound only the screen (see screen_bound).
-BC_FN SampleBounds sample_bounds(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi, int cull) {
+// Whether the per-footprint bounds apply to the triangle at all: false for
+// non-finite input or a swamped triangle, whose sample_bounds are
+// no_sample_bounds() (and whose axis bounds must then not be used).
+BC_FN bool sample_bounds_apply(BC_IN(MovingTriangle) tri) { return bc_triangle_boundable(tri); }
+
+// The cull's per-axis bounds of the footprint [s_lo, s_hi] combined, without
+// its planes: what sample_bounds gives before add_sample_planes.
+// no_sample_bounds() for a cull without BC_CULL_BOUNDS_SAMPLES or a
+// triangle the bounds do not apply to.
+BC_FN SampleBounds sample_bounds_without_planes(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi, int cull) {
     SampleBounds r = no_sample_bounds();
-    if (cull != BC_CULL_DUALSPACE && cull != BC_CULL_TWO_STAGE && cull != BC_CULL_EDGES &&
-        cull != BC_CULL_HYPERPLANE)
-        return r;
+    if ((cull_traits(cull) & BC_CULL_BOUNDS_SAMPLES) == 0) return r;
     if (!bc_triangle_boundable(tri)) return r;
     SampleAxisBounds x = sample_axis_bounds(tri, 0, s_lo.x, s_hi.x, cull);
     if (x.empty) {
@@ -168,9 +171,23 @@ BC_FN SampleBounds sample_bounds(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi
         return r;
     }
     SampleAxisBounds y = sample_axis_bounds(tri, 1, s_lo.y, s_hi.y, cull);
-    r = combine_axis_bounds(x, y);
-    if (r.empty || (cull != BC_CULL_EDGES && cull != BC_CULL_HYPERPLANE)) return r;
-    if (cull == BC_CULL_EDGES) return bc_add_edge_planes(tri, s_lo, s_hi, r);
+    return combine_axis_bounds(x, y);
+}
+
+// The cull's planes over the box `without` (sample_bounds_without_planes of
+// the same footprint and cull) leaves, added to it: the edge planes for
+// BC_CULL_EDGE_PLANES_PER_BLOCK, the hyperplanes and their box test for
+// BC_CULL_HYPERPLANES_PER_TILE (on the padded footprint); `without` itself
+// for a cull without planes or when it is empty. A renderer may bound first
+// and add the edge planes only where their setup pays: leaving them out
+// loses culling, never a covered sample.
+BC_FN SampleBounds add_sample_planes(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi, int cull,
+                                     BC_IN(SampleBounds) without) {
+    int traits = cull_traits(cull);
+    SampleBounds r = without;
+    if (r.empty) return r;
+    if ((traits & BC_CULL_EDGE_PLANES_PER_BLOCK) != 0) return bc_add_edge_planes(tri, s_lo, s_hi, r);
+    if ((traits & BC_CULL_HYPERPLANES_PER_TILE) == 0) return r;
     // Hyperplane: one plane per edge over the whole box, and the box culled
     // whole when a plane leaves nothing (on the padded footprint).
     vec2 pad = bc_footprint_pad(s_lo, s_hi);
@@ -185,18 +202,14 @@ BC_FN SampleBounds sample_bounds(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi
     return r;
 }
 
-// A footprint's two-stage bounds (sample_bounds with BC_CULL_TWO_STAGE, or
-// combine_axis_bounds of its axes) with the edge planes of its tile's
-// BC_CULL_EDGES (or BC_CULL_HYPERPLANE) bounds: sample_bounds_in_tile's
-// result without the hyperplane's footprint test, for a renderer that shares
-// the footprints' axis bounds along rows and columns.
-BC_FN SampleBounds bc_with_tile_edges(BC_IN(SampleBounds) footprint, BC_IN(SampleBounds) tile) {
-    if (tile.empty) return tile;
-    SampleBounds r = footprint;
-    if (r.empty) return r;
-    r.edges = tile.edges;
-    r.centre = tile.centre;
-    return r;
+// Bounds on the lens and time of every sample in the screen footprint
+// [s_lo, s_hi] (a pixel or a tile) that the triangle can cover: the cull's
+// axis bounds, then its planes. A cull without BC_CULL_BOUNDS_SAMPLES
+// (bbox, hull) bounds only the screen (see screen_bound).
+BC_FN SampleBounds sample_bounds(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi, int cull) {
+    SampleBounds r = sample_bounds_without_planes(tri, s_lo, s_hi, cull);
+    if ((cull_traits(cull) & BC_CULL_ADDS_PLANES) == 0 || !bc_triangle_boundable(tri)) return r;
+    return add_sample_planes(tri, s_lo, s_hi, cull, r);
 }
 
 // BC_CULL_HYPERPLANE's tile test on a footprint [s_lo, s_hi] inside the
@@ -210,22 +223,51 @@ BC_FN bool bc_hyperplane_footprint_empty(BC_IN(SampleBounds) r, vec2 s_lo, vec2 
     return bc_hyperplane_box_empty(r.edges.piece[0], r.u_range, r.v_range, times, s_lo - pad, s_hi + pad);
 }
 
+// A footprint [s_lo, s_hi]'s bounds without planes (sample_bounds_without_planes,
+// or combine_axis_bounds of its axes) inside a tile whose bounds `tile`
+// carry the cull's planes: the footprint's bounds with the tile's planes,
+// and for BC_CULL_HYPERPLANES_PER_TILE the footprint culled whole when a
+// tile plane leaves nothing of its own box. Empty when tile is.
+BC_FN SampleBounds with_tile_planes(vec2 s_lo, vec2 s_hi, int cull, BC_IN(SampleBounds) footprint,
+                                    BC_IN(SampleBounds) tile) {
+    if (tile.empty) return tile;
+    SampleBounds r = footprint;
+    if (r.empty) return r;
+    r.edges = tile.edges;
+    r.centre = tile.centre;
+    if ((cull_traits(cull) & BC_CULL_HYPERPLANES_PER_TILE) != 0) r.empty = bc_hyperplane_footprint_empty(r, s_lo, s_hi);
+    return r;
+}
+
 // Bounds of a footprint [s_lo, s_hi] inside a tile whose bounds `tile` came
-// from sample_bounds with the same cull (tile then footprint): for
-// BC_CULL_EDGES the footprint's own two-stage bounds with the tile's edge
-// planes, which hold for every sample of the tile inside the tile's bounds
-// (and a sample outside those cannot be covered: docs/kernel.md, "Edge
-// bounds", tile then footprint), so the planes' setup is paid once per tile;
-// for BC_CULL_HYPERPLANE the same, and the footprint culled whole when a
-// tile plane leaves nothing of the footprint's own box; for every other
-// cull the footprint's own bounds. An empty tile gives empty bounds.
+// from sample_bounds with the same cull (tile then footprint): for a cull
+// that adds planes, the footprint's own bounds without planes with the
+// tile's planes (with_tile_planes), which hold for every sample of the tile
+// inside the tile's bounds (and a sample outside those cannot be covered:
+// docs/kernel.md, "Edge bounds", tile then footprint), so the planes' setup
+// is paid once per tile; for every other cull the footprint's own bounds.
+// An empty tile gives empty bounds.
 BC_FN SampleBounds sample_bounds_in_tile(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 s_hi, int cull,
                                          BC_IN(SampleBounds) tile) {
     if (tile.empty) return tile;
-    if (cull != BC_CULL_EDGES && cull != BC_CULL_HYPERPLANE) return sample_bounds(tri, s_lo, s_hi, cull);
-    SampleBounds r = bc_with_tile_edges(sample_bounds(tri, s_lo, s_hi, BC_CULL_TWO_STAGE), tile);
-    if (cull == BC_CULL_HYPERPLANE && !r.empty) r.empty = bc_hyperplane_footprint_empty(r, s_lo, s_hi);
-    return r;
+    if ((cull_traits(cull) & BC_CULL_ADDS_PLANES) == 0) return sample_bounds(tri, s_lo, s_hi, cull);
+    return with_tile_planes(s_lo, s_hi, cull, sample_bounds_without_planes(tri, s_lo, s_hi, cull), tile);
+}
+
+// The planes' pieces in time of bounds b (each over part of the shutter): 0
+// when b carries no planes (a cull without them, or planes that could not
+// be set up), else 1 to BC_EDGE_PIECES.
+BC_FN int plane_pieces(BC_IN(SampleBounds) b) { return b.edges.piece[0].mode == BC_EDGE_NONE ? 0 : b.edges.pieces; }
+
+// The shutter interval [lo, hi] (the bounds' local time) of piece q < plane_pieces(b).
+BC_FN vec2 plane_piece_time(BC_IN(SampleBounds) b, int q) { return b.edges.piece[q].time; }
+
+// Whether piece q's planes leave no sample of the screen box [s_lo, s_hi]
+// (NDC, holding the sample positions it is asked for, their rounding
+// included) inside b's lens ranges and the piece's shutter interval: then no
+// such sample passes sample_passes_at. False when unsure.
+BC_FN bool plane_piece_culls_box(BC_IN(SampleBounds) b, int q, vec2 s_lo, vec2 s_hi) {
+    return bc_edge_piece_culls_box(b.edges.piece[q], s_lo, s_hi, b.u_range, b.v_range);
 }
 
 // The lens and time bounds of sample_passes without the edge planes.

@@ -11,6 +11,30 @@
 #define BC_CULL_EDGES 4  // the two-stage bounds and a plane per edge in (u, v, t) (edge_bounds_body.inl)
 #define BC_CULL_HYPERPLANE 5  // the two-stage bounds and one hyperplane per edge per tile (hyperplane_body.inl)
 
+// What a cull method needs, as flags (cull_traits): the bodies and the
+// backends read these, never lists of methods, so a new method is one line
+// of cull_traits, the body of what it adds, and its registry entry.
+#define BC_CULL_BUILDS_HULL 1                // screen_bound adds the convex hull to the box
+#define BC_CULL_DUAL_SPACE_AXES 2            // lens and time per footprint axis by dual_space_body.inl
+#define BC_CULL_TWO_STAGE_AXES 4             // lens and time per footprint axis by two_stage_body.inl
+#define BC_CULL_EDGE_PLANES_PER_BLOCK 8      // edge planes in (u, v, t) over the axes' box (edge_bounds_body.inl);
+                                             // a tile's planes hold for its footprints, and may be left out
+#define BC_CULL_HYPERPLANES_PER_TILE 16      // one hyperplane per edge in (x, y, u, v, t) per tile and the
+                                             // tile test on each footprint's box (hyperplane_body.inl)
+// Any per-footprint lens and time bound; any planes on top of it.
+#define BC_CULL_BOUNDS_SAMPLES (BC_CULL_DUAL_SPACE_AXES | BC_CULL_TWO_STAGE_AXES)
+#define BC_CULL_ADDS_PLANES (BC_CULL_EDGE_PLANES_PER_BLOCK | BC_CULL_HYPERPLANES_PER_TILE)
+
+// The flags of cull method `cull` (BC_CULL_*); 0 (the box alone) for an unknown id.
+BC_FN int cull_traits(int cull) {
+    if (cull == BC_CULL_HULL) return BC_CULL_BUILDS_HULL;
+    if (cull == BC_CULL_DUALSPACE) return BC_CULL_DUAL_SPACE_AXES;
+    if (cull == BC_CULL_TWO_STAGE) return BC_CULL_BUILDS_HULL | BC_CULL_TWO_STAGE_AXES;
+    if (cull == BC_CULL_EDGES) return BC_CULL_BUILDS_HULL | BC_CULL_TWO_STAGE_AXES | BC_CULL_EDGE_PLANES_PER_BLOCK;
+    if (cull == BC_CULL_HYPERPLANE) return BC_CULL_BUILDS_HULL | BC_CULL_TWO_STAGE_AXES | BC_CULL_HYPERPLANES_PER_TILE;
+    return 0;
+}
+
 #define BC_HULL_MAX 24
 
 struct ScreenBound {
@@ -154,8 +178,8 @@ BC_FN void bc_build_hull(BC_IN(MovingTriangle) tri, real near, BC_INOUT(ScreenBo
     b.hull_count = h;
 }
 
-// Per-triangle screen bound: the clipped, CoC-grown box; with cull mode
-// BC_CULL_HULL also the convex hull when no vertex is behind the near plane.
+// Per-triangle screen bound: the clipped, CoC-grown box; for a cull whose
+// traits hold BC_CULL_BUILDS_HULL also the convex hull when no vertex is behind the near plane.
 // Non-finite input or results give the whole screen (never a cull).
 BC_FN ScreenBound screen_bound(BC_IN(MovingTriangle) tri, real near, int cull) {
     ScreenBound b;
@@ -170,9 +194,7 @@ BC_FN ScreenBound screen_bound(BC_IN(MovingTriangle) tri, real near, int cull) {
     b.lo = vec2(ex.x, ey.x);
     b.hi = vec2(ex.y, ey.y);
     b.empty = ex.x > ex.y || ey.x > ey.y;
-    if ((cull == BC_CULL_HULL || cull == BC_CULL_TWO_STAGE || cull == BC_CULL_EDGES || cull == BC_CULL_HYPERPLANE) &&
-        !b.empty)
-        bc_build_hull(tri, near, b);
+    if ((cull_traits(cull) & BC_CULL_BUILDS_HULL) != 0 && !b.empty) bc_build_hull(tri, near, b);
     return b;
 }
 

@@ -25,6 +25,6 @@ std::uint32_t covers4_scalar(const kerneld::MovingTriangle& tri, const double* s
                              const double* v, const double* t, double near, double* depth);
 
 // "avx" or "scalar": the code covers4 runs on this CPU.
-const char* exact_test_isa();
+const char* exact_lanes_isa();
 
 }  // namespace blurcull::frontend

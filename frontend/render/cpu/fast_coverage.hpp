@@ -90,6 +90,6 @@ std::uint32_t may_cover32_scalar(const CoverageSetup& setup, const float* sx, co
                                  const float* v, const float* t, std::uint32_t wanted);
 
 // "avx2" or "scalar": the code may_cover32 runs on this CPU.
-const char* coverage_test_isa();
+const char* fast_coverage_isa();
 
 }  // namespace blurcull::frontend

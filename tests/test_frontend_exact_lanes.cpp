@@ -1,4 +1,4 @@
-// The CPU backend's four-lane exact test (render/cpu/exact_test.hpp) against
+// The CPU backend's four-lane exact test (render/cpu/exact_lanes.hpp) against
 // kerneld::covers, the oracle it must reproduce: on the kernel's property
 // generators (every family, samples inside and around the triangle, on its
 // edges, with float-rounded and unrounded coordinates), covers4 and its
@@ -6,7 +6,7 @@
 // lanes, its depth bit for bit: 0 disagreements. BLURCULL_PROPERTY_SCALE=k
 // scales it.
 #include "kernel_generators.hpp"
-#include "render/cpu/exact_test.hpp"
+#include "render/cpu/exact_lanes.hpp"
 
 #include <doctest/doctest.h>
 
@@ -59,7 +59,7 @@ void run_config(const Config& cfg, Rng& rng, bool float_samples, Tally& tally) {
 }  // namespace
 
 TEST_CASE("four-lane exact test: covers' verdicts and depths bit for bit on the property generators") {
-    std::printf("four-lane exact test runs on: %s\n", frontend::exact_test_isa());
+    std::printf("four-lane exact test runs on: %s\n", frontend::exact_lanes_isa());
     const int configs = static_cast<int>(1500 * property_scale());
     Tally total;
     for (bool float_samples : {false, true}) {

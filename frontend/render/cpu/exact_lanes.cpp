@@ -1,4 +1,4 @@
-#include "render/cpu/exact_test.hpp"
+#include "render/cpu/exact_lanes.hpp"
 
 #include "render/common/cpu_features.hpp"
 
@@ -109,7 +109,7 @@ std::uint32_t covers4(const kerneld::MovingTriangle& tri, const double* sx, cons
     return covers4_scalar(tri, sx, sy, u, v, t, near, depth);
 }
 
-const char* exact_test_isa() {
+const char* exact_lanes_isa() {
 #if BLURCULL_EXACT_X86
     if (has_avx) return "avx";
 #endif

@@ -1,4 +1,4 @@
-#include "render/cpu/coverage_test.hpp"
+#include "render/cpu/fast_coverage.hpp"
 
 #include "render/common/cpu_features.hpp"
 
@@ -373,7 +373,7 @@ std::uint32_t may_cover32_scalar(const CoverageSetup& setup, const float* sx, co
     });
 }
 
-const char* coverage_test_isa() {
+const char* fast_coverage_isa() {
     return has_avx2 ? "avx2" : "scalar";
 }
 
