@@ -51,6 +51,17 @@ constexpr int cells_max = BC_GL_CELLS_MAX;
 
 }  // namespace
 
+namespace {
+
+// `context`, made current: the programs compile on it (with several contexts
+// alive, another may be current).
+gl::HeadlessContext made_current(gl::HeadlessContext&& context) {
+    context.make_current();
+    return std::move(context);
+}
+
+}  // namespace
+
 struct GlRenderer::State {
     gl::HeadlessContext context;
     gl::Program setup;
@@ -61,13 +72,13 @@ struct GlRenderer::State {
     gl::Program static_fill;
     gl::Program draw_moving;
     gl::Program resolve;
-    GLuint vertex_array = 0;
+    gl::VertexArray vertex_array;
     // interleave / interval / accum (gl_sampling_methods.cpp), compiled on first use;
     // declared after the context, so destroyed before it.
     std::shared_ptr<GlMethodPrograms> methods;
 
     explicit State(gl::HeadlessContext&& made)
-        : context(std::move(made)),
+        : context(made_current(std::move(made))),
           setup(context.gl(), {shader_stage(GL_COMPUTE_SHADER, "render_setup.comp")}),
           bounds(context.gl(), {shader_stage(GL_COMPUTE_SHADER, "render_bounds.comp")}),
           samples(context.gl(), {shader_stage(GL_COMPUTE_SHADER, "render_samples.comp")}),
@@ -79,12 +90,13 @@ struct GlRenderer::State {
                                      shader_stage(GL_FRAGMENT_SHADER, "render_static_fill.frag")}),
           draw_moving(context.gl(), {shader_stage(GL_VERTEX_SHADER, "render_moving.vert"),
                                      shader_stage(GL_FRAGMENT_SHADER, "render_moving.frag", masked)}),
-          resolve(context.gl(), {shader_stage(GL_COMPUTE_SHADER, "render_resolve.comp")}) {
-        context.gl().GenVertexArrays(1, &vertex_array);
-    }
+          resolve(context.gl(), {shader_stage(GL_COMPUTE_SHADER, "render_resolve.comp")}),
+          vertex_array(context.gl()) {}
     State(const State&) = delete;
     State& operator=(const State&) = delete;
-    ~State() { context.gl().DeleteVertexArrays(1, &vertex_array); }
+    // The members' glDelete* act on the current context: this one's, with
+    // several alive.
+    ~State() { context.make_current_for_release(); }
 };
 
 namespace {
@@ -379,7 +391,7 @@ void StochasticFrame::run_setup() {
     id_depth_.emplace(gl_, settings_.width, settings_.height, samples_per_pass, "the multisample id/depth framebuffer");
     id_depth_->bind_with_depth_rule();
     gl_.Enable(GL_MULTISAMPLE);
-    gl_.BindVertexArray(state_.vertex_array);
+    gl_.BindVertexArray(state_.vertex_array.id());
     gl_.ActiveTexture(GL_TEXTURE0 + BC_GL_PASS_IDS_UNIT);
     gl_.BindTexture(GL_TEXTURE_2D_MULTISAMPLE, id_depth_->id_texture());
     gl_.Finish();

@@ -47,7 +47,8 @@ constexpr std::uint32_t no_triangle = 0xffffffffu;
 class GlRenderer {
 public:
     GlRenderer();
-    // On a given context, e.g. HeadlessContext::from_current for a window's:
+    // On a given context (made current here and by render(); its objects are
+    // deleted on it), e.g. HeadlessContext::from_current for a window's:
     // render() leaves its program, vertex array and texture bound and the
     // viewport, depth test, depth clamp and clip control changed (the caller
     // resets what it needs).

@@ -83,7 +83,7 @@ std::vector<int> level_sizes(int size) {
 
 struct GlLayerBuilder::Passes {
     gl::Program setup, draw, cluster_depth, pyramid;
-    GLuint vertex_array = 0;
+    gl::VertexArray vertex_array;
     // The buffers, by binding (Binding), kept from one cluster to the next.
     std::array<std::optional<gl::Buffer>, BC_GL_LAYER_BINDINGS> buffers;
 
@@ -167,7 +167,7 @@ void GlLayerBuilder::Passes::draw_fans(const gl::Functions& f, int size, std::ui
     f.Disable(GL_CULL_FACE);
     f.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     f.UseProgram(draw.id());
-    f.BindVertexArray(vertex_array);
+    f.BindVertexArray(vertex_array.id());
     const GLint peel_pass = f.GetUniformLocation(draw.id(), "peel_pass");
     for (int peel = 0; peel < 2; ++peel) {
         f.Uniform1i(peel_pass, peel);
@@ -219,17 +219,18 @@ GlClusterLayers GlLayerBuilder::Passes::read_back(const gl::Functions& f, int si
 }
 
 GlLayerBuilder::GlLayerBuilder(const gl::HeadlessContext& context)
-    : gl_(&context.gl()),
+    : context_((context.make_current(), &context)),
+      gl_(&context.gl()),
       passes_(std::make_unique<Passes>(Passes{
           gl::Program(context.gl(), {layer_stage(GL_COMPUTE_SHADER, "render_layers_setup.comp")}),
           gl::Program(context.gl(), {layer_stage(GL_VERTEX_SHADER, "render_layers.vert"),
                                      layer_stage(GL_FRAGMENT_SHADER, "render_layers.frag")}),
           gl::Program(context.gl(), {layer_stage(GL_COMPUTE_SHADER, "render_layers_cluster_depth.comp")}),
-          gl::Program(context.gl(), {layer_stage(GL_COMPUTE_SHADER, "render_layers_pyramid.comp")}), 0, {}})) {
-    gl_->GenVertexArrays(1, &passes_->vertex_array);
-}
+          gl::Program(context.gl(), {layer_stage(GL_COMPUTE_SHADER, "render_layers_pyramid.comp")}),
+          gl::VertexArray(context.gl()), {}})) {}
 
-GlLayerBuilder::~GlLayerBuilder() { gl_->DeleteVertexArrays(1, &passes_->vertex_array); }
+// The passes' glDelete* act on the current context: this one's, with several alive.
+GlLayerBuilder::~GlLayerBuilder() { context_->make_current_for_release(); }
 
 GlClusterLayers GlLayerBuilder::build(const kernelf::LayerView& view, int layers, const GlLayerInput& input) const {
     const gl::Functions& f = *gl_;

@@ -9,12 +9,14 @@
 namespace blurcull::frontend {
 
 GlLayerTracer::GlLayerTracer(const gl::HeadlessContext& context)
-    : gl_(&context.gl()),
+    : context_((context.make_current(), &context)),
+      gl_(&context.gl()),
       program_(std::make_unique<gl::Program>(
           context.gl(),
           std::vector<gl::ShaderStage>{gl::shader_stage(GL_COMPUTE_SHADER, "render_secondary_trace.comp")})) {}
 
-GlLayerTracer::~GlLayerTracer() = default;
+// The program's glDeleteProgram acts on the current context: this one's, with several alive.
+GlLayerTracer::~GlLayerTracer() { context_->make_current_for_release(); }
 
 std::vector<kernelf::LayerHit> GlLayerTracer::trace(const kernelf::LayerView& view, const std::vector<float>& depth,
                                                     int layers, float thickness,

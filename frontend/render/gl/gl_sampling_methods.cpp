@@ -59,18 +59,14 @@ struct GlMethodPrograms {
     const gl::Functions* gl;
     gl::Program samples;
     gl::Program draw;
-    GLuint vertex_array = 0;
+    gl::VertexArray vertex_array;
 
     explicit GlMethodPrograms(const gl::Functions& functions)
         : gl(&functions),
           samples(functions, {gl::shader_stage(GL_COMPUTE_SHADER, "render_method_samples.comp")}),
           draw(functions, {gl::shader_stage(GL_VERTEX_SHADER, "render_method.vert"),
-                           gl::shader_stage(GL_FRAGMENT_SHADER, "render_method.frag", gl::Prelude::render_masked)}) {
-        functions.GenVertexArrays(1, &vertex_array);
-    }
-    GlMethodPrograms(const GlMethodPrograms&) = delete;
-    GlMethodPrograms& operator=(const GlMethodPrograms&) = delete;
-    ~GlMethodPrograms() { gl->DeleteVertexArrays(1, &vertex_array); }
+                           gl::shader_stage(GL_FRAGMENT_SHADER, "render_method.frag", gl::Prelude::render_masked)}),
+          vertex_array(functions) {}
 };
 
 namespace {
@@ -265,7 +261,7 @@ MethodFrame::MethodFrame(const gl::Functions& gl, const GlMethodPrograms& progra
     tuple_buffer_.bind_base(BC_GL_METHOD_TUPLE_CELLS_BINDING);
     mask_.bind();
     id_depth_.bind_with_depth_rule();
-    gl.BindVertexArray(programs.vertex_array);
+    gl.BindVertexArray(programs.vertex_array.id());
     set_uniforms();
     gl::check_gl(gl, "gl: method setup");
     boxes_.reserve(scene.triangles.size());
