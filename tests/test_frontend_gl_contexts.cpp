@@ -1,16 +1,26 @@
 // Headless GL contexts in one process (frontend/render/gl/gl_context.hpp):
 // several alive at once with interleaved lifetimes, each used (a compute
 // dispatch read back) and destroyed in any order, on the process's one EGL
-// display; and a context left to the statics' destructors does not crash
-// the exit. ctest checks that this
+// display; a render makes exactly one context (the `blurcull render`
+// command's probe is the render's context); and a context left to the
+// statics' destructors does not crash the exit. ctest checks that this
 // executable exits 0: under NVIDIA's driver, GL objects destroyed after its
 // exit handlers made four test executables die with SIGSEGV at exit (issue 22).
 // No GL context: SKIPPED, or a failure when CI=true.
 #include "gl_parity_helpers.hpp"
 
+#include "render/gl/gl_backend.hpp"
+
 #include <doctest/doctest.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -118,6 +128,89 @@ TEST_CASE("the same on OSMesa contexts, where OSMesa is installed") {
         return;
     }
     interleaved_lifetimes(std::move(*first), gl::ContextKind::osmesa);
+}
+
+TEST_CASE("a render makes one context, and a renderer on a context made before makes none") {
+    std::optional<gl::HeadlessContext> probe = context_or_skip();
+    if (!probe) return;
+    const Scene scene = small_scene("car", 24, 16);
+    RenderSettings settings;
+    settings.width = 24;
+    settings.height = 16;
+    settings.spp = 4;
+    settings.progress = false;
+    std::size_t before = gl::HeadlessContext::contexts_made();
+    const RenderResult alone = render_gl(scene, settings);
+    CHECK(gl::HeadlessContext::contexts_made() - before == 1);
+
+    before = gl::HeadlessContext::contexts_made();
+    GlRenderer renderer(std::move(*probe));
+    const RenderResult first = render_gl_frame(renderer, scene, settings);
+    const RenderResult second = render_gl_frame(renderer, scene, settings);
+    CHECK(gl::HeadlessContext::contexts_made() == before);
+    CHECK(first.image.pixels == alone.image.pixels);
+    CHECK(second.image.pixels == alone.image.pixels);
+    CHECK(first.stats.samples_hit == alone.stats.samples_hit);
+    CHECK(first.stats.ms_per_phase.front().first == "compile");
+}
+
+namespace {
+
+struct Run {
+    int status = -1;
+    std::string err;
+};
+
+// `blurcull <arguments>` in a scratch folder with BLURCULL_GL_TRACE_CONTEXTS=1.
+Run run_cli(const std::string& arguments) {
+    namespace fs = std::filesystem;
+    const fs::path folder = fs::temp_directory_path() / ("blurcull_gl_contexts_test_" + std::to_string(::getpid()));
+    fs::create_directories(folder);
+    const fs::path err_file = folder / "stderr.txt";
+    const std::string command = "cd '" + folder.string() + "' && BLURCULL_GL_TRACE_CONTEXTS=1 '" + BLURCULL_CLI +
+                                "' " + arguments + " >/dev/null 2>'" + err_file.string() + "'";
+    Run run;
+    const int raw = std::system(command.c_str());
+    run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    if (FILE* f = std::fopen(err_file.string().c_str(), "r")) {
+        std::array<char, 4096> buffer{};
+        while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), f)) run.err.append(buffer.data(), n);
+        std::fclose(f);
+    }
+    fs::remove_all(folder);
+    return run;
+}
+
+std::size_t count_of(const std::string& text, const std::string& what) {
+    std::size_t n = 0;
+    for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+    return n;
+}
+
+}  // namespace
+
+TEST_CASE("blurcull render makes one GL context: the probe's, for every method and every frame") {
+    if (!context_or_skip()) return;
+    const std::string trace = "blurcull gl: context ";
+    for (const char* arguments : {
+             "render --backend gl --scene car --size 24x16 --spp 4 -o car.png",
+             "render --backend gl --method interleave --scene car --size 24x16 --spp 4 -o interleave.png",
+             "render --backend gl --scene car --size 24x16 --spp 4 --frames 0:2 -o car_%04d.png",
+             "render --backend gl --method dof-secondary --scene mirror-sphere --size 24x16 --spp 4 -o mirror.png",
+         }) {
+        CAPTURE(arguments);
+        const Run run = run_cli(arguments);
+        CHECK_MESSAGE(run.status == 0, run.err);
+        CHECK_MESSAGE(count_of(run.err, trace) == 1, run.err);
+    }
+    // auto: a context only where a GPU device could drive one, and then the
+    // render's own (here, on llvmpipe, usually none).
+    const Run run = run_cli("render --backend auto --scene car --size 24x16 --spp 4 -o auto.png");
+    CHECK_MESSAGE(run.status == 0, run.err);
+    const bool gl_chosen = run.err.find("--backend auto: using gl") != std::string::npos;
+    CHECK_MESSAGE(count_of(run.err, trace) <= 1, run.err);
+    if (gl_chosen) CHECK_MESSAGE(count_of(run.err, trace) == 1, run.err);
+    MESSAGE("--backend auto made " << count_of(run.err, trace) << " context(s); chose " << std::string(gl_chosen ? "gl" : "cpu"));
 }
 
 namespace {

@@ -533,6 +533,8 @@ GlRenderer::GlRenderer(GlRenderer&&) noexcept = default;
 GlRenderer& GlRenderer::operator=(GlRenderer&&) noexcept = default;
 GlRenderer::~GlRenderer() = default;
 
+const gl::HeadlessContext& GlRenderer::context() const { return state_->context; }
+
 std::string GlRenderer::description() const {
     return std::string(gl::context_kind_name(state_->context.kind())) + ", " + state_->context.renderer() + ", " +
            state_->context.version();
@@ -583,35 +585,39 @@ RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settin
     return result;
 }
 
-RenderResult render_gl(const Scene& scene, const RenderSettings& settings, const GlOptions& options) {
-    const Clock::time_point start = Clock::now();
+namespace {
+
+// What render_gl and render_gl_frame refuse before any GL work.
+void check_gl_request(const Scene& scene, const RenderSettings& settings) {
     validate_settings(settings);
     require_valid_scene(scene);
     refuse_motion_segments(scene, "gl");
+}
+
+}  // namespace
+
+RenderResult render_gl(const Scene& scene, const RenderSettings& settings, const GlOptions& options) {
+    const Clock::time_point start = Clock::now();
+    check_gl_request(scene, settings);
     GlRenderer renderer;
-    // llvmpipe compiles a program's code on its first draw: one 1x1 frame
-    // makes that happen here, so "raster+resolve" is the frame alone.
+    return render_gl_frame(renderer, scene, settings, options, ms_since(start));
+}
+
+RenderResult render_gl_frame(GlRenderer& renderer, const Scene& scene, const RenderSettings& settings,
+                             const GlOptions& options, double made_ms) {
+    const Clock::time_point start = Clock::now();
+    check_gl_request(scene, settings);
     RenderSettings warm_up = settings;
     warm_up.width = 1;
     warm_up.height = 1;
     warm_up.spp = 4;
     warm_up.progress = false;
     renderer.render(scene, warm_up, options);
-    const double compile_ms = ms_since(start);
+    const double compile_ms = made_ms + ms_since(start);
     RenderResult result = renderer.render(scene, settings, options);
     result.stats.ms_per_phase.insert(result.stats.ms_per_phase.begin(), {"compile", compile_ms});
-    result.stats.ms_total = ms_since(start);
+    result.stats.ms_total = made_ms + ms_since(start);
     return result;
-}
-
-bool gl_available(std::string* reason) {
-    try {
-        gl::HeadlessContext::create();
-        return true;
-    } catch (const std::exception& e) {
-        if (reason != nullptr) *reason = e.what();
-        return false;
-    }
 }
 
 // Whether the machine has a device a hardware OpenGL driver could drive: a
@@ -637,24 +643,24 @@ static bool gpu_device_present() {
 #endif
 }
 
-bool gl_hardware_available(std::string* reason) {
+std::unique_ptr<gl::HeadlessContext> hardware_gl_context(std::string* reason) {
     if (!gpu_device_present()) {
         if (reason != nullptr) *reason = "no GPU device (/dev/dri, /dev/nvidia*), only software OpenGL";
-        return false;
+        return nullptr;
     }
     try {
-        const gl::HeadlessContext context = gl::HeadlessContext::create();
-        const std::string renderer = context.renderer();
+        auto context = std::make_unique<gl::HeadlessContext>(gl::HeadlessContext::create());
+        const std::string renderer = context->renderer();
         for (const char* software : {"llvmpipe", "softpipe", "swrast"}) {
             if (renderer.find(software) != std::string::npos) {
                 if (reason != nullptr) *reason = "only a software renderer, " + renderer + ", slower than the cpu backend";
-                return false;
+                return nullptr;
             }
         }
-        return true;
+        return context;
     } catch (const std::exception& e) {
         if (reason != nullptr) *reason = e.what();
-        return false;
+        return nullptr;
     }
 }
 
