@@ -8,6 +8,7 @@
 #include "scene/scene.hpp"
 
 #include "kernel_generators.hpp"
+#include "test_cleanup.hpp"
 
 #include <doctest/doctest.h>
 #include <glm/glm.hpp>
@@ -99,12 +100,15 @@ inline double fraction_equal(const std::vector<std::uint32_t>& a, const std::vec
 
 // One renderer for the whole test file (compiling the programs is the slow
 // part); null after saying why when no context can be made (a failure in CI).
+// Destroyed at the end of main (test_cleanup.hpp), not with the statics: the
+// GL driver may be shut down by then.
 inline GlRenderer* renderer_or_skip() {
     static std::unique_ptr<GlRenderer> renderer;
     static std::string failure;
     if (!renderer && failure.empty()) {
         try {
             renderer = std::make_unique<GlRenderer>();
+            at_end_of_main([] { renderer.reset(); });
             MESSAGE("GL: " << renderer->description());
         } catch (const std::exception& e) {
             failure = e.what();

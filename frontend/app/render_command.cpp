@@ -28,6 +28,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -89,6 +90,13 @@ struct RenderJob {
     std::optional<long> frame;  // the frame being rendered, in a sequence
     std::string out_path;       // its file
     Scene scene;
+#if BLURCULL_HAVE_GL
+    // The gl backend's one context for the whole command: the one --backend's
+    // probe made (choose_backend, require_gl_context), then the renderer made
+    // on it at the first frame and kept for every frame (job_gl_renderer).
+    std::unique_ptr<gl::HeadlessContext> gl_context;
+    std::optional<GlRenderer> gl_renderer;
+#endif
 };
 
 // The flag of each setting the render layer's errors name, for the command
@@ -197,9 +205,9 @@ ExrPixelType exr_pixel_type(const RenderCommand& command, ImageFormat format) {
 }
 
 // --backend: the one named, or for auto gl on a hardware OpenGL 4.5 context
-// and cpu otherwise (software GL, llvmpipe, is far slower than the cpu
-// backend); one line says which.
-Backend choose_backend(const RenderCommand& command) {
+// (kept in the job: the render's one context) and cpu otherwise (software
+// GL, llvmpipe, is far slower than the cpu backend); one line says which.
+Backend choose_backend(const RenderCommand& command, [[maybe_unused]] RenderJob& job) {
     if (command.backend != "auto") {
         const Backend named = parse_backend(command.backend);
         if (!backend_built(named)) {
@@ -210,7 +218,8 @@ Backend choose_backend(const RenderCommand& command) {
     }
     std::string why = backend_missing_reason(Backend::gl);
 #if BLURCULL_HAVE_GL
-    const Backend chosen = gl_hardware_available(&why) ? Backend::gl : Backend::cpu;
+    job.gl_context = hardware_gl_context(&why);
+    const Backend chosen = job.gl_context ? Backend::gl : Backend::cpu;
 #else
     const Backend chosen = Backend::cpu;
 #endif
@@ -267,14 +276,16 @@ void refuse_unhonoured_options(const RenderCommand& command, Backend backend) {
     }
 }
 
-// --backend gl asked for explicitly: refused, with the reason, when no
-// context can be made.
-void require_gl_context([[maybe_unused]] const RenderCommand& command) {
+// --backend gl asked for explicitly: its context made now, kept in the job
+// (the render's one context), or refused, with the reason, when none can be.
+void require_gl_context([[maybe_unused]] const RenderCommand& command, [[maybe_unused]] RenderJob& job) {
 #if BLURCULL_HAVE_GL
     if (command.backend != "gl") return;
-    std::string why;
-    if (!gl_available(&why)) {
-        throw std::runtime_error("--backend gl: no OpenGL 4.5 context could be made (" + why + "); use --backend cpu");
+    try {
+        job.gl_context = std::make_unique<gl::HeadlessContext>(gl::HeadlessContext::create());
+    } catch (const gl::GlError& error) {
+        throw std::runtime_error(std::string("--backend gl: no OpenGL 4.5 context could be made (") + error.what() +
+                                 "); use --backend cpu");
     }
 #endif
 }
@@ -317,9 +328,9 @@ RenderJob set_up(const RenderCommand& command) {
     scene_request(command, job.settings, std::nullopt);  // checks --shutter
     job.output = writable_output(command, !job.frames.empty(), job.format);
     job.exr_type = exr_pixel_type(command, job.format);
-    job.backend = choose_backend(command);
+    job.backend = choose_backend(command, job);
     refuse_unhonoured_options(command, job.backend);
-    require_gl_context(command);
+    require_gl_context(command, job);
     job.cpu.footprint = command.footprint;
     job.cpu.time_strata = command.time_strata;
     job.cpu.lens_strata = command.lens_strata;
@@ -339,16 +350,34 @@ RenderJob set_up(const RenderCommand& command) {
     return job;
 }
 
+#if BLURCULL_HAVE_GL
+// The job's GL renderer: made at the first frame on the context --backend's
+// probe made, and kept for the others. `made_ms`: what making it took (0
+// when it was kept).
+GlRenderer& job_gl_renderer(RenderJob& job, double& made_ms) {
+    made_ms = 0.0;
+    if (!job.gl_renderer) {
+        const RenderClock::time_point start = RenderClock::now();
+        // set_up made the context for gl; a fresh one only if it did not.
+        job.gl_renderer.emplace(job.gl_context ? std::move(*job.gl_context) : gl::HeadlessContext::create());
+        job.gl_context.reset();
+        made_ms = ms_since(start);
+    }
+    return *job.gl_renderer;
+}
+#endif
+
 // dof-secondary: on gl the primary samples, the layers (unless --layer-images
 // host) and the image-space traces run on GL (app/gl_dof_secondary.hpp).
-RenderResult render_secondary(const RenderJob& job) {
+RenderResult render_secondary(RenderJob& job) {
 #if BLURCULL_HAVE_GL
     if (job.backend == Backend::gl) {
-        // The GL rasterizer on its own context, the layer and trace passes on a second one.
-        GlRenderer rasterizer;
-        const gl::HeadlessContext context = gl::HeadlessContext::create();
-        return GlDofSecondary(rasterizer, context).render(job.scene, job.settings, job.gl, job.secondary, nullptr,
-                                                            job.layer_images);
+        // The rasterizer, the layer and the trace passes on the one context
+        // (as blurcull view runs them on its window's).
+        double made_ms = 0.0;
+        GlRenderer& rasterizer = job_gl_renderer(job, made_ms);
+        return GlDofSecondary(rasterizer, rasterizer.context())
+            .render(job.scene, job.settings, job.gl, job.secondary, nullptr, job.layer_images);
     }
 #endif
     return render_dof_secondary(job.scene, job.settings, job.secondary);
@@ -395,8 +424,11 @@ void keep_frames_in_animation(const RenderCommand& command, RenderJob& job) {
     }
 }
 
-// Renders on the job's backend with its method.
-RenderResult dispatch(const RenderJob& job) {
+// Renders on the job's backend with its method. Where the method forks:
+// here for cpu (render_with_method or render_cpu); inside the backend for
+// embree (render_embree) and gl (GlRenderer::render: render_gl_method or
+// the stochastic frame).
+RenderResult dispatch(RenderJob& job) {
     try {
         if (job.settings.method == RenderMethod::dof_secondary) return render_secondary(job);
         // choose_backend refused the backends this build does not have.
@@ -405,7 +437,11 @@ RenderResult dispatch(const RenderJob& job) {
             case Backend::embree: return render_embree(job.scene, job.settings, job.embree);
 #endif
 #if BLURCULL_HAVE_GL
-            case Backend::gl: return render_gl(job.scene, job.settings, job.gl);
+            case Backend::gl: {
+                double made_ms = 0.0;
+                GlRenderer& renderer = job_gl_renderer(job, made_ms);
+                return render_gl_frame(renderer, job.scene, job.settings, job.gl, made_ms);
+            }
 #endif
             default: break;
         }
@@ -491,7 +527,7 @@ void print_text_summary(const RenderCommand& command, const RenderJob& job, cons
 }
 
 // Renders the job's frame, writes its file and prints its summary.
-void render_and_write(const RenderCommand& command, const RenderJob& job) {
+void render_and_write(const RenderCommand& command, RenderJob& job) {
     const RenderResult result = dispatch(job);
     for (const std::string& warning : result.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
     if (job.format == ImageFormat::exr && result.image.coverage.empty()) {

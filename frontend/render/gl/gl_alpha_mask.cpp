@@ -2,9 +2,6 @@
 
 #include "render/gl/gl_render_targets.hpp"
 #include "render/gl/gpu_layout_shared.h"
-#include "render/gl/render_glsl.hpp"
-
-#include <blurcull/glsl/kernel_glsl.hpp>
 
 #include <algorithm>
 #include <cstdint>
@@ -29,12 +26,6 @@ struct MaskData {
 namespace {
 
 using gl_mask_detail::MaskData;
-
-std::string_view embedded(std::string_view name) {
-    std::string_view text = glsl::render_shader_source(name);
-    if (text.empty()) throw gl::GlError("gl: shader '" + std::string(name) + "' was not embedded at build time");
-    return text;
-}
 
 glm::vec2 texcoord_of(const Scene& scene, std::uint32_t vertex) {
     return scene.texcoord.empty() ? glm::vec2(0.0f) : scene.texcoord[vertex];
@@ -121,12 +112,6 @@ MaskData checked_mask_data(const gl::Functions& gl, const Scene& scene) {
 }
 
 }  // namespace
-
-gl::ShaderStage masked_kernel_stage(GLenum type, std::string_view main_name) {
-    return gl::ShaderStage{type,
-                           {glsl::kernel_source(), embedded("gpu_layout_shared.h"), embedded("render_common.glsl"),
-                            embedded("surface_shared.h"), embedded("render_mask.glsl"), embedded(main_name)}};
-}
 
 GlAlphaMask::GlAlphaMask(const gl::Functions& gl, const Scene& scene)
     : GlAlphaMask(gl, checked_mask_data(gl, scene)) {}

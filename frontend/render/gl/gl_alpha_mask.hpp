@@ -1,24 +1,19 @@
 // The GL backend's alphaMode MASK test (shaders/render_mask.glsl): the
-// buffers it reads, made from the scene once per frame, and the stages whose
-// mains call it. docs/gl-backend.md, "Alpha mask".
+// buffers it reads, made from the scene once per frame (the stages whose
+// mains call it are built with gl::Prelude::render_masked, shader_stages.hpp).
+// docs/gl-backend.md, "Alpha mask".
 #pragma once
 
 #include "render/gl/gl_context.hpp"
 #include "scene/scene.hpp"
 
 #include <cstddef>
-#include <string_view>
 
 namespace blurcull::frontend {
 
 namespace gl_mask_detail {
 struct MaskData;  // gl_alpha_mask.cpp: the buffers' contents
 }
-
-// A stage whose main calls mask_keeps: kernel_stage's pieces with
-// surface_shared.h and render_mask.glsl before `main_name`. Throws
-// gl::GlError when a shader was not embedded at build time.
-gl::ShaderStage masked_kernel_stage(GLenum type, std::string_view main_name);
 
 // The MaskSlots, MaskTriangles and MaskTexels buffers (gpu_layout_shared.h)
 // of a scene: every triangle's slot (-1 unless alphaMode MASK), the masked

@@ -12,6 +12,7 @@
 #include "render/gl/gl_render_targets.hpp"
 #include "render/gl/gl_sampling_methods.hpp"
 #include "render/gl/gpu_layout_shared.h"
+#include "render/gl/shader_stages.hpp"
 #include "scene/scene_checks.hpp"
 
 #include <blurcull/kernel.hpp>
@@ -34,6 +35,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 using gl::GlError;
+using gl::shader_stage;
+constexpr gl::Prelude masked = gl::Prelude::render_masked;
 
 
 // MSAA samples per pass: llvmpipe's maximum; spp / 4 passes reach any spp.
@@ -48,6 +51,17 @@ constexpr int cells_max = BC_GL_CELLS_MAX;
 
 }  // namespace
 
+namespace {
+
+// `context`, made current: the programs compile on it (with several contexts
+// alive, another may be current).
+gl::HeadlessContext made_current(gl::HeadlessContext&& context) {
+    context.make_current();
+    return std::move(context);
+}
+
+}  // namespace
+
 struct GlRenderer::State {
     gl::HeadlessContext context;
     gl::Program setup;
@@ -58,30 +72,31 @@ struct GlRenderer::State {
     gl::Program static_fill;
     gl::Program draw_moving;
     gl::Program resolve;
-    GLuint vertex_array = 0;
+    gl::VertexArray vertex_array;
     // interleave / interval / accum (gl_sampling_methods.cpp), compiled on first use;
     // declared after the context, so destroyed before it.
     std::shared_ptr<GlMethodPrograms> methods;
 
     explicit State(gl::HeadlessContext&& made)
-        : context(std::move(made)),
-          setup(context.gl(), {kernel_stage(GL_COMPUTE_SHADER, "render_setup.comp")}),
-          bounds(context.gl(), {kernel_stage(GL_COMPUTE_SHADER, "render_bounds.comp")}),
-          samples(context.gl(), {kernel_stage(GL_COMPUTE_SHADER, "render_samples.comp")}),
-          draw_static(context.gl(), {kernel_stage(GL_VERTEX_SHADER, "render_static.vert"),
-                                     masked_kernel_stage(GL_FRAGMENT_SHADER, "render_static.frag")}),
-          draw_static_group(context.gl(), {kernel_stage(GL_VERTEX_SHADER, "render_static.vert"),
-                                           masked_kernel_stage(GL_FRAGMENT_SHADER, "render_static_group.frag")}),
-          static_fill(context.gl(), {kernel_stage(GL_VERTEX_SHADER, "render_static_fill.vert"),
-                                     kernel_stage(GL_FRAGMENT_SHADER, "render_static_fill.frag")}),
-          draw_moving(context.gl(), {kernel_stage(GL_VERTEX_SHADER, "render_moving.vert"),
-                                     masked_kernel_stage(GL_FRAGMENT_SHADER, "render_moving.frag")}),
-          resolve(context.gl(), {kernel_stage(GL_COMPUTE_SHADER, "render_resolve.comp")}) {
-        context.gl().GenVertexArrays(1, &vertex_array);
-    }
+        : context(made_current(std::move(made))),
+          setup(context.gl(), {shader_stage(GL_COMPUTE_SHADER, "render_setup.comp")}),
+          bounds(context.gl(), {shader_stage(GL_COMPUTE_SHADER, "render_bounds.comp")}),
+          samples(context.gl(), {shader_stage(GL_COMPUTE_SHADER, "render_samples.comp")}),
+          draw_static(context.gl(), {shader_stage(GL_VERTEX_SHADER, "render_static.vert"),
+                                     shader_stage(GL_FRAGMENT_SHADER, "render_static.frag", masked)}),
+          draw_static_group(context.gl(), {shader_stage(GL_VERTEX_SHADER, "render_static.vert"),
+                                           shader_stage(GL_FRAGMENT_SHADER, "render_static_group.frag", masked)}),
+          static_fill(context.gl(), {shader_stage(GL_VERTEX_SHADER, "render_static_fill.vert"),
+                                     shader_stage(GL_FRAGMENT_SHADER, "render_static_fill.frag")}),
+          draw_moving(context.gl(), {shader_stage(GL_VERTEX_SHADER, "render_moving.vert"),
+                                     shader_stage(GL_FRAGMENT_SHADER, "render_moving.frag", masked)}),
+          resolve(context.gl(), {shader_stage(GL_COMPUTE_SHADER, "render_resolve.comp")}),
+          vertex_array(context.gl()) {}
     State(const State&) = delete;
     State& operator=(const State&) = delete;
-    ~State() { context.gl().DeleteVertexArrays(1, &vertex_array); }
+    // The members' glDelete* act on the current context: this one's, with
+    // several alive.
+    ~State() { context.make_current_for_release(); }
 };
 
 namespace {
@@ -247,10 +262,10 @@ struct StaticGroups {
           time_buffer(storage_buffer(gl, entries(pixels) * sizeof(float))),
           id_buffer(storage_buffer(gl, entries(pixels) * sizeof(std::uint32_t))),
           depth_buffer(storage_buffer(gl, entries(pixels) * sizeof(std::uint32_t))) {
-        sample_buffer.bind_base(12);
-        time_buffer.bind_base(13);
-        id_buffer.bind_base(14);
-        depth_buffer.bind_base(15);
+        sample_buffer.bind_base(BC_GL_GROUP_SAMPLES_BINDING);
+        time_buffer.bind_base(BC_GL_GROUP_TIMES_BINDING);
+        id_buffer.bind_base(BC_GL_GROUP_IDS_BINDING);
+        depth_buffer.bind_base(BC_GL_GROUP_DEPTHS_BINDING);
     }
     std::size_t entries(std::size_t pixels) const { return used ? pixels * samples : 1; }
 };
@@ -343,18 +358,18 @@ StochasticFrame::StochasticFrame(const GlRenderer::State& state, const Scene& sc
       moving_list_buffer_(storage_buffer(gl_, triangles_.moving_list)),
       mask_(gl_, scene) {
     mask_.bind();
-    triangle_buffer_.bind_base(0);
-    info_buffer_.bind_base(1);
-    counters_.bind_base(2);
-    colour_buffer_.bind_base(3);
-    sum_buffer_.bind_base(4);
-    id_buffer_.bind_base(5);
-    cell_buffer_.bind_base(6);
-    pass_sample_buffer_.bind_base(7);
-    pass_time_buffer_.bind_base(8);
-    class_buffer_.bind_base(9);
-    static_list_buffer_.bind_base(10);
-    moving_list_buffer_.bind_base(11);
+    triangle_buffer_.bind_base(BC_GL_TRIANGLES_BINDING);
+    info_buffer_.bind_base(BC_GL_INFOS_BINDING);
+    counters_.bind_base(BC_GL_COUNTERS_BINDING);
+    colour_buffer_.bind_base(BC_GL_COLOURS_BINDING);
+    sum_buffer_.bind_base(BC_GL_SUMS_BINDING);
+    id_buffer_.bind_base(BC_GL_SAMPLE_IDS_BINDING);
+    cell_buffer_.bind_base(BC_GL_CELLS_BINDING);
+    pass_sample_buffer_.bind_base(BC_GL_PASS_SAMPLES_BINDING);
+    pass_time_buffer_.bind_base(BC_GL_PASS_TIMES_BINDING);
+    class_buffer_.bind_base(BC_GL_CLASSES_BINDING);
+    static_list_buffer_.bind_base(BC_GL_STATIC_LIST_BINDING);
+    moving_list_buffer_.bind_base(BC_GL_MOVING_LIST_BINDING);
 }
 
 void StochasticFrame::run_setup() {
@@ -376,8 +391,8 @@ void StochasticFrame::run_setup() {
     id_depth_.emplace(gl_, settings_.width, settings_.height, samples_per_pass, "the multisample id/depth framebuffer");
     id_depth_->bind_with_depth_rule();
     gl_.Enable(GL_MULTISAMPLE);
-    gl_.BindVertexArray(state_.vertex_array);
-    gl_.ActiveTexture(GL_TEXTURE0);
+    gl_.BindVertexArray(state_.vertex_array.id());
+    gl_.ActiveTexture(GL_TEXTURE0 + BC_GL_PASS_IDS_UNIT);
     gl_.BindTexture(GL_TEXTURE_2D_MULTISAMPLE, id_depth_->id_texture());
     gl_.Finish();
     gl::check_gl(gl_, "gl: setup");
@@ -411,11 +426,13 @@ void StochasticFrame::run_passes(RenderStats& stats, StepTimer& timer) {
 
 void StochasticFrame::draw_static_group(const StaticGroups& groups, std::uint32_t group_base, RenderStats& stats,
                                         StepTimer& timer) {
-    groups.sample_buffer.bind_base(7);
-    groups.time_buffer.bind_base(8);
+    // render_samples.comp writes at the pass's bindings: the group's buffers
+    // there for this dispatch, the pass's back after.
+    groups.sample_buffer.bind_base(BC_GL_PASS_SAMPLES_BINDING);
+    groups.time_buffer.bind_base(BC_GL_PASS_TIMES_BINDING);
     compute_samples(group_base, groups.samples);
-    pass_sample_buffer_.bind_base(7);
-    pass_time_buffer_.bind_base(8);
+    pass_sample_buffer_.bind_base(BC_GL_PASS_SAMPLES_BINDING);
+    pass_time_buffer_.bind_base(BC_GL_PASS_TIMES_BINDING);
     const GLuint no_id = no_triangle;
     gl_.BindBuffer(GL_SHADER_STORAGE_BUFFER, groups.id_buffer.id());
     gl_.ClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &no_id);
@@ -516,6 +533,8 @@ GlRenderer::GlRenderer(GlRenderer&&) noexcept = default;
 GlRenderer& GlRenderer::operator=(GlRenderer&&) noexcept = default;
 GlRenderer::~GlRenderer() = default;
 
+const gl::HeadlessContext& GlRenderer::context() const { return state_->context; }
+
 std::string GlRenderer::description() const {
     return std::string(gl::context_kind_name(state_->context.kind())) + ", " + state_->context.renderer() + ", " +
            state_->context.version();
@@ -566,35 +585,39 @@ RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settin
     return result;
 }
 
-RenderResult render_gl(const Scene& scene, const RenderSettings& settings, const GlOptions& options) {
-    const Clock::time_point start = Clock::now();
+namespace {
+
+// What render_gl and render_gl_frame refuse before any GL work.
+void check_gl_request(const Scene& scene, const RenderSettings& settings) {
     validate_settings(settings);
     require_valid_scene(scene);
     refuse_motion_segments(scene, "gl");
+}
+
+}  // namespace
+
+RenderResult render_gl(const Scene& scene, const RenderSettings& settings, const GlOptions& options) {
+    const Clock::time_point start = Clock::now();
+    check_gl_request(scene, settings);
     GlRenderer renderer;
-    // llvmpipe compiles a program's code on its first draw: one 1x1 frame
-    // makes that happen here, so "raster+resolve" is the frame alone.
+    return render_gl_frame(renderer, scene, settings, options, ms_since(start));
+}
+
+RenderResult render_gl_frame(GlRenderer& renderer, const Scene& scene, const RenderSettings& settings,
+                             const GlOptions& options, double made_ms) {
+    const Clock::time_point start = Clock::now();
+    check_gl_request(scene, settings);
     RenderSettings warm_up = settings;
     warm_up.width = 1;
     warm_up.height = 1;
     warm_up.spp = 4;
     warm_up.progress = false;
     renderer.render(scene, warm_up, options);
-    const double compile_ms = ms_since(start);
+    const double compile_ms = made_ms + ms_since(start);
     RenderResult result = renderer.render(scene, settings, options);
     result.stats.ms_per_phase.insert(result.stats.ms_per_phase.begin(), {"compile", compile_ms});
-    result.stats.ms_total = ms_since(start);
+    result.stats.ms_total = made_ms + ms_since(start);
     return result;
-}
-
-bool gl_available(std::string* reason) {
-    try {
-        gl::HeadlessContext::create();
-        return true;
-    } catch (const std::exception& e) {
-        if (reason != nullptr) *reason = e.what();
-        return false;
-    }
 }
 
 // Whether the machine has a device a hardware OpenGL driver could drive: a
@@ -620,24 +643,24 @@ static bool gpu_device_present() {
 #endif
 }
 
-bool gl_hardware_available(std::string* reason) {
+std::unique_ptr<gl::HeadlessContext> hardware_gl_context(std::string* reason) {
     if (!gpu_device_present()) {
         if (reason != nullptr) *reason = "no GPU device (/dev/dri, /dev/nvidia*), only software OpenGL";
-        return false;
+        return nullptr;
     }
     try {
-        const gl::HeadlessContext context = gl::HeadlessContext::create();
-        const std::string renderer = context.renderer();
+        auto context = std::make_unique<gl::HeadlessContext>(gl::HeadlessContext::create());
+        const std::string renderer = context->renderer();
         for (const char* software : {"llvmpipe", "softpipe", "swrast"}) {
             if (renderer.find(software) != std::string::npos) {
                 if (reason != nullptr) *reason = "only a software renderer, " + renderer + ", slower than the cpu backend";
-                return false;
+                return nullptr;
             }
         }
-        return true;
+        return context;
     } catch (const std::exception& e) {
         if (reason != nullptr) *reason = e.what();
-        return false;
+        return nullptr;
     }
 }
 

@@ -47,7 +47,8 @@ constexpr std::uint32_t no_triangle = 0xffffffffu;
 class GlRenderer {
 public:
     GlRenderer();
-    // On a given context, e.g. HeadlessContext::from_current for a window's:
+    // On a given context (made current here and by render(); its objects are
+    // deleted on it), e.g. HeadlessContext::from_current for a window's:
     // render() leaves its program, vertex array and texture bound and the
     // viewport, depth test, depth clamp and clip control changed (the caller
     // resets what it needs).
@@ -66,6 +67,9 @@ public:
 
     // E.g. "egl_surfaceless, llvmpipe (LLVM 15.0.6, 256 bits), 4.5 (Core Profile) Mesa 22.3.6".
     std::string description() const;
+    // The context it renders on: other passes may share it (GlDofSecondary's
+    // layer and trace passes), making it current before they run.
+    const gl::HeadlessContext& context() const;
 
     struct State;
 
@@ -75,17 +79,23 @@ private:
 
 // One frame, like render_cpu: a context and programs are made for the call
 // (their compile time is the "compile" phase of ms_per_phase, included in
-// ms_total). settings.threads is used only by the host side of the
-// interleave / interval / accum methods (their per-pass boxes).
+// ms_total), then render_gl_frame. settings.threads is used only by the host
+// side of the interleave / interval / accum methods (their per-pass boxes).
 RenderResult render_gl(const Scene& scene, const RenderSettings& settings, const GlOptions& options = {});
 
-// Whether a headless OpenGL 4.5 context can be made here; when not, and
-// `reason` is given, says why.
-bool gl_available(std::string* reason = nullptr);
+// One frame on `renderer`, as render_gl: the request checked, a 1x1 warm-up
+// frame (llvmpipe compiles a program's code on its first draw, so that
+// "raster+resolve" is the frame alone), then the frame. The "compile" phase
+// of ms_per_phase is `made_ms` (what making the renderer took, when the
+// caller just made it for this frame) plus the warm-up; ms_total includes it.
+RenderResult render_gl_frame(GlRenderer& renderer, const Scene& scene, const RenderSettings& settings,
+                             const GlOptions& options = {}, double made_ms = 0.0);
 
-// Whether a headless context can be made and runs on hardware (its
-// GL_RENDERER is not Mesa's llvmpipe, softpipe or swrast); when not, and
-// `reason` is given, says why. `blurcull render --backend auto` uses gl then.
-bool gl_hardware_available(std::string* reason = nullptr);
+// A headless OpenGL 4.5 context that runs on hardware (its GL_RENDERER is
+// not Mesa's llvmpipe, softpipe or swrast), for the caller to render on; null
+// when there is none, and then `reason` (when given) says why. No context is
+// made where the machine has no GPU device. `blurcull render --backend auto`
+// renders on it (one context: the probe's).
+std::unique_ptr<gl::HeadlessContext> hardware_gl_context(std::string* reason = nullptr);
 
 }  // namespace blurcull::frontend

@@ -8,10 +8,12 @@
 #include <GL/osmesa.h>
 #include <dlfcn.h>
 
+#include <atomic>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <mutex>
 #include <utility>
 
 namespace blurcull::gl {
@@ -30,6 +32,28 @@ Fn library_symbol(void* library, const char* name) {
     if (address != nullptr) std::memcpy(&fn, &address, sizeof(fn));
     return fn;
 }
+
+// --- the end of the process --------------------------------------------------
+// NVIDIA's EGL registers exit handlers (atexit) while eglInitialize runs, and
+// Mesa's EGL does on its first display; they shut the driver down. A GL object
+// or context destroyed after them (a static's destructor registered before
+// the first eglInitialize runs after them) would call into a dead driver:
+// SIGSEGV at exit. So after every eglInitialize (the driver may register
+// again each time) and after OSMesa's first context this file registers its
+// own handler, which exit runs before those (handlers run in the reverse
+// order of registration); from then on every destructor
+// here releases nothing (the end of the process frees it all) and
+// make_current throws. Contexts and their objects should still be destroyed
+// before main returns (gl_context.hpp); this only keeps a straggler from
+// crashing the exit.
+std::atomic<bool> exit_began{false};
+
+void note_exit() { exit_began.store(true); }
+
+void watch_exit() { std::atexit(note_exit); }
+
+std::once_flag osmesa_exit_watch;
+std::atomic<std::size_t> contexts_made_count{0};
 
 // Libraries stay loaded for the process: Mesa registers exit handlers and
 // thread-local state that must outlive every context.
@@ -94,15 +118,121 @@ void require_gl45(const Functions& fns, ContextKind kind) {
     }
 }
 
+// --- EGL: one surfaceless display for the process ------------------------------
+// eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY)
+// answers the same display every time, and EGL does not count
+// eglInitialize / eglTerminate: one eglTerminate ends the display under every
+// context on it. So the display is initialised once and counted here: each
+// live context holds it, and the last one to go terminates it (releasing the
+// driver's threads and memory when no context is left; the next context
+// initialises it again).
+struct EglEntryPoints {
+    PFNEGLGETPROCADDRESSPROC get_proc = nullptr;
+    PFNEGLQUERYSTRINGPROC query_string = nullptr;
+    PFNEGLINITIALIZEPROC initialize = nullptr;
+    PFNEGLTERMINATEPROC terminate = nullptr;
+    PFNEGLBINDAPIPROC bind_api = nullptr;
+    PFNEGLCREATECONTEXTPROC create_context = nullptr;
+    PFNEGLDESTROYCONTEXTPROC destroy_context = nullptr;
+    PFNEGLMAKECURRENTPROC make_current = nullptr;
+    PFNEGLGETCURRENTCONTEXTPROC get_current_context = nullptr;
+    PFNEGLGETERRORPROC get_error = nullptr;
+    PFNEGLGETPLATFORMDISPLAYEXTPROC get_platform_display = nullptr;
+};
+
+class EglDisplayShare {
+public:
+    // The process's one; never destroyed (no destructor of it may run at
+    // exit, after the driver's handlers).
+    static EglDisplayShare& get() {
+        static EglDisplayShare* share = new EglDisplayShare;
+        return *share;
+    }
+
+    // libEGL's entry points, loaded on the first call; throws GlError when
+    // libEGL cannot be opened or lacks one.
+    const EglEntryPoints& entry_points() {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (loaded_) return egl_;
+        std::string error;
+        void* library = open_library("libEGL.so.1", error);
+        if (library == nullptr) throw GlError("EGL: " + error);
+        EglEntryPoints e;
+        e.get_proc = library_symbol<PFNEGLGETPROCADDRESSPROC>(library, "eglGetProcAddress");
+        e.query_string = library_symbol<PFNEGLQUERYSTRINGPROC>(library, "eglQueryString");
+        e.initialize = library_symbol<PFNEGLINITIALIZEPROC>(library, "eglInitialize");
+        e.terminate = library_symbol<PFNEGLTERMINATEPROC>(library, "eglTerminate");
+        e.bind_api = library_symbol<PFNEGLBINDAPIPROC>(library, "eglBindAPI");
+        e.create_context = library_symbol<PFNEGLCREATECONTEXTPROC>(library, "eglCreateContext");
+        e.destroy_context = library_symbol<PFNEGLDESTROYCONTEXTPROC>(library, "eglDestroyContext");
+        e.make_current = library_symbol<PFNEGLMAKECURRENTPROC>(library, "eglMakeCurrent");
+        e.get_current_context = library_symbol<PFNEGLGETCURRENTCONTEXTPROC>(library, "eglGetCurrentContext");
+        e.get_error = library_symbol<PFNEGLGETERRORPROC>(library, "eglGetError");
+        if (!e.get_proc || !e.query_string || !e.initialize || !e.terminate || !e.bind_api || !e.create_context ||
+            !e.destroy_context || !e.make_current || !e.get_current_context || !e.get_error)
+            throw GlError("EGL: libEGL.so.1 lacks an EGL 1.4 entry point");
+        if (!has_extension(e.query_string(EGL_NO_DISPLAY, EGL_EXTENSIONS), "EGL_MESA_platform_surfaceless"))
+            throw GlError("EGL: no EGL_MESA_platform_surfaceless (not Mesa's EGL?)");
+        e.get_platform_display =
+            reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(e.get_proc("eglGetPlatformDisplayEXT"));
+        if (!e.get_platform_display) throw GlError("EGL: no eglGetPlatformDisplayEXT");
+        egl_ = e;
+        loaded_ = true;
+        return egl_;
+    }
+
+    // The display, initialised if no live context holds it yet; one more
+    // holder. Throws GlError when it cannot be had.
+    EGLDisplay acquire() {
+        const EglEntryPoints& e = entry_points();
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (holders_ == 0) {
+            EGLDisplay display = e.get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+            if (display == EGL_NO_DISPLAY) throw egl_failure(e, "eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA)");
+            EGLint major = 0;
+            EGLint minor = 0;
+            if (!e.initialize(display, &major, &minor)) throw egl_failure(e, "eglInitialize");
+            display_ = display;
+            // After the exit handlers eglInitialize may have registered.
+            watch_exit();
+        }
+        ++holders_;
+        return display_;
+    }
+
+    // One holder fewer; the last terminates the display (not once the
+    // process is exiting: the driver may be gone).
+    void release() noexcept {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (holders_ == 0) return;
+        if (--holders_ == 0 && !exit_began.load()) {
+            egl_.terminate(display_);
+            display_ = EGL_NO_DISPLAY;
+        }
+    }
+
+    static GlError egl_failure(const EglEntryPoints& e, const char* what) {
+        char code[16];
+        std::snprintf(code, sizeof code, "0x%04x", static_cast<unsigned>(e.get_error()));
+        return GlError(std::string("EGL: ") + what + " failed (EGL error " + code + ")");
+    }
+
+private:
+    EglDisplayShare() = default;
+    std::mutex mutex_;
+    bool loaded_ = false;
+    EglEntryPoints egl_;
+    EGLDisplay display_ = EGL_NO_DISPLAY;
+    int holders_ = 0;  // live contexts on display_
+};
+
 }  // namespace
 
 struct HeadlessContext::State {
     ContextKind kind = ContextKind::egl_surfaceless;
     Functions fns;
-    // EGL
-    PFNEGLMAKECURRENTPROC egl_make_current = nullptr;
-    PFNEGLDESTROYCONTEXTPROC egl_destroy_context = nullptr;
-    PFNEGLTERMINATEPROC egl_terminate = nullptr;
+    // EGL: the shared display, held (acquired) while this is alive.
+    const EglEntryPoints* egl = nullptr;
     EGLDisplay display = EGL_NO_DISPLAY;
     EGLContext egl_context = EGL_NO_CONTEXT;
     // OSMesa: its context needs a colour buffer to be made current, even
@@ -112,12 +242,20 @@ struct HeadlessContext::State {
     decltype(&OSMesaDestroyContext) osmesa_destroy_context = nullptr;
     std::vector<std::uint8_t> osmesa_buffer;
 
+    State() = default;
+    State(const State&) = delete;
+    State& operator=(const State&) = delete;
+
     ~State() {
+        if (exit_began.load()) return;  // the driver may be gone: the process's end frees it all
         if (egl_context != EGL_NO_CONTEXT) {
-            egl_make_current(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-            egl_destroy_context(display, egl_context);
+            // Unbound only when current here: another live context that is
+            // current stays current.
+            if (egl->get_current_context() == egl_context)
+                egl->make_current(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+            egl->destroy_context(display, egl_context);
         }
-        if (display != EGL_NO_DISPLAY) egl_terminate(display);
+        if (display != EGL_NO_DISPLAY) EglDisplayShare::get().release();
         if (osmesa_context != nullptr) osmesa_destroy_context(osmesa_context);
     }
 };
@@ -125,57 +263,31 @@ struct HeadlessContext::State {
 namespace {
 
 std::unique_ptr<HeadlessContext::State> create_egl() {
-    std::string error;
-    void* library = open_library("libEGL.so.1", error);
-    if (library == nullptr) throw GlError("EGL: " + error);
-    auto get_proc = library_symbol<PFNEGLGETPROCADDRESSPROC>(library, "eglGetProcAddress");
-    auto query_string = library_symbol<PFNEGLQUERYSTRINGPROC>(library, "eglQueryString");
-    auto initialize = library_symbol<PFNEGLINITIALIZEPROC>(library, "eglInitialize");
-    auto bind_api = library_symbol<PFNEGLBINDAPIPROC>(library, "eglBindAPI");
-    auto create_context = library_symbol<PFNEGLCREATECONTEXTPROC>(library, "eglCreateContext");
-    auto get_error = library_symbol<PFNEGLGETERRORPROC>(library, "eglGetError");
+    EglDisplayShare& share = EglDisplayShare::get();
+    const EglEntryPoints& e = share.entry_points();
     auto state = std::make_unique<HeadlessContext::State>();
     state->kind = ContextKind::egl_surfaceless;
-    state->egl_make_current = library_symbol<PFNEGLMAKECURRENTPROC>(library, "eglMakeCurrent");
-    state->egl_destroy_context = library_symbol<PFNEGLDESTROYCONTEXTPROC>(library, "eglDestroyContext");
-    state->egl_terminate = library_symbol<PFNEGLTERMINATEPROC>(library, "eglTerminate");
-    if (!get_proc || !query_string || !initialize || !bind_api || !create_context || !get_error ||
-        !state->egl_make_current || !state->egl_destroy_context || !state->egl_terminate)
-        throw GlError("EGL: libEGL.so.1 lacks an EGL 1.4 entry point");
-
-    auto fail = [&](const char* what) {
-        char code[16];
-        std::snprintf(code, sizeof code, "0x%04x", static_cast<unsigned>(get_error()));
-        return GlError(std::string("EGL: ") + what + " failed (EGL error " + code + ")");
-    };
-    const char* client_extensions = query_string(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-    if (!has_extension(client_extensions, "EGL_MESA_platform_surfaceless"))
-        throw GlError("EGL: no EGL_MESA_platform_surfaceless (not Mesa's EGL?)");
-    auto get_platform_display =
-        reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(get_proc("eglGetPlatformDisplayEXT"));
-    if (!get_platform_display) throw GlError("EGL: no eglGetPlatformDisplayEXT");
-    EGLDisplay display = get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-    if (display == EGL_NO_DISPLAY) throw fail("eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA)");
-    EGLint egl_major = 0;
-    EGLint egl_minor = 0;
-    if (!initialize(display, &egl_major, &egl_minor)) throw fail("eglInitialize");
-    state->display = display;
-    const char* display_extensions = query_string(display, EGL_EXTENSIONS);
+    state->egl = &e;
+    // From here on the state's destructor releases the display.
+    state->display = share.acquire();
+    const EGLDisplay display = state->display;
+    auto fail = [&](const char* what) { return EglDisplayShare::egl_failure(e, what); };
+    const char* display_extensions = e.query_string(display, EGL_EXTENSIONS);
     if (!has_extension(display_extensions, "EGL_KHR_no_config_context") &&
         !has_extension(display_extensions, "EGL_MESA_configless_context"))
         throw GlError("EGL: the surfaceless display has no EGL_KHR_no_config_context");
     if (!has_extension(display_extensions, "EGL_KHR_surfaceless_context"))
         throw GlError("EGL: the surfaceless display has no EGL_KHR_surfaceless_context");
-    if (!bind_api(EGL_OPENGL_API)) throw fail("eglBindAPI(EGL_OPENGL_API)");
+    if (!e.bind_api(EGL_OPENGL_API)) throw fail("eglBindAPI(EGL_OPENGL_API)");
     const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 4,
                                  EGL_CONTEXT_MINOR_VERSION, 5,
                                  EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
                                  EGL_NONE};
-    state->egl_context = create_context(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes);
+    state->egl_context = e.create_context(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes);
     if (state->egl_context == EGL_NO_CONTEXT) throw fail("eglCreateContext (OpenGL 4.5 core)");
-    if (!state->egl_make_current(display, EGL_NO_SURFACE, EGL_NO_SURFACE, state->egl_context))
+    if (!e.make_current(display, EGL_NO_SURFACE, EGL_NO_SURFACE, state->egl_context))
         throw fail("eglMakeCurrent (surfaceless)");
-    state->fns = load_functions(get_proc, "eglGetProcAddress");
+    state->fns = load_functions(e.get_proc, "eglGetProcAddress");
     require_gl45(state->fns, state->kind);
     return state;
 }
@@ -200,6 +312,7 @@ std::unique_ptr<HeadlessContext::State> create_osmesa() {
                               0};
     state->osmesa_context = create_context(attributes, nullptr);
     if (state->osmesa_context == nullptr) throw GlError("OSMesa: OSMesaCreateContextAttribs (OpenGL 4.5 core) failed");
+    std::call_once(osmesa_exit_watch, watch_exit);  // after any exit handler OSMesa registered
     constexpr int side = 4;
     state->osmesa_buffer.assign(side * side * 4, 0);
     if (!state->osmesa_make_current(state->osmesa_context, state->osmesa_buffer.data(), GL_UNSIGNED_BYTE, side, side))
@@ -233,9 +346,21 @@ HeadlessContext::~HeadlessContext() = default;
 
 HeadlessContext HeadlessContext::create(ContextKind kind) {
     if (kind == ContextKind::current) throw GlError("a current context is wrapped with from_current, not created");
-    if (kind == ContextKind::egl_surfaceless) return HeadlessContext(create_egl());
-    return HeadlessContext(create_osmesa());
+    HeadlessContext made(kind == ContextKind::egl_surfaceless ? create_egl() : create_osmesa());
+    const std::size_t count = contexts_made_count.fetch_add(1) + 1;
+    // BLURCULL_GL_TRACE_CONTEXTS=1: a line on stderr per context made (the
+    // tests count a `blurcull render`'s contexts with it).
+    const char* trace = std::getenv("BLURCULL_GL_TRACE_CONTEXTS");
+    if (trace != nullptr && *trace != '\0' && std::string_view(trace) != "0") {
+        std::fprintf(stderr, "blurcull gl: context %zu made (%s, %s)\n", count, context_kind_name(kind),
+                     made.renderer().c_str());
+    }
+    return made;
 }
+
+std::size_t HeadlessContext::contexts_made() { return contexts_made_count.load(); }
+
+bool driver_usable() noexcept { return !exit_began.load(); }
 
 HeadlessContext HeadlessContext::from_current(void (*(*loader)(const char*))(), const char* loader_name) {
     auto state = std::make_unique<State>();
@@ -270,13 +395,23 @@ std::string HeadlessContext::version() const { return gl_string(state_->fns, GL_
 void HeadlessContext::make_current() const {
     const State& s = *state_;
     if (s.kind == ContextKind::current) return;  // the caller's to keep current
+    if (exit_began.load()) throw GlError("GL: the process is exiting (the driver may have shut down)");
     if (s.kind == ContextKind::egl_surfaceless) {
-        if (!s.egl_make_current(s.display, EGL_NO_SURFACE, EGL_NO_SURFACE, s.egl_context))
+        if (!s.egl->make_current(s.display, EGL_NO_SURFACE, EGL_NO_SURFACE, s.egl_context))
             throw GlError("EGL: eglMakeCurrent failed");
     } else {
         auto* buffer = const_cast<std::uint8_t*>(s.osmesa_buffer.data());
         if (!s.osmesa_make_current(s.osmesa_context, buffer, GL_UNSIGNED_BYTE, 4, 4))
             throw GlError("OSMesa: OSMesaMakeCurrent failed");
+    }
+}
+
+void HeadlessContext::make_current_for_release() const noexcept {
+    if (!driver_usable()) return;
+    try {
+        make_current();
+    } catch (const GlError&) {
+        // Nothing better to do in a destructor: the objects go with whatever is current.
     }
 }
 
@@ -350,7 +485,7 @@ Program::Program(const Functions& gl, const std::vector<ShaderStage>& stages) : 
 Program::Program(Program&& other) noexcept : gl_(other.gl_), id_(std::exchange(other.id_, 0u)) {}
 
 Program::~Program() {
-    if (id_ != 0) gl_->DeleteProgram(id_);
+    if (id_ != 0 && driver_usable()) gl_->DeleteProgram(id_);
 }
 
 Texture::Texture(const Functions& gl, GLenum target, GLenum format, int width, int height, int samples)
@@ -366,11 +501,23 @@ Texture::Texture(const Functions& gl, GLenum target, GLenum format, int width, i
     check_gl(gl, "texture storage");
 }
 
-Texture::~Texture() { gl_->DeleteTextures(1, &id_); }
+Texture::~Texture() {
+    if (driver_usable()) gl_->DeleteTextures(1, &id_);
+}
 
 Framebuffer::Framebuffer(const Functions& gl) : gl_(&gl) { gl.GenFramebuffers(1, &id_); }
 
-Framebuffer::~Framebuffer() { gl_->DeleteFramebuffers(1, &id_); }
+Framebuffer::~Framebuffer() {
+    if (driver_usable()) gl_->DeleteFramebuffers(1, &id_);
+}
+
+VertexArray::VertexArray(const Functions& gl) : gl_(&gl) { gl.GenVertexArrays(1, &id_); }
+
+VertexArray::VertexArray(VertexArray&& other) noexcept : gl_(other.gl_), id_(std::exchange(other.id_, 0u)) {}
+
+VertexArray::~VertexArray() {
+    if (id_ != 0 && driver_usable()) gl_->DeleteVertexArrays(1, &id_);
+}
 
 Buffer::Buffer(const Functions& gl, GLenum target, std::size_t bytes, const void* data, GLenum usage)
     : gl_(&gl), target_(target), id_(0), bytes_(bytes) {
@@ -385,7 +532,7 @@ Buffer::Buffer(Buffer&& other) noexcept
     : gl_(other.gl_), target_(other.target_), id_(std::exchange(other.id_, 0u)), bytes_(other.bytes_) {}
 
 Buffer::~Buffer() {
-    if (id_ != 0) gl_->DeleteBuffers(1, &id_);
+    if (id_ != 0 && driver_usable()) gl_->DeleteBuffers(1, &id_);
 }
 
 void Buffer::bind_base(GLuint index) const { gl_->BindBufferBase(target_, index, id_); }

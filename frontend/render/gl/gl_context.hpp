@@ -7,6 +7,22 @@
 // A surfaceless context has no usable default framebuffer: render into an FBO.
 // HeadlessContext::from_current wraps instead a context someone else made and
 // made current (`blurcull view`'s GLFW window), so the same renderer draws there.
+//
+// Lifetimes (docs/gl-backend.md, "Contexts"):
+// - Any number of contexts may live at once, made and destroyed in any order.
+//   Every EGL context is on the process's one surfaceless display, which is
+//   initialised by the first live context and terminated by the last to go.
+//   A context is current after create() and after make_current(); destroying
+//   another context leaves it current. With several alive, call make_current()
+//   before using one.
+// - Destroy a GL object (Program, Buffer, ...) while its context is current:
+//   glDelete* acts on whichever context is current.
+// - Destroy every context and GL object before main returns (not from a
+//   static's destructor): the drivers register exit handlers while they
+//   initialise (NVIDIA's EGL in eglInitialize) that shut them down before
+//   such destructors run. As a guard, once exit has begun the destructors
+//   here release nothing (driver_usable() is false) and make_current throws,
+//   so a straggler leaks instead of crashing the exit.
 #pragma once
 
 #include "render/gl/gl_functions.hpp"
@@ -63,6 +79,16 @@ public:
     std::string version() const;   // GL_VERSION
     // Makes this context current on the calling thread (create() already did).
     void make_current() const;
+    // make_current for a destructor about to delete this context's objects:
+    // never throws (a failure leaves the current context as it was) and does
+    // nothing once the process is exiting (driver_usable()).
+    void make_current_for_release() const noexcept;
+
+    // How many contexts create() has made in this process so far (not
+    // from_current's): for tests that count a render's contexts. With the
+    // environment variable BLURCULL_GL_TRACE_CONTEXTS=1 each also prints a
+    // line "blurcull gl: context N made (kind, renderer)" on stderr.
+    static std::size_t contexts_made();
 
     struct State;
 
@@ -70,6 +96,10 @@ private:
     explicit HeadlessContext(std::unique_ptr<State> state);
     std::unique_ptr<State> state_;
 };
+
+// False once the process has begun exiting after a context was made (see
+// the top of this file): the GL driver may be shut down, so nothing may call it.
+bool driver_usable() noexcept;
 
 // Throws GlError("<what>: GL error 0x....") when glGetError reports one.
 void check_gl(const Functions& gl, const char* what);
@@ -122,6 +152,23 @@ public:
     Framebuffer(const Framebuffer&) = delete;
     Framebuffer& operator=(const Framebuffer&) = delete;
     ~Framebuffer();
+    GLuint id() const { return id_; }
+
+private:
+    const Functions* gl_;
+    GLuint id_ = 0;
+};
+
+// A vertex array object (the core profile draws with one bound, even with
+// no attributes); deleted with this object.
+class VertexArray {
+public:
+    explicit VertexArray(const Functions& gl);
+    VertexArray(VertexArray&& other) noexcept;
+    VertexArray& operator=(VertexArray&&) = delete;
+    VertexArray(const VertexArray&) = delete;
+    VertexArray& operator=(const VertexArray&) = delete;
+    ~VertexArray();
     GLuint id() const { return id_; }
 
 private:

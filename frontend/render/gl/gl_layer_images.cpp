@@ -1,9 +1,8 @@
 #include "render/gl/gl_layer_images.hpp"
 
 #include "render/gl/gl_layer_shared.h"
-#include "render/gl/render_glsl.hpp"
-
-#include <blurcull/glsl/kernel_glsl.hpp>
+#include "render/gl/gpu_layout_shared.h"
+#include "render/gl/shader_stages.hpp"
 
 #include <algorithm>
 #include <array>
@@ -14,24 +13,26 @@
 namespace blurcull::frontend {
 namespace {
 
-std::string_view embedded(std::string_view name) {
-    std::string_view text = glsl::render_shader_source(name);
-    if (text.empty()) throw gl::GlError("gl: shader '" + std::string(name) + "' was not embedded at build time");
-    return text;
-}
-
-// The kernel's GLSL, the rasterizing arithmetic shared with the host, the
-// passes' std430 structs, then the main.
+// The kernel's GLSL, the bindings, the rasterizing arithmetic shared with
+// the host, the passes' std430 structs, then the main.
 gl::ShaderStage layer_stage(GLenum type, std::string_view main_name) {
-    return gl::ShaderStage{type, {glsl::kernel_source(), embedded("layer_raster_shared.h"),
-                                  embedded("gl_layer_shared.h"), embedded(main_name)}};
+    return gl::shader_stage(type, main_name, gl::Prelude::layers);
 }
 
-// SSBO bindings of the passes (the `binding =` of shaders/render_layers_*).
+// SSBO bindings of the passes (gpu_layout_shared.h): each also the index of
+// its buffer in Passes::buffers.
 enum Binding : GLuint {
-    triangles_binding = 0, pass_binding, own_binding, fans_binding, counts_binding,
-    layer_depth_binding, layer_triangle_binding, cluster_depth_binding, origins_binding, pyramid_binding,
-    texel_count_binding
+    triangles_binding = BC_GL_LAYER_TRIANGLES_BINDING,
+    pass_binding = BC_GL_LAYER_PASS_BINDING,
+    own_binding = BC_GL_LAYER_OWN_BINDING,
+    fans_binding = BC_GL_LAYER_FANS_BINDING,
+    counts_binding = BC_GL_LAYER_COUNTS_BINDING,
+    layer_depth_binding = BC_GL_LAYER_DEPTH_BINDING,
+    layer_triangle_binding = BC_GL_LAYER_TRIANGLE_IDS_BINDING,
+    cluster_depth_binding = BC_GL_LAYER_CLUSTER_DEPTH_BINDING,
+    origins_binding = BC_GL_LAYER_ORIGINS_BINDING,
+    pyramid_binding = BC_GL_LAYER_PYRAMID_BINDING,
+    texel_count_binding = BC_GL_LAYER_TEXEL_COUNTS_BINDING,
 };
 
 // The shader-storage buffer in `slot`, made anew when it holds fewer than
@@ -82,9 +83,9 @@ std::vector<int> level_sizes(int size) {
 
 struct GlLayerBuilder::Passes {
     gl::Program setup, draw, cluster_depth, pyramid;
-    GLuint vertex_array = 0;
+    gl::VertexArray vertex_array;
     // The buffers, by binding (Binding), kept from one cluster to the next.
-    std::array<std::optional<gl::Buffer>, texel_count_binding + 1> buffers;
+    std::array<std::optional<gl::Buffer>, BC_GL_LAYER_BINDINGS> buffers;
 
     // Binding's buffer with room for `bytes` (`data` copied in), bound.
     const gl::Buffer& buffer(const gl::Functions& f, Binding binding, std::size_t bytes, const void* data = nullptr) {
@@ -166,7 +167,7 @@ void GlLayerBuilder::Passes::draw_fans(const gl::Functions& f, int size, std::ui
     f.Disable(GL_CULL_FACE);
     f.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     f.UseProgram(draw.id());
-    f.BindVertexArray(vertex_array);
+    f.BindVertexArray(vertex_array.id());
     const GLint peel_pass = f.GetUniformLocation(draw.id(), "peel_pass");
     for (int peel = 0; peel < 2; ++peel) {
         f.Uniform1i(peel_pass, peel);
@@ -218,17 +219,18 @@ GlClusterLayers GlLayerBuilder::Passes::read_back(const gl::Functions& f, int si
 }
 
 GlLayerBuilder::GlLayerBuilder(const gl::HeadlessContext& context)
-    : gl_(&context.gl()),
+    : context_((context.make_current(), &context)),
+      gl_(&context.gl()),
       passes_(std::make_unique<Passes>(Passes{
           gl::Program(context.gl(), {layer_stage(GL_COMPUTE_SHADER, "render_layers_setup.comp")}),
           gl::Program(context.gl(), {layer_stage(GL_VERTEX_SHADER, "render_layers.vert"),
                                      layer_stage(GL_FRAGMENT_SHADER, "render_layers.frag")}),
           gl::Program(context.gl(), {layer_stage(GL_COMPUTE_SHADER, "render_layers_cluster_depth.comp")}),
-          gl::Program(context.gl(), {layer_stage(GL_COMPUTE_SHADER, "render_layers_pyramid.comp")}), 0, {}})) {
-    gl_->GenVertexArrays(1, &passes_->vertex_array);
-}
+          gl::Program(context.gl(), {layer_stage(GL_COMPUTE_SHADER, "render_layers_pyramid.comp")}),
+          gl::VertexArray(context.gl()), {}})) {}
 
-GlLayerBuilder::~GlLayerBuilder() { gl_->DeleteVertexArrays(1, &passes_->vertex_array); }
+// The passes' glDelete* act on the current context: this one's, with several alive.
+GlLayerBuilder::~GlLayerBuilder() { context_->make_current_for_release(); }
 
 GlClusterLayers GlLayerBuilder::build(const kernelf::LayerView& view, int layers, const GlLayerInput& input) const {
     const gl::Functions& f = *gl_;

@@ -47,8 +47,10 @@ struct GlLayerInput {
 
 class GlLayerBuilder {
 public:
-    // On `context` (current on the calling thread, kept alive by the caller);
-    // compiles the passes. Throws gl::GlError with the compiler's log.
+    // On `context` (kept alive by the caller; made current here, and by its
+    // destructor to delete its objects); compiles the passes. build() runs
+    // on the current context: the caller makes `context` current first.
+    // Throws gl::GlError with the compiler's log.
     explicit GlLayerBuilder(const gl::HeadlessContext& context);
     ~GlLayerBuilder();
     GlLayerBuilder(const GlLayerBuilder&) = delete;
@@ -62,6 +64,7 @@ public:
     struct Passes;
 
 private:
+    const gl::HeadlessContext* context_;
     const gl::Functions* gl_;
     std::unique_ptr<Passes> passes_;
 };

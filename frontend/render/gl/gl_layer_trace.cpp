@@ -1,6 +1,7 @@
 #include "render/gl/gl_layer_trace.hpp"
 
-#include "render/gl/gl_render_targets.hpp"
+#include "render/gl/gpu_layout_shared.h"
+#include "render/gl/shader_stages.hpp"
 
 #include <cstdint>
 #include <cstring>
@@ -8,11 +9,14 @@
 namespace blurcull::frontend {
 
 GlLayerTracer::GlLayerTracer(const gl::HeadlessContext& context)
-    : gl_(&context.gl()),
-      program_(std::make_unique<gl::Program>(context.gl(), std::vector<gl::ShaderStage>{
-                                                               kernel_stage(GL_COMPUTE_SHADER, "render_secondary_trace.comp")})) {}
+    : context_((context.make_current(), &context)),
+      gl_(&context.gl()),
+      program_(std::make_unique<gl::Program>(
+          context.gl(),
+          std::vector<gl::ShaderStage>{gl::shader_stage(GL_COMPUTE_SHADER, "render_secondary_trace.comp")})) {}
 
-GlLayerTracer::~GlLayerTracer() = default;
+// The program's glDeleteProgram acts on the current context: this one's, with several alive.
+GlLayerTracer::~GlLayerTracer() { context_->make_current_for_release(); }
 
 std::vector<kernelf::LayerHit> GlLayerTracer::trace(const kernelf::LayerView& view, const std::vector<float>& depth,
                                                     int layers, float thickness,
@@ -34,10 +38,10 @@ std::vector<kernelf::LayerHit> GlLayerTracer::trace(const kernelf::LayerView& vi
     const gl::Buffer segment_buffer(f, GL_SHADER_STORAGE_BUFFER, packed.size() * sizeof(float), packed.data());
     const gl::Buffer view_buffer(f, GL_SHADER_STORAGE_BUFFER, sizeof view_values, view_values);
     const gl::Buffer hit_buffer(f, GL_SHADER_STORAGE_BUFFER, segments.size() * 8 * sizeof(std::uint32_t));
-    depth_buffer.bind_base(0);
-    segment_buffer.bind_base(1);
-    view_buffer.bind_base(2);
-    hit_buffer.bind_base(3);
+    depth_buffer.bind_base(BC_GL_TRACE_DEPTHS_BINDING);
+    segment_buffer.bind_base(BC_GL_TRACE_SEGMENTS_BINDING);
+    view_buffer.bind_base(BC_GL_TRACE_VIEW_BINDING);
+    hit_buffer.bind_base(BC_GL_TRACE_HITS_BINDING);
     const auto count = static_cast<GLuint>(segments.size());
     f.UseProgram(program_->id());
     f.Uniform1ui(f.GetUniformLocation(program_->id(), "count"), count);

@@ -15,8 +15,10 @@ namespace blurcull::frontend {
 
 class GlLayerTracer {
 public:
-    // On `context` (current on the calling thread, kept alive by the caller);
-    // compiles the pass. Throws gl::GlError with the compiler's log.
+    // On `context` (kept alive by the caller; made current here, and by its
+    // destructor to delete its program); compiles the pass. trace() runs on
+    // the current context: the caller makes `context` current first.
+    // Throws gl::GlError with the compiler's log.
     explicit GlLayerTracer(const gl::HeadlessContext& context);
     ~GlLayerTracer();
     GlLayerTracer(const GlLayerTracer&) = delete;
@@ -29,6 +31,7 @@ public:
                                          float thickness, const std::vector<kernelf::LayerSegment>& segments) const;
 
 private:
+    const gl::HeadlessContext* context_;
     const gl::Functions* gl_;
     std::unique_ptr<gl::Program> program_;
 };

@@ -1,21 +1,11 @@
 #include "render/gl/gl_render_targets.hpp"
 
-#include "render/gl/render_glsl.hpp"
-
-#include <blurcull/glsl/kernel_glsl.hpp>
-
 #include <algorithm>
 #include <cstdint>
 #include <string>
 
 namespace blurcull::frontend {
 namespace {
-
-std::string_view shader_text(std::string_view name) {
-    std::string_view text = glsl::render_shader_source(name);
-    if (text.empty()) throw gl::GlError("gl: shader '" + std::string(name) + "' was not embedded at build time");
-    return text;
-}
 
 constexpr std::uint32_t zero_counters[2] = {0, 0};
 
@@ -34,11 +24,6 @@ void require_target_fits(const gl::Functions& gl, int target_width, int target_h
         throw gl::GlError("gl: image size " + std::to_string(width) + "x" + std::to_string(height) +
                           " exceeds the context's limit of " + std::to_string(max_size) + " pixels per side");
     }
-}
-
-gl::ShaderStage kernel_stage(GLenum type, std::string_view main_name) {
-    return gl::ShaderStage{type, {glsl::kernel_source(), shader_text("gpu_layout_shared.h"),
-                                  shader_text("render_common.glsl"), shader_text(main_name)}};
 }
 
 IdDepthTarget::IdDepthTarget(const gl::Functions& gl, int width, int height, int samples, const char* what)

@@ -1,5 +1,5 @@
 // What the GL stochastic path (gl_backend.cpp) and the GL interleave /
-// interval / accum passes (gl_sampling_methods.cpp) share: their shader stages, the
+// interval / accum passes (gl_sampling_methods.cpp) share: the
 // triangle-id + depth framebuffer with blurcull's depth rule, its size check,
 // and the tested/hit sample counters.
 #pragma once
@@ -7,7 +7,6 @@
 #include "render/common/render_types.hpp"
 #include "render/gl/gl_context.hpp"
 
-#include <string_view>
 
 namespace blurcull::frontend {
 
@@ -18,11 +17,6 @@ int get_integer(const gl::Functions& gl, GLenum name);
 // the context's texture or framebuffer size limits; the message names the
 // image, width x height, that it is for.
 void require_target_fits(const gl::Functions& gl, int target_width, int target_height, int width, int height);
-
-// A stage whose main needs the kernel: the emitted kernel GLSL,
-// gpu_layout_shared.h, render_common.glsl, then `main_name`. Throws gl::GlError when a shader was
-// not embedded at build time.
-gl::ShaderStage kernel_stage(GLenum type, std::string_view main_name);
 
 // An R32UI triangle-id colour attachment and a DEPTH_COMPONENT32F depth
 // attachment of width x height, 2D or (samples > 0) multisample, in one

@@ -7,6 +7,7 @@
 #include "render/gl/gl_alpha_mask.hpp"
 #include "render/gl/gl_render_targets.hpp"
 #include "render/gl/gpu_layout_shared.h"
+#include "render/gl/shader_stages.hpp"
 
 #include <blurcull/kernel.hpp>
 
@@ -58,18 +59,14 @@ struct GlMethodPrograms {
     const gl::Functions* gl;
     gl::Program samples;
     gl::Program draw;
-    GLuint vertex_array = 0;
+    gl::VertexArray vertex_array;
 
     explicit GlMethodPrograms(const gl::Functions& functions)
         : gl(&functions),
-          samples(functions, {kernel_stage(GL_COMPUTE_SHADER, "render_method_samples.comp")}),
-          draw(functions, {kernel_stage(GL_VERTEX_SHADER, "render_method.vert"),
-                           masked_kernel_stage(GL_FRAGMENT_SHADER, "render_method.frag")}) {
-        functions.GenVertexArrays(1, &vertex_array);
-    }
-    GlMethodPrograms(const GlMethodPrograms&) = delete;
-    GlMethodPrograms& operator=(const GlMethodPrograms&) = delete;
-    ~GlMethodPrograms() { gl->DeleteVertexArrays(1, &vertex_array); }
+          samples(functions, {gl::shader_stage(GL_COMPUTE_SHADER, "render_method_samples.comp")}),
+          draw(functions, {gl::shader_stage(GL_VERTEX_SHADER, "render_method.vert"),
+                           gl::shader_stage(GL_FRAGMENT_SHADER, "render_method.frag", gl::Prelude::render_masked)}),
+          vertex_array(functions) {}
 };
 
 namespace {
@@ -256,15 +253,15 @@ MethodFrame::MethodFrame(const gl::Functions& gl, const GlMethodPrograms& progra
       id_depth_(gl, target.width, target.height, 0, "the method's id/depth framebuffer"),
       hits_(pixels_ * per_pixel_, no_sample_hit),
       pass_ids_(target.cells) {
-    triangle_buffer_.bind_base(0);
-    counters_.bind_base(2);
-    sample_buffer_.bind_base(7);
-    time_buffer_.bind_base(8);
-    box_buffer_.bind_base(9);
-    tuple_buffer_.bind_base(10);
+    triangle_buffer_.bind_base(BC_GL_TRIANGLES_BINDING);
+    counters_.bind_base(BC_GL_COUNTERS_BINDING);
+    sample_buffer_.bind_base(BC_GL_PASS_SAMPLES_BINDING);
+    time_buffer_.bind_base(BC_GL_PASS_TIMES_BINDING);
+    box_buffer_.bind_base(BC_GL_METHOD_BOXES_BINDING);
+    tuple_buffer_.bind_base(BC_GL_METHOD_TUPLE_CELLS_BINDING);
     mask_.bind();
     id_depth_.bind_with_depth_rule();
-    gl.BindVertexArray(programs.vertex_array);
+    gl.BindVertexArray(programs.vertex_array.id());
     set_uniforms();
     gl::check_gl(gl, "gl: method setup");
     boxes_.reserve(scene.triangles.size());

@@ -18,6 +18,7 @@
 #include <glm/glm.hpp>
 
 #include <cstddef>
+#include <initializer_list>
 
 namespace blurcull::frontend::gpu {
 using vec4 = glm::vec4;
@@ -32,6 +33,61 @@ using ivec4 = glm::ivec4;
 #define BC_GL_PATH_NONE 0
 #define BC_GL_PATH_STATIC 1
 #define BC_GL_PATH_MOVING 2
+
+// Every binding point of the GL passes, named once for both sides: the
+// shaders' layout(binding = BC_GL_*) and the host's Buffer::bind_base. A
+// binding point is context state, not program state, and each pass binds its
+// buffers before it runs, so passes that never run together reuse numbers;
+// within one pass they are distinct (the static_asserts at the end check it).
+// The GL limit is at least 8 shader-storage bindings (GL 4.5, table 23.64);
+// llvmpipe and NVIDIA offer far more than the 19 of the stochastic pass.
+//
+// The stochastic passes (gl_backend.cpp; shaders/render_{setup,bounds,
+// samples,static*,moving,resolve}.*, render_common.glsl):
+#define BC_GL_TRIANGLES_BINDING 0      // Triangles: MovingTriangle[] (render_common.glsl)
+#define BC_GL_INFOS_BINDING 1          // Infos: TriangleInfo[]
+#define BC_GL_COUNTERS_BINDING 2       // Counters: samples tested, hit (SampleCounters)
+#define BC_GL_COLOURS_BINDING 3        // Colours: each triangle's, the background's last
+#define BC_GL_SUMS_BINDING 4           // Sums: per pixel rgb and hit count
+#define BC_GL_SAMPLE_IDS_BINDING 5     // SampleIds: per sample the triangle it shows
+#define BC_GL_CELLS_BINDING 6          // Cells: CellBounds[]
+#define BC_GL_PASS_SAMPLES_BINDING 7   // PassSamples: the pass's ndc and lens per sample
+#define BC_GL_PASS_TIMES_BINDING 8     // PassTimes: the pass's time per sample
+#define BC_GL_CLASSES_BINDING 9        // Classes: classify() of each triangle
+#define BC_GL_STATIC_LIST_BINDING 10   // StaticList: the static path's triangles
+#define BC_GL_MOVING_LIST_BINDING 11   // MovingList: the moving path's triangles
+#define BC_GL_GROUP_SAMPLES_BINDING 12 // GroupSamples: a group of passes' samples
+#define BC_GL_GROUP_TIMES_BINDING 13   // GroupTimes: and their times
+#define BC_GL_GROUP_IDS_BINDING 14     // GroupIds: the group's static winner per sample
+#define BC_GL_GROUP_DEPTHS_BINDING 15  // GroupDepths: and its depth key
+#define BC_GL_MASK_SLOTS_BINDING 16    // MaskSlots (render_mask.glsl, gl_alpha_mask.cpp)
+#define BC_GL_MASK_TRIANGLES_BINDING 17  // MaskTriangles
+#define BC_GL_MASK_TEXELS_BINDING 18   // MaskTexels
+// render_resolve.comp's sampler of the pass's triangle ids: a texture unit.
+#define BC_GL_PASS_IDS_UNIT 0
+// The interleave / interval / accum passes (gl_sampling_methods.cpp;
+// shaders/render_method*): the triangles, counters, pass samples and times
+// and the mask as above, and
+#define BC_GL_METHOD_BOXES_BINDING 9        // Boxes: MethodBox[]
+#define BC_GL_METHOD_TUPLE_CELLS_BINDING 10 // TupleCells: interleave's cell per tile and pass
+// dof-secondary's layer passes (gl_layer_images.cpp; shaders/render_layers*):
+#define BC_GL_LAYER_TRIANGLES_BINDING 0      // Triangles: LayerTriangle[]
+#define BC_GL_LAYER_PASS_BINDING 1           // Pass: LayerPass
+#define BC_GL_LAYER_OWN_BINDING 2            // Own: the cluster's own triangles, a bit each
+#define BC_GL_LAYER_FANS_BINDING 3           // Fans: LayerFan[]
+#define BC_GL_LAYER_COUNTS_BINDING 4         // Counts: BC_LAYER_COUNT_*
+#define BC_GL_LAYER_DEPTH_BINDING 5          // LayerDepth: the k-buffer's depth bits
+#define BC_GL_LAYER_TRIANGLE_IDS_BINDING 6   // LayerTriangleIds: and its triangles
+#define BC_GL_LAYER_CLUSTER_DEPTH_BINDING 7  // ClusterDepth: the cluster's depth map
+#define BC_GL_LAYER_ORIGINS_BINDING 8        // Origins: the cluster's points
+#define BC_GL_LAYER_PYRAMID_BINDING 9        // Pyramid: min/max levels
+#define BC_GL_LAYER_TEXEL_COUNTS_BINDING 10  // TexelCounts: fragments per texel
+#define BC_GL_LAYER_BINDINGS 11              // the layer passes' buffers: 0 .. 10
+// dof-secondary's trace pass (gl_layer_trace.cpp; shaders/render_secondary_trace.comp):
+#define BC_GL_TRACE_DEPTHS_BINDING 0    // Depths: the layers' depths
+#define BC_GL_TRACE_SEGMENTS_BINDING 1  // Segments: 10 floats per ray
+#define BC_GL_TRACE_VIEW_BINDING 2      // View: the cluster's view
+#define BC_GL_TRACE_HITS_BINDING 3      // Hits: 8 words per ray
 
 // What render_setup.comp finds out about triangle i, once per frame.
 struct TriangleInfo {
@@ -75,9 +131,7 @@ struct MethodBox {
 // holds BC_GL_ALPHA_CODES floats (code / 255 of every 8-bit alpha, so the
 // GPU reads the host's value), then the masked textures' alpha bytes, four
 // per uint (texel k of a texture at byte texture.x + k, little end first).
-#define BC_GL_MASK_SLOTS_BINDING 16
-#define BC_GL_MASK_TRIANGLES_BINDING 17
-#define BC_GL_MASK_TEXELS_BINDING 18
+// Bound at BC_GL_MASK_*_BINDING (above).
 #define BC_GL_ALPHA_CODES 256
 
 // MaskTriangle.flags: which of its attributes the mask formula reads (the
@@ -135,6 +189,46 @@ static_assert(sizeof(GpuMovingTriangle) == 144 && offsetof(GpuMovingTriangle, c)
               "std430 MovingTriangle (vec3 p[6] at stride 16, vec2 c[6])");
 // A buffer of these is an array: std430 rounds a struct's stride up to its
 // alignment (16, that of its largest member), which every size above is.
+// Within one pass no two buffers share a binding point.
+constexpr bool distinct_bindings(std::initializer_list<int> bindings) {
+    for (const int* a = bindings.begin(); a != bindings.end(); ++a)
+        for (const int* b = a + 1; b != bindings.end(); ++b)
+            if (*a == *b) return false;
+    return true;
+}
+constexpr bool bindings_below(std::initializer_list<int> bindings, int end) {
+    for (int b : bindings)
+        if (b < 0 || b >= end) return false;
+    return true;
+}
+static_assert(distinct_bindings({BC_GL_TRIANGLES_BINDING, BC_GL_INFOS_BINDING, BC_GL_COUNTERS_BINDING,
+                                 BC_GL_COLOURS_BINDING, BC_GL_SUMS_BINDING, BC_GL_SAMPLE_IDS_BINDING,
+                                 BC_GL_CELLS_BINDING, BC_GL_PASS_SAMPLES_BINDING, BC_GL_PASS_TIMES_BINDING,
+                                 BC_GL_CLASSES_BINDING, BC_GL_STATIC_LIST_BINDING, BC_GL_MOVING_LIST_BINDING,
+                                 BC_GL_GROUP_SAMPLES_BINDING, BC_GL_GROUP_TIMES_BINDING, BC_GL_GROUP_IDS_BINDING,
+                                 BC_GL_GROUP_DEPTHS_BINDING, BC_GL_MASK_SLOTS_BINDING,
+                                 BC_GL_MASK_TRIANGLES_BINDING, BC_GL_MASK_TEXELS_BINDING}),
+              "the stochastic passes' bindings");
+static_assert(distinct_bindings({BC_GL_TRIANGLES_BINDING, BC_GL_COUNTERS_BINDING, BC_GL_PASS_SAMPLES_BINDING,
+                                 BC_GL_PASS_TIMES_BINDING, BC_GL_METHOD_BOXES_BINDING,
+                                 BC_GL_METHOD_TUPLE_CELLS_BINDING, BC_GL_MASK_SLOTS_BINDING,
+                                 BC_GL_MASK_TRIANGLES_BINDING, BC_GL_MASK_TEXELS_BINDING}),
+              "the method passes' bindings");
+static_assert(distinct_bindings({BC_GL_LAYER_TRIANGLES_BINDING, BC_GL_LAYER_PASS_BINDING, BC_GL_LAYER_OWN_BINDING,
+                                 BC_GL_LAYER_FANS_BINDING, BC_GL_LAYER_COUNTS_BINDING, BC_GL_LAYER_DEPTH_BINDING,
+                                 BC_GL_LAYER_TRIANGLE_IDS_BINDING, BC_GL_LAYER_CLUSTER_DEPTH_BINDING,
+                                 BC_GL_LAYER_ORIGINS_BINDING, BC_GL_LAYER_PYRAMID_BINDING,
+                                 BC_GL_LAYER_TEXEL_COUNTS_BINDING}) &&
+                  bindings_below({BC_GL_LAYER_TRIANGLES_BINDING, BC_GL_LAYER_PASS_BINDING, BC_GL_LAYER_OWN_BINDING,
+                                  BC_GL_LAYER_FANS_BINDING, BC_GL_LAYER_COUNTS_BINDING, BC_GL_LAYER_DEPTH_BINDING,
+                                  BC_GL_LAYER_TRIANGLE_IDS_BINDING, BC_GL_LAYER_CLUSTER_DEPTH_BINDING,
+                                  BC_GL_LAYER_ORIGINS_BINDING, BC_GL_LAYER_PYRAMID_BINDING,
+                                  BC_GL_LAYER_TEXEL_COUNTS_BINDING},
+                                 BC_GL_LAYER_BINDINGS),
+              "the layer passes' bindings: distinct, each an index of GlLayerBuilder's buffers");
+static_assert(distinct_bindings({BC_GL_TRACE_DEPTHS_BINDING, BC_GL_TRACE_SEGMENTS_BINDING, BC_GL_TRACE_VIEW_BINDING,
+                                 BC_GL_TRACE_HITS_BINDING}),
+              "the trace pass's bindings");
 static_assert(sizeof(TriangleInfo) % 16 == 0 && sizeof(CellBounds) % 16 == 0 && sizeof(MethodBox) % 16 == 0 &&
                   sizeof(MaskTriangle) % 16 == 0 &&
                   sizeof(GpuMovingTriangle) % 16 == 0,

@@ -3,9 +3,9 @@
 // bounds hold no sample is marked empty and never rasterized.
 layout(local_size_x = 64) in;
 
-layout(std430, binding = 1) readonly buffer Infos { TriangleInfo infos[]; };
-layout(std430, binding = 6) writeonly buffer Cells { CellBounds cells[]; };
-layout(std430, binding = 11) readonly buffer MovingList { uint moving_list[]; };  // index order
+layout(std430, binding = BC_GL_INFOS_BINDING) readonly buffer Infos { TriangleInfo infos[]; };
+layout(std430, binding = BC_GL_CELLS_BINDING) writeonly buffer Cells { CellBounds cells[]; };
+layout(std430, binding = BC_GL_MOVING_LIST_BINDING) readonly buffer MovingList { uint moving_list[]; };  // index order
 
 uniform int moving_count;
 uniform int cells_per_triangle;  // 1, or BC_GL_CELLS_MAX when the method bounds lens and time

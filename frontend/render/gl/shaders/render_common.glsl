@@ -4,7 +4,7 @@
 // docs/gl-backend.md.
 
 // The clip-space triangles, made on the host by make_moving_triangle<float>.
-layout(std430, binding = 0) readonly buffer Triangles { MovingTriangle triangles[]; };
+layout(std430, binding = BC_GL_TRIANGLES_BINDING) readonly buffer Triangles { MovingTriangle triangles[]; };
 
 uniform vec2 image_size;   // width, height in pixels
 uniform float near_plane;  // CameraModel::znear
@@ -26,8 +26,8 @@ uvec2 fragment_cell(vec2 frag_coord, vec2 size) {
 // The current pass's samples (render_samples.comp): pixel p's sample
 // pass_base + k is at slot 4 p + k.
 #define PASS_SAMPLE_BUFFERS \
-    layout(std430, binding = 7) readonly buffer PassSamples { vec4 pass_ndc_lens[]; }; \
-    layout(std430, binding = 8) readonly buffer PassTimes { float pass_time[]; };
+    layout(std430, binding = BC_GL_PASS_SAMPLES_BINDING) readonly buffer PassSamples { vec4 pass_ndc_lens[]; }; \
+    layout(std430, binding = BC_GL_PASS_TIMES_BINDING) readonly buffer PassTimes { float pass_time[]; };
 
 // A group of passes' samples (render_samples.comp with stride group_samples):
 // pixel p's sample pass_base + k at slot group_samples p + k; and a static
@@ -35,8 +35,8 @@ uvec2 fragment_cell(vec2 frag_coord, vec2 size) {
 // to gl_FragDepth (clamped to the depth range as the depth buffer clamps it),
 // or -1 where it does not cover the sample.
 #define GROUP_SAMPLE_BUFFERS \
-    layout(std430, binding = 12) readonly buffer GroupSamples { vec4 group_ndc_lens[]; }; \
-    layout(std430, binding = 13) readonly buffer GroupTimes { float group_time[]; }; \
+    layout(std430, binding = BC_GL_GROUP_SAMPLES_BINDING) readonly buffer GroupSamples { vec4 group_ndc_lens[]; }; \
+    layout(std430, binding = BC_GL_GROUP_TIMES_BINDING) readonly buffer GroupTimes { float group_time[]; }; \
     uniform uint group_samples; \
     float static_depth_key(int i, uint slot) { \
         vec4 ndc_lens = group_ndc_lens[slot]; \

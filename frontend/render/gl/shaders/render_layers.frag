@@ -10,12 +10,12 @@
 //     last of them only);
 //   peel_pass 1: each fragment whose depth is in its texel's list writes its
 //     triangle there (atomicMin: equal depths keep the lowest triangle).
-layout(std430, binding = 1) readonly buffer Pass { LayerPass pass; };
-layout(std430, binding = 4) buffer Counts { uint counts[]; };
-layout(std430, binding = 5) buffer LayerDepth { uint layer_depth[]; };        // [layer][y][x] depth bits
-layout(std430, binding = 6) buffer LayerTriangleIds { uint layer_triangle[]; };  // [layer][y][x]
-layout(std430, binding = 7) readonly buffer ClusterDepth { uint cluster_depth[]; };  // [y][x] depth bits
-layout(std430, binding = 10) buffer TexelCounts { uint texel_count[]; };           // [y][x]
+layout(std430, binding = BC_GL_LAYER_PASS_BINDING) readonly buffer Pass { LayerPass pass; };
+layout(std430, binding = BC_GL_LAYER_COUNTS_BINDING) buffer Counts { uint counts[]; };
+layout(std430, binding = BC_GL_LAYER_DEPTH_BINDING) buffer LayerDepth { uint layer_depth[]; };        // [layer][y][x] depth bits
+layout(std430, binding = BC_GL_LAYER_TRIANGLE_IDS_BINDING) buffer LayerTriangleIds { uint layer_triangle[]; };  // [layer][y][x]
+layout(std430, binding = BC_GL_LAYER_CLUSTER_DEPTH_BINDING) readonly buffer ClusterDepth { uint cluster_depth[]; };  // [y][x] depth bits
+layout(std430, binding = BC_GL_LAYER_TEXEL_COUNTS_BINDING) buffer TexelCounts { uint texel_count[]; };           // [y][x]
 uniform int peel_pass;
 flat in vec3 corner_a;
 flat in vec3 corner_b;

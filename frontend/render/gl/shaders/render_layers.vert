@@ -2,8 +2,8 @@
 // vertex k of fan triangle f (gl_VertexID = 3 f + k) at its image point, the
 // three image points handed flat to render_layers.frag, which computes the
 // depth from them as the host's scan does.
-layout(std430, binding = 1) readonly buffer Pass { LayerPass pass; };
-layout(std430, binding = 3) readonly buffer Fans { LayerFan fans[]; };
+layout(std430, binding = BC_GL_LAYER_PASS_BINDING) readonly buffer Pass { LayerPass pass; };
+layout(std430, binding = BC_GL_LAYER_FANS_BINDING) readonly buffer Fans { LayerFan fans[]; };
 flat out vec3 corner_a;
 flat out vec3 corner_b;
 flat out vec3 corner_c;

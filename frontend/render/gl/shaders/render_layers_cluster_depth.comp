@@ -3,9 +3,9 @@
 // project there (render/secondary's cluster_origin_depth: the kernel's
 // layer_project, then the texel under it). BC_LAYER_EMPTY where none does.
 layout(local_size_x = 64) in;
-layout(std430, binding = 1) readonly buffer Pass { LayerPass pass; };
-layout(std430, binding = 7) buffer ClusterDepth { uint cluster_depth[]; };
-layout(std430, binding = 8) readonly buffer Origins { vec4 origins[]; };
+layout(std430, binding = BC_GL_LAYER_PASS_BINDING) readonly buffer Pass { LayerPass pass; };
+layout(std430, binding = BC_GL_LAYER_CLUSTER_DEPTH_BINDING) buffer ClusterDepth { uint cluster_depth[]; };
+layout(std430, binding = BC_GL_LAYER_ORIGINS_BINDING) readonly buffer Origins { vec4 origins[]; };
 
 void main() {
     uint i = gl_GlobalInvocationID.x;

@@ -12,10 +12,10 @@
 // so this is render/secondary's DepthPyramid bit for bit. Cells hold
 // (lo, hi); lo = +inf, hi = -inf where no surface.
 layout(local_size_x = 16, local_size_y = 16) in;
-layout(std430, binding = 1) readonly buffer Pass { LayerPass pass; };
-layout(std430, binding = 5) readonly buffer LayerDepth { uint layer_depth[]; };
-layout(std430, binding = 9) buffer Pyramid { float pyramid[]; };  // levels, finest first, 2 floats a cell
-layout(std430, binding = 10) readonly buffer TexelCounts { uint texel_count[]; };
+layout(std430, binding = BC_GL_LAYER_PASS_BINDING) readonly buffer Pass { LayerPass pass; };
+layout(std430, binding = BC_GL_LAYER_DEPTH_BINDING) readonly buffer LayerDepth { uint layer_depth[]; };
+layout(std430, binding = BC_GL_LAYER_PYRAMID_BINDING) buffer Pyramid { float pyramid[]; };  // levels, finest first, 2 floats a cell
+layout(std430, binding = BC_GL_LAYER_TEXEL_COUNTS_BINDING) readonly buffer TexelCounts { uint texel_count[]; };
 uniform int from_layers;  // 1: levels 0 and 1 from the layers; 0: levels 2 and on, one workgroup
 uniform int base_size;    // level 0's cells per side (texels)
 

@@ -5,11 +5,11 @@
 // triangles that render_layers.vert draws (culled triangles append none).
 // docs/secondary-rays.md.
 layout(local_size_x = 64) in;
-layout(std430, binding = 0) readonly buffer Triangles { LayerTriangle triangles[]; };
-layout(std430, binding = 1) readonly buffer Pass { LayerPass pass; };
-layout(std430, binding = 2) readonly buffer Own { uint own_bits[]; };  // bit t: the cluster's own triangle
-layout(std430, binding = 3) writeonly buffer Fans { LayerFan fans[]; };  // up to 2 per triangle
-layout(std430, binding = 4) buffer Counts { uint counts[]; };           // BC_LAYER_COUNT_*
+layout(std430, binding = BC_GL_LAYER_TRIANGLES_BINDING) readonly buffer Triangles { LayerTriangle triangles[]; };
+layout(std430, binding = BC_GL_LAYER_PASS_BINDING) readonly buffer Pass { LayerPass pass; };
+layout(std430, binding = BC_GL_LAYER_OWN_BINDING) readonly buffer Own { uint own_bits[]; };  // bit t: the cluster's own triangle
+layout(std430, binding = BC_GL_LAYER_FANS_BINDING) writeonly buffer Fans { LayerFan fans[]; };  // up to 2 per triangle
+layout(std430, binding = BC_GL_LAYER_COUNTS_BINDING) buffer Counts { uint counts[]; };           // BC_LAYER_COUNT_*
 
 void main() {
     uint t = gl_GlobalInvocationID.x;

@@ -10,13 +10,13 @@
 //  * interval (1): pixel p's sample of stratum pass_index, computed by
 //    render_method_samples.comp;
 //  * accum (2): every pixel at the pass's offset, lens and time.
-layout(std430, binding = 9) readonly buffer Boxes { MethodBox boxes[]; };
-layout(std430, binding = 2) buffer Counters { uint tested; uint hit; };
+layout(std430, binding = BC_GL_METHOD_BOXES_BINDING) readonly buffer Boxes { MethodBox boxes[]; };
+layout(std430, binding = BC_GL_COUNTERS_BINDING) buffer Counters { uint tested; uint hit; };
 // tuple_cell[k * tile_count + t]: gy * lattice_width + gx of tuple k's cell in
 // tile t, or 0xffffffff when that cell is past the image's edge.
-layout(std430, binding = 10) readonly buffer TupleCells { uint tuple_cell[]; };
-layout(std430, binding = 7) readonly buffer PassSamples { vec4 pass_ndc_lens[]; };
-layout(std430, binding = 8) readonly buffer PassTimes { float pass_time[]; };
+layout(std430, binding = BC_GL_METHOD_TUPLE_CELLS_BINDING) readonly buffer TupleCells { uint tuple_cell[]; };
+layout(std430, binding = BC_GL_PASS_SAMPLES_BINDING) readonly buffer PassSamples { vec4 pass_ndc_lens[]; };
+layout(std430, binding = BC_GL_PASS_TIMES_BINDING) readonly buffer PassTimes { float pass_time[]; };
 
 uniform vec2 target_size;  // framebuffer width, height
 uniform uint lattice_width;  // interleave: width * scale

@@ -3,7 +3,7 @@
 // hold its samples (tiles for interleave, pixels otherwise), from the
 // rectangle the host computed for that pass (method_pass_box, the same boxes
 // the CPU renderers test in).
-layout(std430, binding = 9) readonly buffer Boxes { MethodBox boxes[]; };
+layout(std430, binding = BC_GL_METHOD_BOXES_BINDING) readonly buffer Boxes { MethodBox boxes[]; };
 
 uniform vec2 target_size;  // framebuffer width, height
 

@@ -3,8 +3,8 @@
 // the fragment shader, which runs once per triangle and pixel, only reads it.
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(std430, binding = 7) writeonly buffer PassSamples { vec4 pass_ndc_lens[]; };
-layout(std430, binding = 8) writeonly buffer PassTimes { float pass_time[]; };
+layout(std430, binding = BC_GL_PASS_SAMPLES_BINDING) writeonly buffer PassSamples { vec4 pass_ndc_lens[]; };
+layout(std430, binding = BC_GL_PASS_TIMES_BINDING) writeonly buffer PassTimes { float pass_time[]; };
 
 uniform uint pass_index;
 

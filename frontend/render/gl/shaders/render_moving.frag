@@ -2,8 +2,8 @@
 // rate): sample pass_base + gl_SampleID of the pattern (render_samples.comp), culled by the cell's
 // bounds and the screen bound, then the exact bc_covers() (bc_sample_test); its depth goes to
 // gl_FragDepth (near / w), so the depth test is per sample.
-layout(std430, binding = 1) readonly buffer Infos { TriangleInfo infos[]; };
-layout(std430, binding = 2) buffer Counters { uint tested; uint hit; };
+layout(std430, binding = BC_GL_INFOS_BINDING) readonly buffer Infos { TriangleInfo infos[]; };
+layout(std430, binding = BC_GL_COUNTERS_BINDING) buffer Counters { uint tested; uint hit; };
 PASS_SAMPLE_BUFFERS
 
 flat in int g_index;

@@ -1,8 +1,8 @@
 // Moving or defocused triangles: six vertices per cell (cells_per_triangle
 // cells per triangle of the moving list, in triangle order), a quad over the cell's pixels
 // carrying its sample bounds; empty cells get a degenerate quad.
-layout(std430, binding = 6) readonly buffer Cells { CellBounds cells[]; };
-layout(std430, binding = 11) readonly buffer MovingList { uint moving_list[]; };
+layout(std430, binding = BC_GL_CELLS_BINDING) readonly buffer Cells { CellBounds cells[]; };
+layout(std430, binding = BC_GL_MOVING_LIST_BINDING) readonly buffer MovingList { uint moving_list[]; };
 
 uniform int cells_per_triangle;
 

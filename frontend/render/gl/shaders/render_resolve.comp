@@ -4,10 +4,10 @@
 // sample's triangle id.
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(binding = 0) uniform usampler2DMS pass_ids;
-layout(std430, binding = 3) readonly buffer Colours { vec4 colours[]; };  // background last
-layout(std430, binding = 4) buffer Sums { vec4 sums[]; };
-layout(std430, binding = 5) writeonly buffer SampleIds { uint sample_ids[]; };
+layout(binding = BC_GL_PASS_IDS_UNIT) uniform usampler2DMS pass_ids;
+layout(std430, binding = BC_GL_COLOURS_BINDING) readonly buffer Colours { vec4 colours[]; };  // background last
+layout(std430, binding = BC_GL_SUMS_BINDING) buffer Sums { vec4 sums[]; };
+layout(std430, binding = BC_GL_SAMPLE_IDS_BINDING) writeonly buffer SampleIds { uint sample_ids[]; };
 
 uniform uint background;  // index of the background colour in colours
 uniform int keep_ids;

@@ -4,8 +4,8 @@
 // size, the samples of a group of passes for render_static_group.frag.
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(std430, binding = 7) writeonly buffer PassSamples { vec4 pass_ndc_lens[]; };
-layout(std430, binding = 8) writeonly buffer PassTimes { float pass_time[]; };
+layout(std430, binding = BC_GL_PASS_SAMPLES_BINDING) writeonly buffer PassSamples { vec4 pass_ndc_lens[]; };
+layout(std430, binding = BC_GL_PASS_TIMES_BINDING) writeonly buffer PassTimes { float pass_time[]; };
 
 uniform int sampler;  // BC_PATTERN_* (RenderSettings::sampler)
 uniform uint stride;  // samples per pixel in the buffers: 4, or a group's size

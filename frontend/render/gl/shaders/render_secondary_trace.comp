@@ -5,10 +5,10 @@
 // layer_trace_step: the loop of include/blurcull/layer_trace.hpp, reading
 // this shader's buffer. Same emitted text as the host, so the same hits.
 layout(local_size_x = 64) in;
-layout(std430, binding = 0) readonly buffer Depths { float depth_in[]; };      // layer, y, x
-layout(std430, binding = 1) readonly buffer Segments { float segment_in[]; };  // 10 floats per ray
-layout(std430, binding = 2) readonly buffer View { float view_in[]; };         // eye, forward, right, up, tan, near, far, size, layers, thickness
-layout(std430, binding = 3) writeonly buffer Hits { uint hit_out[]; };         // 8 per ray
+layout(std430, binding = BC_GL_TRACE_DEPTHS_BINDING) readonly buffer Depths { float depth_in[]; };      // layer, y, x
+layout(std430, binding = BC_GL_TRACE_SEGMENTS_BINDING) readonly buffer Segments { float segment_in[]; };  // 10 floats per ray
+layout(std430, binding = BC_GL_TRACE_VIEW_BINDING) readonly buffer View { float view_in[]; };         // eye, forward, right, up, tan, near, far, size, layers, thickness
+layout(std430, binding = BC_GL_TRACE_HITS_BINDING) writeonly buffer Hits { uint hit_out[]; };         // 8 per ray
 uniform uint count;
 
 void main() {

@@ -2,10 +2,10 @@
 // which path draws it (static: render_static.*, moving: render_moving.*).
 layout(local_size_x = 64) in;
 
-layout(std430, binding = 1) writeonly buffer Infos { TriangleInfo infos[]; };
+layout(std430, binding = BC_GL_INFOS_BINDING) writeonly buffer Infos { TriangleInfo infos[]; };
 // classify() of each triangle, run on the host (kernel<float>, bit-identical)
 // since the host builds the per-path draw lists from it.
-layout(std430, binding = 9) readonly buffer Classes { int classes[]; };
+layout(std430, binding = BC_GL_CLASSES_BINDING) readonly buffer Classes { int classes[]; };
 
 uniform int triangle_count;
 uniform int method;      // BC_CULL_*

@@ -4,8 +4,8 @@
 // (render_samples.comp), bc_sample_test() (the screen box, then bc_covers(),
 // which for such a triangle is three edge functions). No cells, no hull, no lens/time bounds.
 // The exact depth goes to gl_FragDepth (near / w), as on the moving path.
-layout(std430, binding = 1) readonly buffer Infos { TriangleInfo infos[]; };
-layout(std430, binding = 2) buffer Counters { uint tested; uint hit; };
+layout(std430, binding = BC_GL_INFOS_BINDING) readonly buffer Infos { TriangleInfo infos[]; };
+layout(std430, binding = BC_GL_COUNTERS_BINDING) buffer Counters { uint tested; uint hit; };
 PASS_SAMPLE_BUFFERS
 
 flat in int g_index;

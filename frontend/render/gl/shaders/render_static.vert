@@ -2,8 +2,8 @@
 // vertices per triangle (glDrawArrays, GL_TRIANGLES), the one triangle
 // render_setup.comp chose to hold every pixel the triangle's samples can be
 // in. Triangles off screen get a degenerate one.
-layout(std430, binding = 1) readonly buffer Infos { TriangleInfo infos[]; };
-layout(std430, binding = 10) readonly buffer StaticList { uint static_list[]; };
+layout(std430, binding = BC_GL_INFOS_BINDING) readonly buffer Infos { TriangleInfo infos[]; };
+layout(std430, binding = BC_GL_STATIC_LIST_BINDING) readonly buffer StaticList { uint static_list[]; };
 
 flat out int g_index;
 

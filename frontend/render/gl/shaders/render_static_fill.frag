@@ -4,8 +4,8 @@
 // moving triangles are then drawn on top with the GREATER depth test, as
 // after a per-pass static draw.
 GROUP_SAMPLE_BUFFERS
-layout(std430, binding = 14) readonly buffer GroupIds { uint group_ids[]; };
-layout(std430, binding = 15) readonly buffer GroupDepths { uint group_depths[]; };
+layout(std430, binding = BC_GL_GROUP_IDS_BINDING) readonly buffer GroupIds { uint group_ids[]; };
+layout(std430, binding = BC_GL_GROUP_DEPTHS_BINDING) readonly buffer GroupDepths { uint group_depths[]; };
 
 uniform uint group_base;  // the group's first sample
 layout(location = 0) out uint out_id;

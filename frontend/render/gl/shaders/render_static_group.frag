@@ -11,11 +11,11 @@
 // the current holder's key, recomputed (bc_covers() is deterministic): lock-free
 // (a failed swap means another triangle progressed), and the holder only
 // ever improves, so it ends as the nearest, lowest-index triangle.
-layout(std430, binding = 1) readonly buffer Infos { TriangleInfo infos[]; };
-layout(std430, binding = 2) buffer Counters { uint tested; uint hit; };
+layout(std430, binding = BC_GL_INFOS_BINDING) readonly buffer Infos { TriangleInfo infos[]; };
+layout(std430, binding = BC_GL_COUNTERS_BINDING) buffer Counters { uint tested; uint hit; };
 GROUP_SAMPLE_BUFFERS
-layout(std430, binding = 14) buffer GroupIds { uint group_ids[]; };
-layout(std430, binding = 15) buffer GroupDepths { uint group_depths[]; };
+layout(std430, binding = BC_GL_GROUP_IDS_BINDING) buffer GroupIds { uint group_ids[]; };
+layout(std430, binding = BC_GL_GROUP_DEPTHS_BINDING) buffer GroupDepths { uint group_depths[]; };
 
 flat in int g_index;
 
