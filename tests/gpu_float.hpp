@@ -100,13 +100,14 @@ namespace gpu_detail {
 inline bool denormal(float x) { return x != 0.0f && std::fabs(x) < FLT_MIN; }
 
 // M4: a denormal becomes +-0 (either sign) with the configured chance.
-inline float flush(float x) {
-    if (!denormal(x)) return x;
+// The test is inlined, the draw is not (every operation calls this twice).
+[[gnu::noinline]] inline float flush_denormal(float x) {
     GpuArithmetic& a = gpu_arithmetic();
     if (a.flush_chance <= 0.0 || !a.chance(a.flush_chance)) return x;
     ++a.flushes;
     return (a.next() & 1u) ? 0.0f : -0.0f;
 }
+[[gnu::always_inline]] inline float flush(float x) { return denormal(x) ? flush_denormal(x) : x; }
 
 // Floats as ordered integers (monotonic in value, -0 and +0 adjacent), for
 // picking uniformly among consecutive floats.
@@ -193,7 +194,7 @@ struct gpu_float {
         return static_cast<T>(v);
     }
 
-    static gpu_float raw(float x) {
+    [[gnu::always_inline]] static gpu_float raw(float x) {
         gpu_float r;
         r.v = x;
         r.residual = 0.0f;
@@ -207,13 +208,13 @@ struct gpu_float {
     }
     friend gpu_float operator+(gpu_float a) { return a; }
 
-    friend gpu_float operator+(gpu_float a, gpu_float b) { return add(a, b); }
-    friend gpu_float operator-(gpu_float a, gpu_float b) { return add(a, -b); }
-    friend gpu_float operator*(gpu_float a, gpu_float b) {
+    [[gnu::always_inline]] friend gpu_float operator+(gpu_float a, gpu_float b) { return add(a, b); }
+    [[gnu::always_inline]] friend gpu_float operator-(gpu_float a, gpu_float b) { return add(a, -b); }
+    [[gnu::always_inline]] friend gpu_float operator*(gpu_float a, gpu_float b) {
         const float x = gpu_detail::flush(a.v), y = gpu_detail::flush(b.v);
         const float p = x * y;
         gpu_float r = raw(gpu_detail::flush(p));
-        if (gpu_arithmetic().fuse && std::isfinite(p) && r.v == p) {
+        if (fusing() && r.v == p && std::isfinite(p)) {
             r.residual = float(double(x) * double(y) - double(p));  // exact (TwoProduct), barring underflow
         }
         return r;
@@ -235,11 +236,16 @@ struct gpu_float {
 
     // M1 (and the fused mode): a + b correctly rounded, or with a product's
     // residual folded in before the one rounding.
-    static gpu_float add(gpu_float a, gpu_float b) {
-        GpuArithmetic& g = gpu_arithmetic();
+    static bool fusing() { return gpu_arithmetic().fuse; }
+    [[gnu::always_inline]] static gpu_float add(gpu_float a, gpu_float b) {
         const float x = gpu_detail::flush(a.v), y = gpu_detail::flush(b.v);
+        if (a.residual == 0.0f && b.residual == 0.0f) return raw(gpu_detail::flush(x + y));  // residuals: fuse mode only
+        return add_fused(a, b, x, y);
+    }
+    [[gnu::noinline]] static gpu_float add_fused(gpu_float a, gpu_float b, float x, float y) {
+        GpuArithmetic& g = gpu_arithmetic();
         float s;
-        if (g.fuse && (a.residual != 0.0f || b.residual != 0.0f) && x == a.v && y == b.v && g.chance(0.5)) {
+        if (g.fuse && x == a.v && y == b.v && g.chance(0.5)) {
             // One of the two products fused (a GPU fuses one multiply per add).
             const bool first = a.residual != 0.0f && (b.residual == 0.0f || (g.next() & 1u));
             const long double exact = (long double)x + (long double)y + (first ? a.residual : b.residual);
