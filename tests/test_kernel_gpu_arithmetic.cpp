@@ -357,10 +357,14 @@ Tally run_stress_family(Stress stress, int configs, std::uint64_t seed) {
 // Stress families beyond the range docs/kernel.md promises (|x|, |c| up to
 // 1e6, w from 1e-7) where the model finds false culls: one_huge (a vertex w
 // near FLT_MAX: a GPU's division by |w| > 2^126 may give 0, M2, so the
-// screen and stratum boxes lose that vertex) and tiny_w_lens (w of 1e-30 or
-// denormal, flushed to 0 by M4). Run and reported by the "known false culls"
-// case below, which may fail (docs/kernel.md, "Under the GPU arithmetic model").
-bool known_failing(Stress s) { return s == Stress::one_huge || s == Stress::tiny_w_lens; }
+// screen and stratum boxes lose that vertex), tiny_w and tiny_w_lens (w of
+// 1e-30 or denormal, flushed to 0 by M4: stratum boxes) and tiny_w_sweep (w
+// down to 1e-25: covers' products underflow, and a flushed one puts a depth
+// below its floor). Run and reported by the "known false culls" case below,
+// which may fail (docs/kernel.md, "Under the GPU arithmetic model").
+bool known_failing(Stress s) {
+    return s == Stress::one_huge || s == Stress::tiny_w || s == Stress::tiny_w_lens || s == Stress::tiny_w_sweep;
+}
 
 std::uint64_t family_seed(Family f) { return 0x69707500 + std::uint64_t(f); }
 std::uint64_t stress_seed(Stress s) { return 0x69707600 + std::uint64_t(s); }
@@ -413,7 +417,7 @@ TEST_CASE("gpu arithmetic: the stress families") {
 
 // Known false culls under the model beyond the documented range (issue 22,
 // open): run, printed, asserted, allowed to fail.
-TEST_CASE("gpu arithmetic: known false culls beyond the documented range (w > 2^126, denormal w)" *
+TEST_CASE("gpu arithmetic: known false culls beyond the documented range (w > 2^126, w < 1e-25)" *
           doctest::may_fail()) {
     const int configs = std::max(50, int(4000 * property_scale()));
     for (Stress stress : all_stress) {
@@ -430,7 +434,7 @@ TEST_CASE("gpu arithmetic: known false culls beyond the documented range (w > 2^
 TEST_CASE("gpu arithmetic: the fuzz seed corpus") {
     const std::string dir = std::string(BLURCULL_SOURCE_DIR) + "/fuzz/corpus/kernel/";
     const char* names[] = {"both_near", "defocus", "motion", "regression-near-plane-rounding"};
-    const int extra = std::max(2000, int(400000 * property_scale()));
+    const int extra = std::max(2000, int(100000 * property_scale()));
     Tally total;
     std::uint64_t seed = 0x69707700;
     for (const char* name : names) {
@@ -501,7 +505,7 @@ TEST_CASE("gpu arithmetic: the fuzz seed corpus") {
 // into the + or - that consumes it, at random): outside the model, so only
 // reported. The property families at a tenth of their count.
 TEST_CASE("gpu arithmetic: fused multiply-add (outside the model: reported, not asserted)") {
-    const std::uint64_t target = std::uint64_t(1e6 * property_scale());
+    const std::uint64_t target = std::uint64_t(1e5 * property_scale());
     Tally total;
     for (Family family : all_families()) total.add(run_property_family(family, target, family_seed(family) + 0x100, true));
     print_row("fused", "ALL", total, 0.0);
