@@ -138,9 +138,13 @@ BC_FN void bc_build_hull(BC_IN(MovingTriangle) tri, real near, BC_INOUT(ScreenBo
     }
     // Turns of points beyond sqrt(huge) / 4 can overflow to NaN, which pops
     // nothing and would overrun hull[]: the box alone bounds such triangles.
-    real extent = real(0);
-    for (int j = 0; j < n; ++j) extent = max(extent, max(abs(pts[j].x), abs(pts[j].y)));
-    if (!(extent <= real(0.25) * sqrt(bc_huge()))) return;
+    // Each point is tested itself (max() would drop a NaN): a GPU may flush a
+    // denormal w to 0 in the division after the comparison above kept it
+    // (docs/glsl.md, M4), making 0 / 0.
+    real limit = real(0.25) * sqrt(bc_huge());
+    for (int j = 0; j < n; ++j) {
+        if (!(abs(pts[j].x) <= limit) || !(abs(pts[j].y) <= limit)) return;
+    }
     vec2 hull[BC_HULL_MAX + 1];
     int h = 0;
     for (int j = 0; j < n; ++j) {  // lower chain
@@ -157,6 +161,9 @@ BC_FN void bc_build_hull(BC_IN(MovingTriangle) tri, real near, BC_INOUT(ScreenBo
             if (!(bc_turn(hull[h - 2], hull[h - 1], pts[j]) <= real(0))) break;
             h = h - 1;
         }
+        // Exact turns keep h <= n + 1; turns a GPU rounds inconsistently
+        // (a denormal flushed in one and kept in another) need not: the box alone.
+        if (h > BC_HULL_MAX) return;
         hull[h] = pts[j];
         h = h + 1;
     }
