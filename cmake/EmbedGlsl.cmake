@@ -49,20 +49,62 @@ endfunction()
 # value does not reach a `precise` l-value. The bodies are rewritten line by
 # line (comments and preprocessor lines untouched):
 #  - every declaration of a real/vecN/matN/bool/int/uint/ivecN/uvecN or of a
-#    struct the bodies define (locals and function return types; not by-value
-#    parameters, where it has no effect) gains `precise`, so every assignment
-#    to a local, a struct member of one, an array element or a `return` is
-#    evaluated as written;
+#    struct the bodies define (locals; not by-value parameters, where it has no
+#    effect) gains `precise`, so every assignment to a local, a struct member
+#    of one or an array element is evaluated as written;
 #  - `if (` and `while (` become `if (bc_cond = ` and `while (bc_cond = `, and
 #    a `for` loop's condition `bc_cond = <condition>`: bc_cond is a global
 #    `precise bool` of the prelude, so a condition's arithmetic (whose value
 #    otherwise reaches no l-value) is precise too; the value tested is the
 #    condition's own (assignment has the lowest precedence but the comma's);
+#  - `return <value>;` becomes `{ precise <type> bc_ret = <value>; return
+#    bc_ret; }` (Mesa rejects `precise` on a function's return type, and
+#    glslang does not look into a return's expression), the closing part after
+#    the `;` that ends the value, on whichever line (line numbers stay);
 #  - out and inout parameters are precise through BC_OUT / BC_INOUT (prelude);
 #  - dot( and cross( become bc_dot( and bc_cross( (prelude): GLSL's built-ins
 #    may fuse their products and sums (and glslang puts no NoContraction on
 #    OpDot), the prelude's spell out GLM's order, precise.
 # The build then proves the coverage on the SPIR-V (check_precise.cmake).
+# One line's code of blurcull_make_precise: `return <value>;` of a function
+# returning <type> becomes `{ precise <type> bc_ret = <value>; return bc_ret; }`,
+# the value possibly continuing on later lines (open: a value not ended yet).
+function(blurcull_precise_returns code type open_var out)
+  set(open ${${open_var}})
+  set(result "")
+  set(rest "${code}")
+  while(TRUE)
+    if(open)
+      string(FIND "${rest}" "@S@" at)
+      if(at LESS 0)
+        break()
+      endif()
+      math(EXPR after "${at} + 3")
+      string(SUBSTRING "${rest}" 0 ${at} head)
+      string(SUBSTRING "${rest}" ${after} -1 rest)
+      string(APPEND result "${head}@S@ return bc_ret@S@ }")
+      set(open FALSE)
+    else()
+      string(REGEX MATCH "(^|[^A-Za-z0-9_])return[ \t]+[^@ \t]" found "${rest}")
+      if(found STREQUAL "")
+        break()
+      endif()
+      string(FIND "${rest}" "${found}" at)
+      string(REGEX REPLACE "[^@ \t]$" "" found_head "${found}")
+      string(LENGTH "${found_head}" found_length)
+      math(EXPR after "${at} + ${found_length}")
+      string(SUBSTRING "${rest}" 0 ${at} head)
+      string(SUBSTRING "${rest}" ${after} -1 rest)
+      string(REGEX REPLACE "return[ \t]+$" "" found_head "${found_head}")
+      string(APPEND result "${head}${found_head}{ precise ${type} bc_ret = ")
+      set(open TRUE)
+    endif()
+  endwhile()
+  string(APPEND result "${rest}")
+  set(${open_var} ${open} PARENT_SCOPE)
+  set(${out} "${result}" PARENT_SCOPE)
+endfunction()
+
 function(blurcull_make_precise text structs out)
   # Protect what CMake's lists would split or group on.
   string(REPLACE "@" "@A@" text "${text}")
@@ -77,6 +119,8 @@ function(blurcull_make_precise text structs out)
   string(REGEX MATCHALL "[^\n]*\n" lines "${text}")
   set(result "")
   set(in_struct FALSE)
+  set(return_type void)
+  set(open_return FALSE)
   set(continued FALSE)
   set(was_continued FALSE)
   foreach(line IN LISTS lines)
@@ -92,17 +136,23 @@ function(blurcull_make_precise text structs out)
       string(REGEX REPLACE "\n$" "" code "${line}")
       set(comment "\n")
     endif()
-    if(code MATCHES "^[ \t]*struct[ \t]")
-      set(in_struct TRUE)
+    if(code MATCHES "^[ \t]*struct[ \t]+([A-Za-z_][A-Za-z_0-9]*)")
+      set(in_struct "${CMAKE_MATCH_1}")
     elseif(in_struct)
       if(code MATCHES "^[ \t]*}")
         set(in_struct FALSE)
       endif()
     else()
+      if(code MATCHES "^[ \t]*BC_FN[ \t]+([A-Za-z_][A-Za-z_0-9]*)[ \t]+[A-Za-z_]")
+        set(return_type "${CMAKE_MATCH_1}")
+      endif()
+      if(NOT return_type STREQUAL "void")
+        blurcull_precise_returns("${code}" "${return_type}" open_return code)
+      endif()
       # A declaration starts a line (not one continuing a parameter list), follows
       # `{`, `;`, `for (`, BC_FN (a return type) or BC_PRECISE; parameters get
       # no `precise` (it would change nothing and draws a warning).
-      set(start "[;{][ \t]*|BC_FN[ \t]+|BC_PRECISE[ \t]+|for[ \t]*\\([ \t]*")
+      set(start "[;{][ \t]*|BC_PRECISE[ \t]+|for[ \t]*\\([ \t]*")
       if(NOT continued)
         string(APPEND start "|^[ \t]*")
       endif()

@@ -24,10 +24,17 @@ precise bool bc_cond;
 // The bodies' dot() and cross(), renamed by the emission: GLM's operation
 // order (glm/detail/func_geometric.inl), each product and sum rounded as on
 // the host, where GLSL's built-ins may fuse them.
-precise float bc_dot(vec2 a, vec2 b) { return a.x * b.x + a.y * b.y; }
-precise float bc_dot(vec3 a, vec3 b) { return (a.x * b.x + a.y * b.y) + a.z * b.z; }
-precise vec3 bc_cross(vec3 a, vec3 b) {
-    return vec3(a.y * b.z - b.y * a.z, a.z * b.x - b.z * a.x, a.x * b.y - b.x * a.y);
+float bc_dot(vec2 a, vec2 b) {
+    precise float d = a.x * b.x + a.y * b.y;
+    return d;
+}
+float bc_dot(vec3 a, vec3 b) {
+    precise float d = (a.x * b.x + a.y * b.y) + a.z * b.z;
+    return d;
+}
+vec3 bc_cross(vec3 a, vec3 b) {
+    precise vec3 c = vec3(a.y * b.z - b.y * a.z, a.z * b.x - b.z * a.x, a.x * b.y - b.x * a.y);
+    return c;
 }
 
 // Public names (docs/glsl.md, "Names"): every public function of the shared
