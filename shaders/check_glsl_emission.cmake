@@ -8,6 +8,10 @@
 #     used under its GLSL name.
 #  3. With one definition renamed away (as if deleted from the header), the
 #     check shader fails glslangValidator: the build would break.
+#  4. The emission made the bodies precise, and check_precise.cmake notices
+#     when it did not: with `precise` taken off one declaration (in the
+#     prelude's bc_dot) and off the bodies' `if (bc_cond = ...)` conditions, it
+#     fails.
 cmake_minimum_required(VERSION 3.16)
 
 file(READ "${KERNEL_GLSL}" glsl)
@@ -57,7 +61,7 @@ message(STATUS "${function_count} BC_FN functions, all in the GLSL; ${public_cou
 
 # 3. Delete `covers` (rename its definition, which the prelude's macro then no
 #    longer turns into bc_covers) and expect glslangValidator to fail.
-string(REGEX REPLACE "BC_FN[ \t]+bool[ \t]+covers[ \t]*\\(" "BC_FN bool covers_deleted(" broken "${check}")
+string(REGEX REPLACE "BC_FN[ \t]+(precise[ \t]+)?bool[ \t]+covers[ \t]*\\(" "BC_FN bool covers_deleted(" broken "${check}")
 if(broken STREQUAL check)
   message(FATAL_ERROR "could not find the definition of covers in ${CHECK_GLSL}")
 endif()
@@ -69,3 +73,30 @@ if(result EQUAL 0)
   message(FATAL_ERROR "glslangValidator accepted the check shader without covers():\n${output}")
 endif()
 message(STATUS "without covers() glslangValidator fails as it should")
+
+# 4. Every declaration precise: the emitted bodies declare with `precise`, and
+#    the SPIR-V check fails on a library where some value is not.
+string(REGEX MATCHALL "[ \t(]precise[ \t]+(real|float|vec[234]|bool)[ \t]" precise_declarations "${glsl}")
+list(LENGTH precise_declarations precise_count)
+if(precise_count LESS 500)
+  message(FATAL_ERROR "only ${precise_count} precise declarations in ${KERNEL_GLSL}: the emission no longer makes the bodies precise")
+endif()
+string(REPLACE "precise float d = a.x * b.x + a.y * b.y;" "float d = a.x * b.x + a.y * b.y;" imprecise "${check}")
+string(REPLACE "(bc_cond = " "(" imprecise "${imprecise}")
+if(imprecise STREQUAL check)
+  message(FATAL_ERROR "could not find bc_dot or the precise conditions in ${CHECK_GLSL}")
+endif()
+file(WRITE "${WORK_DIR}/imprecise.comp" "${imprecise}")
+execute_process(COMMAND "${CMAKE_COMMAND}" -DVALIDATOR=${VALIDATOR} -DSOURCE=${WORK_DIR}/imprecise.comp
+                        -DSPIRV=${WORK_DIR}/imprecise.spv -DDISASSEMBLY=${WORK_DIR}/imprecise.spv.txt
+                        -DREPORT=${WORK_DIR}/imprecise.txt -P "${CHECK_PRECISE}"
+                RESULT_VARIABLE result OUTPUT_VARIABLE output ERROR_VARIABLE output)
+if(result EQUAL 0)
+  message(FATAL_ERROR "check_precise.cmake accepted a library with imprecise dot products and conditions:\n${output}")
+endif()
+file(READ "${WORK_DIR}/imprecise.txt" report)
+string(REGEX MATCH "^[^\n]*" report_line "${report}")
+if(NOT report MATCHES "bc_dot: OpF")
+  message(FATAL_ERROR "check_precise.cmake failed without naming bc_dot:\n${report}")
+endif()
+message(STATUS "${precise_count} precise declarations; without some, check_precise fails as it should: ${report_line}")

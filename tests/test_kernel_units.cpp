@@ -6,7 +6,12 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
 #include <limits>
+#include <random>
 #include <set>
 
 using namespace blurcull;
@@ -287,4 +292,141 @@ TEST_CASE_TEMPLATE("footprint screen state and time range agree with the per-sam
     MESSAGE(checked, " samples; footprints inside ", inside, ", outside ", outside);
     CHECK(inside > 100);
     CHECK(outside > 100);
+}
+
+// ---- the sampler's own arithmetic (sampling_body.inl; docs/glsl.md, "The GPU
+// arithmetic model"): + - * and exact operations only, so that every GPU draws
+// the host's samples. These pin its accuracy against the C++ library.
+namespace {
+
+using Kf = kernel<float>;
+using Pf = patterns<float>;
+
+std::int64_t float_order(float f) {
+    std::int32_t i = 0;
+    std::memcpy(&i, &f, sizeof i);
+    return i < 0 ? -std::int64_t(i & 0x7fffffff) : std::int64_t(i);
+}
+
+std::int64_t ulps_apart(float a, float b) { return std::llabs(float_order(a) - float_order(b)); }
+
+float float_of_bits(std::uint32_t bits) {
+    float f = 0.0f;
+    std::memcpy(&f, &bits, sizeof f);
+    return f;
+}
+
+}  // namespace
+
+TEST_CASE("sampler arithmetic: bc_div is correctly rounded") {
+    std::mt19937 rng(20261204u);
+    std::uniform_real_distribution<float> unit(0.5f, 1.0f);
+    long inputs = 0, wrong = 0;
+    const auto check = [&](float a, float b) {
+        ++inputs;
+        if (Kf::bc_div(a, b) != a / b) {
+            if (++wrong <= 5) MESSAGE("bc_div(" << a << ", " << b << ") = " << Kf::bc_div(a, b) << ", a / b = " << a / b);
+        }
+    };
+    // Random signs and exponents over 2^-40 .. 2^40.
+    for (int i = 0; i < 1000000; ++i) {
+        const float a = std::ldexp(unit(rng), int(rng() % 80u) - 40) * (rng() & 1u ? 1.0f : -1.0f);
+        const float b = std::ldexp(unit(rng), int(rng() % 80u) - 40) * (rng() & 1u ? 1.0f : -1.0f);
+        check(a, b);
+    }
+    // The sampler's quotients: lens ratios of 2^-12 grids, strata (c + u) / n, 1 / base.
+    for (int ky = -4096; ky <= 4096; ky += 5)
+        for (int kx = 1; kx <= 4096; kx += 11) check(float(ky) * 0x1p-12f, float(kx) * 0x1p-12f);
+    for (unsigned n = 1; n <= 16; ++n)
+        for (unsigned u = 0; u < (1u << 24); u += 4099u) check(float(7u % n) + float(u) * 0x1p-24f, float(n));
+    for (unsigned base = 2; base < 64; ++base) check(1.0f, float(base));
+    check(0.0f, 3.0f);
+    check(2.0f * 1023.0f, 1024.0f);
+    MESSAGE("bc_div: " << inputs << " quotients, " << wrong << " not correctly rounded");
+    CHECK(wrong == 0);
+    CHECK(std::signbit(Kf::bc_div(-0.0f, 3.0f)) == std::signbit(-0.0f / 3.0f));
+    // double: within one ulp (the tests of the float path are the exact claim).
+    for (int i = 0; i < 100000; ++i) {
+        const double a = std::ldexp(double(unit(rng)) + 1e-9 * double(i % 97), int(rng() % 80u) - 40);
+        const double b = std::ldexp(double(unit(rng)), int(rng() % 80u) - 40);
+        REQUIRE(std::fabs(Kd::bc_div(a, b) - a / b) <= std::fabs(a / b) * 2.3e-16);
+    }
+}
+
+TEST_CASE("sampler arithmetic: bc_sqrt is correctly rounded") {
+    long inputs = 0, wrong = 0;
+    const auto check = [&](float x) {
+        ++inputs;
+        if (Kf::bc_sqrt(x) != std::sqrt(x)) {
+            if (++wrong <= 5) MESSAGE("bc_sqrt(" << x << ") = " << Kf::bc_sqrt(x) << ", std::sqrt = " << std::sqrt(x));
+        }
+    };
+    // Every float of [0.25, 4) (both parities of the exponent, every significand),
+    // a stride over the whole normal range, and the edges.
+    for (std::uint32_t bits = 0x3e800000u; bits < 0x40800000u; bits += 3u) check(float_of_bits(bits));
+    for (std::uint32_t bits = 0x00800000u; bits < 0x7f800000u; bits += 997u) check(float_of_bits(bits));
+    for (float x : {1.0f, 4.0f, 0.25f, 2.0f, 0.5f, std::numeric_limits<float>::min(), std::numeric_limits<float>::max(),
+                    1.0f - std::numeric_limits<float>::epsilon(), 1.0f + std::numeric_limits<float>::epsilon()})
+        check(x);
+    MESSAGE("bc_sqrt: " << inputs << " inputs, " << wrong << " not correctly rounded");
+    CHECK(wrong == 0);
+    CHECK(Kf::bc_sqrt(0.0f) == 0.0f);
+    CHECK(Kf::bc_sqrt(-1.0f) == 0.0f);  // documented: 0 for x <= 0
+    for (double x : {2.0, 0.3, 1e-30, 7e40})
+        CHECK(std::fabs(Kd::bc_sqrt(x) - std::sqrt(x)) <= std::sqrt(x) * 2.3e-16);
+}
+
+TEST_CASE("sampler arithmetic: the quarter-circle cos/sin within 2 ulp, never above 1") {
+    std::int64_t worst_cos = 0, worst_sin = 0;
+    for (int i = -(1 << 18); i <= (1 << 18); ++i) {
+        const float t = float(i) * 0x1p-18f;
+        const Kf::vec2 cs = Kf::bc_cos_sin_quarter_pi(t);
+        const double angle = double(t) * 0.78539816339744830961566;
+        worst_cos = std::max(worst_cos, ulps_apart(cs.x, float(std::cos(angle))));
+        worst_sin = std::max(worst_sin, ulps_apart(cs.y, float(std::sin(angle))));
+        REQUIRE(std::fabs(cs.x) <= 1.0f);
+        REQUIRE(std::fabs(cs.y) <= 1.0f);
+    }
+    MESSAGE("cos: " << worst_cos << " ulp, sin: " << worst_sin << " ulp from the correctly rounded values");
+    CHECK(worst_cos <= 2);
+    CHECK(worst_sin <= 2);
+    CHECK(Kf::bc_cos_sin_quarter_pi(0.0f) == Kf::vec2(1.0f, 0.0f));
+    // double: its own series, to a few ulp.
+    for (double t : {-1.0, -0.3, 0.1, 0.5, 1.0}) {
+        CHECK(std::fabs(Kd::bc_cos_sin_quarter_pi(t).x - std::cos(t * 0.78539816339744830961566)) <= 1e-15);
+        CHECK(std::fabs(Kd::bc_cos_sin_quarter_pi(t).y - std::sin(t * 0.78539816339744830961566)) <= 1e-15);
+    }
+}
+
+TEST_CASE("sampler arithmetic: the concentric map stays in the unit disk and near the cos/sin one") {
+    std::mt19937 rng(7u);
+    double worst = 0.0;
+    for (int i = 0; i < 200000; ++i) {
+        const Kf::vec2 q(float(rng() >> 8) * 0x1p-24f, float(rng() >> 8) * 0x1p-24f);
+        const Kf::vec2 d = Kf::bc_square_to_disk(q);
+        REQUIRE(double(d.x) * double(d.x) + double(d.y) * double(d.y) <= 1.0 + 1e-6);
+        REQUIRE(std::fabs(d.x) <= 1.0f);
+        REQUIRE(std::fabs(d.y) <= 1.0f);
+        // Shirley and Chiu's map in double.
+        const double ax = 2.0 * double(q.x) - 1.0, ay = 2.0 * double(q.y) - 1.0;
+        double x = 0.0, y = 0.0;
+        if (std::fabs(ax) > std::fabs(ay)) {
+            x = ax * std::cos(0.78539816339744830961566 * ay / ax);
+            y = ax * std::sin(0.78539816339744830961566 * ay / ax);
+        } else if (ay != 0.0) {
+            x = ay * std::sin(0.78539816339744830961566 * ax / ay);
+            y = ay * std::cos(0.78539816339744830961566 * ax / ay);
+        }
+        worst = std::max({worst, std::fabs(double(d.x) - x), std::fabs(double(d.y) - y)});
+    }
+    MESSAGE("concentric map: at most " << worst << " from the exact map");
+    CHECK(worst <= 3e-7);
+    // The polar map of the interleaved tuples: radius and angle as promised.
+    for (int k = 0; k < 4000; ++k) {
+        const float r2 = float(k % 97) / 97.0f, turn = float(k) / 4000.0f;
+        const Kf::vec2 d = Pf::bc_polar_disk(r2, turn);
+        const double angle = 6.283185307179586 * double(turn);
+        REQUIRE(std::fabs(double(d.x) - std::sqrt(double(r2)) * std::cos(angle)) <= 3e-7);
+        REQUIRE(std::fabs(double(d.y) - std::sqrt(double(r2)) * std::sin(angle)) <= 3e-7);
+    }
 }

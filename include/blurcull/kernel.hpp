@@ -435,6 +435,10 @@
 
 #include "detail/dialect.hpp"
 
+#include <cmath>
+#include <cstring>
+#include <type_traits>
+
 namespace blurcull {
 
 // The bodies become static members of a class template whose member types play
@@ -463,6 +467,36 @@ struct kernel {
     template <class X> static X ceil(X a) { return glm::ceil(a); }
     template <class X> static X cos(X a) { return glm::cos(a); }
     template <class X> static X sin(X a) { return glm::sin(a); }
+    // GLSL's frexp(x, out e) and ldexp(x, e): exact (the sampler's bc_div and
+    // bc_sqrt scale by them). Normal floats take a path on their bits (the
+    // sampler runs them several times per sample; <cmath>'s are calls),
+    // with the same results as std::frexp and std::ldexp.
+    static real frexp(real x, int& e) {
+        if constexpr (std::is_same_v<Real, float>) {
+            std::uint32_t bits = 0;
+            std::memcpy(&bits, &x, sizeof bits);
+            const std::uint32_t biased = (bits >> 23) & 0xffu;
+            if (biased != 0u && biased != 0xffu) {
+                e = int(biased) - 126;
+                bits = (bits & 0x807fffffu) | (126u << 23);
+                std::memcpy(&x, &bits, sizeof bits);
+                return x;
+            }
+        }
+        return std::frexp(x, &e);
+    }
+    static real ldexp(real x, int e) {
+        if constexpr (std::is_same_v<Real, float>) {
+            if (e >= -126 && e <= 127) {
+                // x 2^e rounded once, as std::ldexp rounds it (exact unless it underflows).
+                const std::uint32_t bits = std::uint32_t(e + 127) << 23;
+                float scale = 0.0f;
+                std::memcpy(&scale, &bits, sizeof scale);
+                return x * scale;
+            }
+        }
+        return std::ldexp(x, e);
+    }
     static bool isnan(real a) { return a != a; }
     static bool isinf(real a) { return a == std::numeric_limits<real>::infinity() || a == -std::numeric_limits<real>::infinity(); }
     static real dot(vec2 a, vec2 b) { return glm::dot(a, b); }

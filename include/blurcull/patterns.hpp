@@ -30,12 +30,16 @@ struct patterns : kernel<Real> {
     using PixelSample = typename base::PixelSample;
     using PixelSampleSetup = typename base::PixelSampleSetup;
     using base::abs;
+    using base::bc_cos_sin_quarter_pi;
+    using base::bc_div;
+    using base::bc_sqrt;
     using base::bc_epsilon;
     using base::bc_hash;
     using base::bc_hash3;
     using base::bc_square_to_disk;
     using base::bc_unit;
     using base::clamp;
+    using base::floor;
     using base::cos;
     using base::max;
     using base::min;

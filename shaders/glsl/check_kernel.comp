@@ -97,8 +97,8 @@ void main() {
     PixelSample from_setup = bc_pixel_sample_from(setup, 3u);
     PixelSample patterned = bc_pattern_sample(pattern, px, py, 3u, 16u, 7u);
     PixelSample tiled = bc_pattern_sample_tiled(pattern, px, py, 3u, 16u, 7u, 2u);
-    SamplerSetup sampler = bc_sampler_setup(pattern, px, py, 16u, 7u);
-    PixelSample sampled = bc_sampler_sample(sampler, 3u);
+    SamplerSetup pattern_setup = bc_sampler_setup(pattern, px, py, 16u, 7u);
+    PixelSample sampled = bc_sampler_sample(pattern_setup, 3u);
     PixelSample others[4] = PixelSample[4](bc_pattern_random(px, py, 1u, 7u), bc_pattern_jittered(px, py, 1u, 16u, 7u),
                                            bc_pattern_sobol(px, py, 1u, 4u, 7u), bc_interval_sample(px, py, 1u, 4u, 7u));
     vec3 tuple = bc_interleaved_tuple(px);

@@ -7,12 +7,35 @@
 #define real float
 
 // Function definitions and parameter passing (C++: static inline, const T&, T&, T&).
+// Out and inout parameters are `precise`, so what a function writes into
+// them is evaluated as written (docs/glsl.md, "The GPU arithmetic model").
 #define BC_FN
 #define BC_IN(T) in T
-#define BC_OUT(T) out T
-#define BC_INOUT(T) inout T
-// No reassociation or fusion of the initialising expression.
-#define BC_PRECISE precise
+#define BC_OUT(T) precise out T
+#define BC_INOUT(T) precise inout T
+// Nothing: the build (cmake/EmbedGlsl.cmake) makes every declaration of the
+// bodies `precise`, so no compound expression is reassociated or fused, not
+// only the ones the bodies mark BC_PRECISE (which C++ ignores likewise).
+#define BC_PRECISE
+// The emitted bodies test `if (bc_cond = <condition>)` (EmbedGlsl.cmake), so
+// that a condition's arithmetic, which reaches no variable of its own, is
+// precise too. Written, never read.
+precise bool bc_cond;
+// The bodies' dot() and cross(), renamed by the emission: GLM's operation
+// order (glm/detail/func_geometric.inl), each product and sum rounded as on
+// the host, where GLSL's built-ins may fuse them.
+float bc_dot(vec2 a, vec2 b) {
+    precise float d = a.x * b.x + a.y * b.y;
+    return d;
+}
+float bc_dot(vec3 a, vec3 b) {
+    precise float d = (a.x * b.x + a.y * b.y) + a.z * b.z;
+    return d;
+}
+vec3 bc_cross(vec3 a, vec3 b) {
+    precise vec3 c = vec3(a.y * b.z - b.y * a.z, a.z * b.x - b.z * a.x, a.x * b.y - b.x * a.y);
+    return c;
+}
 
 // Public names (docs/glsl.md, "Names"): every public function of the shared
 // text is bc_<name> in GLSL, while its C++ member of kernel<Real> keeps <name>

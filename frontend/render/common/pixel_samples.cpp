@@ -99,8 +99,95 @@ struct Lanes8 {
     }
 };
 
+// bc_lens_of (kernel's bc_square_to_disk with bc_div and
+// bc_cos_sin_quarter_pi, sampling_body.inl) on eight lanes: the same float
+// operations in the same order, no FMA, so every lane equals the scalar
+// result bit for bit (the test of pixel_samples compares them). The scalar
+// form's latency chain (frexp, Newton steps, the exact residual, two
+// polynomials) costs more than the cos/sin it replaced; eight lanes at once
+// keep the sampler's time.
+// One Horner step c + t2 acc.
+__attribute__((target("avx2"))) inline __m256 step(__m256 acc, __m256 t2, float c) {
+    return _mm256_add_ps(_mm256_set1_ps(c), _mm256_mul_ps(t2, acc));
+}
+
+__attribute__((target("avx2"))) void lens8(const float* u, const float* v, kernelf::PixelSample* out) {
+    const __m256 one = _mm256_set1_ps(1.0f);
+    const __m256 two = _mm256_set1_ps(2.0f);
+    const __m256 magnitude = _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff));
+    const __m256 sign = _mm256_castsi256_ps(_mm256_set1_epi32(static_cast<int>(0x80000000u)));
+    const __m256 ax = _mm256_sub_ps(_mm256_mul_ps(two, _mm256_loadu_ps(u)), one);
+    const __m256 ay = _mm256_sub_ps(_mm256_mul_ps(two, _mm256_loadu_ps(v)), one);
+    // abs(a.x) > abs(a.y): r = a.x, ratio a.y / a.x; else r = a.y, ratio a.x / a.y.
+    const __m256 x_sector = _mm256_cmp_ps(_mm256_and_ps(ax, magnitude), _mm256_and_ps(ay, magnitude), _CMP_GT_OQ);
+    const __m256 num = _mm256_blendv_ps(ax, ay, x_sector);
+    const __m256 den = _mm256_blendv_ps(ay, ax, x_sector);
+    // bc_div(num, den); den is a nonzero multiple of 2^-23 in [-1, 1] (normal)
+    // wherever the result is used: frexp and ldexp on the bits.
+    const __m256i bits = _mm256_castps_si256(den);
+    const __m256i biased = _mm256_and_si256(_mm256_srli_epi32(bits, 23), _mm256_set1_epi32(0xff));
+    const __m256 m = _mm256_castsi256_ps(_mm256_or_si256(_mm256_and_si256(bits, _mm256_set1_epi32(static_cast<int>(0x807fffffu))),
+                                                          _mm256_set1_epi32(126 << 23)));
+    // 2^-e with e = biased - 126: exponent field 127 - e = 253 - biased.
+    const __m256 scale = _mm256_castsi256_ps(_mm256_slli_epi32(_mm256_sub_epi32(_mm256_set1_epi32(253), biased), 23));
+    const __m256 n = _mm256_mul_ps(num, scale);
+    const __m256 am = _mm256_and_ps(m, magnitude);
+    __m256 y = _mm256_sub_ps(_mm256_set1_ps(2.8235294818878173828125f),
+                             _mm256_mul_ps(_mm256_set1_ps(1.88235294818878173828125f), am));
+    for (int k = 0; k < 3; ++k) y = _mm256_add_ps(y, _mm256_mul_ps(y, _mm256_sub_ps(one, _mm256_mul_ps(am, y))));
+    y = _mm256_xor_ps(y, _mm256_and_ps(m, sign));  // m < 0: -y
+    const __m256 q = _mm256_mul_ps(n, y);
+    // bc_two_product(q, m) with Veltkamp's split (factor 4097).
+    const __m256 p = _mm256_mul_ps(q, m);
+    const __m256 factor = _mm256_set1_ps(4097.0f);
+    const __m256 cq = _mm256_mul_ps(factor, q);
+    const __m256 q_hi = _mm256_sub_ps(cq, _mm256_sub_ps(cq, q));
+    const __m256 q_lo = _mm256_sub_ps(q, q_hi);
+    const __m256 cm = _mm256_mul_ps(factor, m);
+    const __m256 m_hi = _mm256_sub_ps(cm, _mm256_sub_ps(cm, m));
+    const __m256 m_lo = _mm256_sub_ps(m, m_hi);
+    __m256 err = _mm256_sub_ps(_mm256_mul_ps(q_hi, m_hi), p);
+    err = _mm256_add_ps(err, _mm256_mul_ps(q_hi, m_lo));
+    err = _mm256_add_ps(err, _mm256_mul_ps(q_lo, m_hi));
+    err = _mm256_add_ps(err, _mm256_mul_ps(q_lo, m_lo));
+    const __m256 r = _mm256_sub_ps(_mm256_sub_ps(n, p), err);
+    __m256 t = _mm256_blendv_ps(_mm256_add_ps(q, _mm256_mul_ps(r, y)), q, _mm256_cmp_ps(r, _mm256_setzero_ps(), _CMP_EQ_OQ));
+    // A power of two: 2 n, -2 n.
+    t = _mm256_blendv_ps(t, _mm256_mul_ps(two, n), _mm256_cmp_ps(m, _mm256_set1_ps(0.5f), _CMP_EQ_OQ));
+    t = _mm256_blendv_ps(t, _mm256_mul_ps(_mm256_set1_ps(-2.0f), n), _mm256_cmp_ps(m, _mm256_set1_ps(-0.5f), _CMP_EQ_OQ));
+    // bc_cos_sin_quarter_pi(t), float's series.
+    const __m256 t2 = _mm256_mul_ps(t, t);
+    __m256 c = _mm256_set1_ps(-0.0000000246113689428284487803466618061065673828125f);
+    c = step(c, t2, 0.000003590860387703287415206432342529296875f);
+    c = step(c, t2, -0.000325991888530552387237548828125f);
+    c = step(c, t2, 0.01585434377193450927734375f);
+    c = step(c, t2, -0.308425128459930419921875f);
+    c = step(c, t2, 1.0f);
+    __m256 sn = _mm256_set1_ps(0.00000031336168149209697730839252471923828125f);
+    sn = step(sn, t2, -0.0000365762025467120110988616943359375f);
+    sn = step(sn, t2, 0.00249039451591670513153076171875f);
+    sn = step(sn, t2, -0.080745510756969451904296875f);
+    sn = step(sn, t2, 0.785398185253143310546875f);
+    sn = _mm256_mul_ps(t, sn);
+    // (r cos, r sin) around the x axis, (r sin, r cos) around the y axis; 0 at the centre.
+    __m256 lx = _mm256_mul_ps(den, _mm256_blendv_ps(sn, c, x_sector));
+    __m256 ly = _mm256_mul_ps(den, _mm256_blendv_ps(c, sn, x_sector));
+    const __m256 centre = _mm256_and_ps(_mm256_cmp_ps(ax, _mm256_setzero_ps(), _CMP_EQ_OQ),
+                                        _mm256_cmp_ps(ay, _mm256_setzero_ps(), _CMP_EQ_OQ));
+    lx = _mm256_andnot_ps(centre, lx);
+    ly = _mm256_andnot_ps(centre, ly);
+    // bc_lens_of's clamp to [-1, 1].
+    const __m256 minus_one = _mm256_set1_ps(-1.0f);
+    lx = _mm256_min_ps(_mm256_max_ps(lx, minus_one), one);
+    ly = _mm256_min_ps(_mm256_max_ps(ly, minus_one), one);
+    alignas(32) float xs[8], ys[8];
+    _mm256_store_ps(xs, lx);
+    _mm256_store_ps(ys, ly);
+    for (int i = 0; i < 8; ++i) out[i].lens = glm::vec2(xs[i], ys[i]);
+}
+
 // Eight samples of a Sobol pattern from index `first`: the coordinates on
-// eight lanes, then the kernel's own lens mapping per sample.
+// eight lanes, then the kernel's own lens mapping, on eight lanes too.
 __attribute__((target("avx2"))) void sobol8(const P::SamplerSetup& setup, std::uint32_t first,
                                             kernelf::PixelSample* out, LensSamples lens) {
     static const DirectionNumbers numbers;
@@ -130,8 +217,8 @@ __attribute__((target("avx2"))) void sobol8(const P::SamplerSetup& setup, std::u
     for (int i = 0; i < 8; ++i) {
         out[i].offset = glm::vec2(x[i], y[i]);
         out[i].time = t[i];
-        out[i].lens = P::bc_lens_of(glm::vec2(u[i], v[i]));
     }
+    lens8(u, v, out);
 }
 #endif
 

@@ -143,7 +143,7 @@ BC_FN uint bc_sobol(uint index, int dim) {
 }
 
 // The lens sample of a point of the unit square, kept inside [-1, 1]^2 (the
-// culling bounds assume it; cos/sin rounding may step a hair outside).
+// culling bounds assume it; bc_square_to_disk keeps it, the clamp guards it).
 BC_FN vec2 bc_lens_of(vec2 square) {
     return clamp(bc_square_to_disk(square), vec2(real(-1)), vec2(real(1)));
 }
@@ -178,8 +178,10 @@ BC_FN PixelSample bc_jittered(uint px, uint py, uint index, uint spp, uint seed,
     if (index < cells) {
         uint cell_xy = bc_permute(index, cells, bc_hash(pixel_key ^ 0x27d4eb2fu));
         uint cell_uv = bc_permute(index, cells, bc_hash(pixel_key ^ 0x165667b1u));
-        s.offset = (vec2(real(cell_xy % n), real(cell_xy / n)) + jitter_xy) / real(n);
-        square = (vec2(real(cell_uv % n), real(cell_uv / n)) + jitter_uv) / real(n);
+        vec2 xy = vec2(real(cell_xy % n), real(cell_xy / n)) + jitter_xy;
+        vec2 uv = vec2(real(cell_uv % n), real(cell_uv / n)) + jitter_uv;
+        s.offset = vec2(bc_div(xy.x, real(n)), bc_div(xy.y, real(n)));
+        square = vec2(bc_div(uv.x, real(n)), bc_div(uv.y, real(n)));
     } else {
         s.offset = jitter_xy;
         square = jitter_uv;
@@ -188,7 +190,7 @@ BC_FN PixelSample bc_jittered(uint px, uint py, uint index, uint spp, uint seed,
     s.offset = min(s.offset, vec2(real(1) - bc_epsilon()));
     uint stratum = index;
     if (!time_by_index) stratum = bc_permute(index % count, count, bc_hash(pixel_key ^ 0xd3a2646cu));
-    s.time = min((real(stratum % count) + bc_unit(bc_hash(h ^ 3u))) / real(count), real(1) - bc_epsilon());
+    s.time = min(bc_div(real(stratum % count) + bc_unit(bc_hash(h ^ 3u)), real(count)), real(1) - bc_epsilon());
     s.lens = bc_lens_of(square);
     return s;
 }
@@ -342,7 +344,7 @@ BC_FN PixelSample pattern_sample_tiled(int pattern, uint px, uint py, uint index
 
 // Radical inverse of k in `base` (the Halton sequence), below 1.
 BC_FN real bc_radical_inverse(uint k, uint base) {
-    real inverse_base = real(1) / real(base);
+    real inverse_base = bc_div(real(1), real(base));
     real digit_scale = inverse_base;
     real value = real(0);
     for (int guard = 0; guard < 32 && k > 0u; ++guard) {
@@ -354,11 +356,22 @@ BC_FN real bc_radical_inverse(uint k, uint base) {
 }
 
 // The lens position with squared radius r2 and angle 2 pi turn, for r2 and
-// turn in [0, 1): uniform on the disk for uniform (r2, turn).
+// turn in [0, 1): uniform on the disk for uniform (r2, turn). With the
+// sampler's own sqrt and cos/sin (sampling_body.inl), so every GPU draws the
+// host's samples: the angle is (pi/2) k + (pi/4) t with k = the nearest
+// quarter turn, t = 2 (4 turn - k) in [-1, 1] (both exact), and the quarter
+// k turns (cos, sin) by exact swaps and negations.
 BC_FN vec2 bc_polar_disk(real r2, real turn) {
-    real r = sqrt(r2);
-    real theta = real(6.283185307179586) * turn;
-    return clamp(vec2(r * cos(theta), r * sin(theta)), vec2(real(-1)), vec2(real(1)));
+    real r = bc_sqrt(r2);
+    real v = real(4) * turn;
+    real k = floor(v + real(0.5));
+    vec2 cs = bc_cos_sin_quarter_pi(real(2) * (v - k));
+    int quarter = int(k) & 3;
+    vec2 d = cs;
+    if (quarter == 1) d = vec2(-cs.y, cs.x);
+    if (quarter == 2) d = vec2(-cs.x, -cs.y);
+    if (quarter == 3) d = vec2(cs.y, -cs.x);
+    return clamp(vec2(r * d.x, r * d.y), vec2(real(-1)), vec2(real(1)));
 }
 
 // Tuple k of the frame's interleaved (u, v, t) set, returned as (u, v, t):

@@ -18,11 +18,12 @@
 // ---- raster <-> NDC -------------------------------------------------------------
 
 // NDC of raster position `raster` (pixels, y down) in an image of image_size
-// pixels: X = -1 + 2 rx / width, Y = 1 - 2 ry / height. Any finite input; the
-// grid corners 0 and width map to -1 and 1 exactly.
+// pixels: X = -1 + 2 rx / width, Y = 1 - 2 ry / height, the division the
+// sampler's bc_div (the same bits on every GPU). Any finite input whose
+// quotient is in the normal range; the grid corners 0 and width map to -1 and 1 exactly.
 BC_FN vec2 raster_to_ndc(vec2 raster, vec2 image_size) {
-    BC_PRECISE real x = real(-1) + real(2) * raster.x / image_size.x;
-    BC_PRECISE real y = real(1) - real(2) * raster.y / image_size.y;
+    BC_PRECISE real x = real(-1) + bc_div(real(2) * raster.x, image_size.x);
+    BC_PRECISE real y = real(1) - bc_div(real(2) * raster.y, image_size.y);
     return vec2(x, y);
 }
 
@@ -79,7 +80,7 @@ BC_FN ivec4 box_cell_rect(vec2 lo, vec2 hi, vec2 cells) {
     ivec4 none = ivec4(0, 0, -1, -1);
     // Samples have -1 <= X, Y <= 1 exactly (raster_to_ndc of [0, size]).
     if (lo.x > real(1) || hi.x < real(-1) || lo.y > real(1) || hi.y < real(-1)) return none;
-    real margin = max(real(1) / real(64), real(BC_MARGIN) * bc_epsilon() * max(cells.x, cells.y));
+    real margin = max(real(0.015625), real(BC_MARGIN) * bc_epsilon() * max(cells.x, cells.y));
     int columns = int(cells.x), rows = int(cells.y);
     BC_PRECISE real left = (lo.x + real(1)) * real(0.5) * cells.x - margin;
     BC_PRECISE real right = (hi.x + real(1)) * real(0.5) * cells.x + margin;
@@ -107,7 +108,8 @@ BC_FN ivec2 interleaved_cell(ivec2 tile, int slot, int tile_width) {
 // below 1 (the largest real below 1), then pixel_sample_ndc. Its (u, v, t) is
 // the tuple its tile slot holds (docs/sampling.md). cell >= 0, scale >= 1.
 BC_FN vec2 interleaved_sample_ndc(ivec2 cell, int scale, vec2 jitter, vec2 image_size) {
-    BC_PRECISE vec2 offset = (vec2(real(cell.x % scale), real(cell.y % scale)) + jitter) / real(scale);
+    BC_PRECISE vec2 cell_offset = vec2(real(cell.x % scale), real(cell.y % scale)) + jitter;
+    vec2 offset = vec2(bc_div(cell_offset.x, real(scale)), bc_div(cell_offset.y, real(scale)));
     BC_PRECISE real below_one = real(1) - real(0.5) * bc_epsilon();
     offset = min(offset, vec2(below_one));
     return pixel_sample_ndc(cell / scale, offset, image_size);

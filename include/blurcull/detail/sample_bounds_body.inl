@@ -148,7 +148,11 @@ BC_FN SampleBounds bc_add_edge_planes(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2
         return r;
     }
     r.edges = bc_edge_bounds(tri, s_lo - pad, s_hi + pad, r.u_range, r.v_range, times);
-    r.centre = vec2(bc_box_axis(s_lo.x - pad.x, s_hi.x + pad.x).x, bc_box_axis(s_lo.y - pad.y, s_hi.y + pad.y).x);
+    // Named first: GLSL's `precise` (the emission's) reaches no argument of a
+    // call whose result is swizzled (glslang's reading), so the sum is a variable.
+    vec2 padded_lo = s_lo - pad;
+    vec2 padded_hi = s_hi + pad;
+    r.centre = vec2(bc_box_axis(padded_lo.x, padded_hi.x).x, bc_box_axis(padded_lo.y, padded_hi.y).x);
     return r;
 }
 
@@ -198,7 +202,11 @@ BC_FN SampleBounds add_sample_planes(BC_IN(MovingTriangle) tri, vec2 s_lo, vec2 
     }
     r.edges = bc_hyperplane_bounds(tri, s_lo - pad, s_hi + pad, r.u_range, r.v_range, times);
     r.empty = bc_hyperplane_box_empty(r.edges.piece[0], r.u_range, r.v_range, times, s_lo - pad, s_hi + pad);
-    r.centre = vec2(bc_box_axis(s_lo.x - pad.x, s_hi.x + pad.x).x, bc_box_axis(s_lo.y - pad.y, s_hi.y + pad.y).x);
+    // Named first: GLSL's `precise` (the emission's) reaches no argument of a
+    // call whose result is swizzled (glslang's reading), so the sum is a variable.
+    vec2 padded_lo = s_lo - pad;
+    vec2 padded_hi = s_hi + pad;
+    r.centre = vec2(bc_box_axis(padded_lo.x, padded_hi.x).x, bc_box_axis(padded_lo.y, padded_hi.y).x);
     return r;
 }
 
