@@ -402,7 +402,8 @@ TEST_CASE("GPU-side property: no cull's GLSL bounds cull a sample the GLSL cover
     CHECK(total.covered >= target);
     for (int m = 0; m < kMethods; ++m)
         for (int k = 0; k < kKinds; ++k) {
-            INFO(std::string(method_name(m)) + " " + kKindNames[k]);
+            const std::string test = std::string(method_name(m)) + " " + kKindNames[k];
+            CAPTURE(test);
             CHECK(total.false_culls[static_cast<std::size_t>(m * kKinds + k)] == 0);
         }
     CHECK(total.floor_below == 0);
@@ -410,7 +411,8 @@ TEST_CASE("GPU-side property: no cull's GLSL bounds cull a sample the GLSL cover
     CHECK(total.floored > total.covered / 4);
     for (int m = 0; m < kMethods; ++m) CHECK(total.culled[static_cast<std::size_t>(m)] > total.samples / 10);
     for (std::size_t f = 0; f < families.size(); ++f) {
-        INFO(std::string("family ") + family_name(families[f]));
+        const std::string family = family_name(families[f]);
+        CAPTURE(family);
         CHECK(per_family[f].covered > 0);
     }
 }
