@@ -599,6 +599,88 @@ TEST_CASE("the kernel in GLSL decides like the host kernel<float> on 131072 inpu
     check_parity(*context, kConfigs, 0x9a7e5eedull);
 }
 
+// The tolerant comparison's own check, no GL needed (an exact GL never
+// exercises it with a difference): the host's results as a "GPU" with
+// injected differences, one of each kind the model forbids and one it allows.
+TEST_CASE("the tolerant comparison accepts what the model allows and flags what it forbids") {
+    const Inputs in = make_inputs(2048, 0x70e7a7ceull);
+    const HostResults host = run_host(in);
+    auto as_gpu = [&] {
+        GpuResults g;
+        g.configs = host.configs;
+        g.inputs = host.inputs;
+        return g;
+    };
+    CHECK(compare_tolerant(in, host, as_gpu()).covers.outside == 0);
+    // The sample whose covers decision is farthest from flipping and the one
+    // nearest: flipping the first is outside the model, the second (when
+    // within the edge tolerance) inside.
+    std::size_t far_id = 0, near_id = 0;
+    double far_margin = -1.0, near_margin = 1e300;
+    long covered_far = -1;
+    double covered_far_margin = -1.0;
+    for (int n = 0; n < in.config_count; ++n) {
+        const float* c = &in.configs[static_cast<std::size_t>(n) * kConfigFloats];
+        Kf::MovingTriangle tri;
+        for (int j = 0; j < 6; ++j) {
+            tri.p[j] = Kf::vec3(c[3 * j], c[3 * j + 1], c[3 * j + 2]);
+            tri.c[j] = Kf::vec2(c[18 + 2 * j], c[19 + 2 * j]);
+        }
+        for (int k = 0; k < kSamplesPerConfig; ++k) {
+            const std::size_t id = static_cast<std::size_t>(n) * kSamplesPerConfig + static_cast<std::size_t>(k);
+            const float* smp = &in.samples[id * kInputFloats];
+            const double m = covers_condition(tri, Kf::vec2(smp[0], smp[1]), Kf::vec2(smp[2], smp[3]), smp[4], c[30]).margin;
+            if (m > far_margin) far_margin = m, far_id = id;
+            if (m < near_margin) near_margin = m, near_id = id;
+            const bool covered = (host.inputs[id * kInputUints] & 1u) != 0u;
+            if (covered && m > covered_far_margin) covered_far_margin = m, covered_far = static_cast<long>(id);
+        }
+    }
+    MESSAGE("covers margins: farthest " << far_margin << ", nearest " << near_margin << ", limit " << kEdgeTolerance);
+    REQUIRE(far_margin > kEdgeTolerance);
+    REQUIRE(covered_far >= 0);
+    {
+        GpuResults g = as_gpu();
+        g.inputs[far_id * kInputUints] ^= 1u;
+        const Tolerant t = compare_tolerant(in, host, g);
+        CHECK(t.covers.outside == 1);
+    }
+    if (near_margin <= kEdgeTolerance) {
+        GpuResults g = as_gpu();
+        g.inputs[near_id * kInputUints] ^= 1u;
+        const Tolerant t = compare_tolerant(in, host, g);
+        CHECK(t.covers.outside == 0);
+        CHECK(t.covers.within == 1);
+    }
+    {
+        // A cull's decision: the GPU culling a covered sample far from every
+        // edge is forbidden; the GPU keeping a sample the host culls is allowed.
+        const auto id = static_cast<std::size_t>(covered_far);
+        const int bit = 1 + BC_CULL_BBOX;  // screen_contains bbox: true for a covered sample
+        REQUIRE(((host.inputs[id * kInputUints] >> bit) & 1u) == 1u);
+        GpuResults g = as_gpu();
+        g.inputs[id * kInputUints] ^= 1u << bit;
+        CHECK(compare_tolerant(in, host, g).culls.outside == 1);
+    }
+    {
+        // The screen box: 1 ULP off is within the limit, a tenth of its magnitude is not.
+        GpuResults g = as_gpu();
+        std::size_t at = 0;
+        for (int n = 0; n < in.config_count && at == 0; ++n)
+            if (host.configs[static_cast<std::size_t>(n) * kConfigUints] == 0u &&
+                std::abs(float_of(host.configs[static_cast<std::size_t>(n) * kConfigUints + 1])) < 10.0f)
+                at = static_cast<std::size_t>(n) * kConfigUints + 1;
+        REQUIRE(at != 0);
+        g.configs[at] = bits_of(std::nextafter(float_of(host.configs[at]), 1e30f));
+        Tolerant t = compare_tolerant(in, host, g);
+        CHECK(t.box.within == 1);
+        CHECK(t.box.outside == 0);
+        g.configs[at] = bits_of(float_of(host.configs[at]) * 1.1f + 0.1f);
+        t = compare_tolerant(in, host, g);
+        CHECK(t.box.outside == 1);
+    }
+}
+
 TEST_CASE("both headless context kinds run the kernel's GLSL") {
     for (gl::ContextKind kind : {gl::ContextKind::egl_surfaceless, gl::ContextKind::osmesa}) {
         std::string kind_name = gl::context_kind_name(kind);
