@@ -186,6 +186,17 @@ void main() {
 constexpr double kEdgeTolerance = 0x1p-18;
 constexpr std::int64_t kDivisionUlps = 16;
 
+// Whether float results h (host) and g (GPU) differ by at most `ulps` float
+// ULPs of `magnitude` (or of |h|, when larger): a value computed through
+// divisions whose error is relative to the magnitude of what it was computed
+// from (e.g. -1 + 2 x / w: ULPs of 2, not of a result near 0). Non-finite:
+// only equal.
+inline bool within_ulps_of(float h, float g, double magnitude, std::int64_t ulps) {
+    if (!std::isfinite(h) || !std::isfinite(g)) return bits_of(h) == bits_of(g) || (std::isnan(h) && std::isnan(g));
+    const double m = std::max({magnitude, std::abs(double(h)), 0x1p-126});
+    return std::abs(double(h) - double(g)) <= double(ulps) * std::ldexp(1.0, std::ilogb(m) - 23);
+}
+
 // How close, relative to the rounding of its computation, a sample's covers
 // decision is to flipping (margin): the smallest of |e_i| / terms(e_i),
 // |det| / terms(det) and |depth - near| / (depth * depth_condition), in
