@@ -8,7 +8,8 @@
 // vector, R = 1; index 1: R = 0) must agree (but for rays within rounding of
 // the critical angle), the values within the small tolerances below (dot,
 // mix and sqrt round differently in llvmpipe, and a mirrored component can
-// cancel).
+// cancel). On a GL that is not IEEE-exact (probe_arithmetic), or with
+// BLURCULL_GL_TOLERANT=1, the model's limits instead (kModelSkyUlps below).
 //
 // No GL context (no Mesa): fails when CI=true, else skips with a message.
 
@@ -41,6 +42,35 @@ constexpr int kOutputs = 10;  // mirror (3), refracted (3), reflectance (1), sky
 constexpr float kMaxDirectionError = 2e-5f;
 constexpr float kMaxReflectanceError = 2e-4f;
 constexpr std::int64_t kMaxSkyUlps = 16;
+// On a GL that is not IEEE-exact (probe_arithmetic) or with
+// BLURCULL_GL_TOLERANT=1, the model's limits (docs/glsl.md): 1 / ior through a
+// division (2.5 ULP) and sqrt(1 - sin_t^2) (4.5 ULP) make the refracted
+// direction and R ill-conditioned near the critical angle, by
+// 1 / sqrt(1 - sin_t^2): the limits above plus kDivisionUlps float roundoffs
+// times that condition (4 times for R, whose two quotients each carry it); a
+// total-internal-reflection decision may differ only where 1 - sin_t^2 is
+// within kEdgeTolerance. The sky: c = x / sqrt(x^2 + z^2) within 7 ULP
+// (division and sqrt), T8's slope at most 64, 0.08 of a radiance of about
+// 0.5, and mix's sqrt(y) 4.5 ULP: 64 x 7 x 0.08 x 2 + 6 ~ 78, so 96 ULP.
+constexpr std::int64_t kModelSkyUlps = 96;
+
+// sin_t^2 of the refracted ray in double on the float inputs (as
+// bc_refract_direction computes it), and the condition 1 / sqrt(1 - sin_t^2).
+struct RefractionCondition {
+    double gap = 1.0;  // 1 - sin_t^2
+    double condition = 1.0;
+};
+
+RefractionCondition refraction_condition(const float* a) {
+    const glm::dvec3 i(a[0], a[1], a[2]), n(a[3], a[4], a[5]);
+    const bool entering = glm::dot(n, i) < 0.0;
+    const double eta = entering ? 1.0 / double(a[6]) : double(a[6]);
+    const double cos_i = std::abs(glm::dot(n, i));
+    RefractionCondition out;
+    out.gap = 1.0 - eta * eta * std::max(0.0, 1.0 - cos_i * cos_i);
+    out.condition = 1.0 / std::sqrt(std::max(std::abs(out.gap), 1e-300));
+    return out;
+}
 
 const char* const kOpticsMain = R"glsl(
 layout(local_size_x = 64) in;
@@ -150,6 +180,9 @@ TEST_CASE("GLSL optics_shared.h equals the host's: mirror, refraction, Fresnel, 
     // Largest absolute difference of the unit directions (both sides round
     // their dot products differently and m = i - 2 (n.i) n cancels, so ULPs
     // of a small component mean nothing), of R and of the sky.
+    const ArithmeticProbe probe = probe_arithmetic(*context);
+    MESSAGE(probe.describe());
+    ToleranceTally model;  // the tolerant comparison's differences beyond the exact-GL limits
     float max_direction = 0.0f, max_reflectance = 0.0f;
     std::int64_t max_sky_ulps = 0;
     long decision_mismatches = 0, total_reflections = 0, index_one = 0;
@@ -164,27 +197,45 @@ TEST_CASE("GLSL optics_shared.h equals the host's: mirror, refraction, Fresnel, 
         const float host_r = float_of(host[o + 6]), gpu_r = float_of(gpu[o + 6]);
         total_reflections += host_tir ? 1 : 0;
         index_one += inputs[7u * i + 6] == 1.0f ? 1 : 0;
+        const RefractionCondition cond = refraction_condition(&inputs[7u * i]);
         if (host_tir != gpu_tir || (host_r == 1.0f) != (gpu_r == 1.0f) || (host_r == 0.0f) != (gpu_r == 0.0f)) {
+            model.note(std::abs(cond.gap) <= kEdgeTolerance, "total internal reflection of item " + std::to_string(i));
             ++decision_mismatches;
             if (first.empty()) first = "decision of item " + std::to_string(i);
             continue;  // past the critical angle on one side only: the values differ by design
         }
         if (inputs[7u * i + 6] == 1.0f) CHECK(host_r == 0.0f);
         if (host_tir) CHECK(host_r == 1.0f);
+        const double roundoff = double(kDivisionUlps) * 0x1p-24 * cond.condition;
         for (int k = 0; k < 6; ++k) {
-            max_direction = std::max(max_direction, std::abs(float_of(host[o + k]) - float_of(gpu[o + k])));
+            const float d = std::abs(float_of(host[o + k]) - float_of(gpu[o + k]));
+            max_direction = std::max(max_direction, d);
+            if (d > kMaxDirectionError)
+                model.note(d <= double(kMaxDirectionError) + roundoff, "direction of item " + std::to_string(i));
         }
         max_reflectance = std::max(max_reflectance, std::abs(host_r - gpu_r));
+        if (std::abs(host_r - gpu_r) > kMaxReflectanceError)
+            model.note(std::abs(host_r - gpu_r) <= double(kMaxReflectanceError) + 4.0 * roundoff,
+                       "reflectance of item " + std::to_string(i));
         for (int k = 7; k < kOutputs; ++k) {
-            max_sky_ulps = std::max(max_sky_ulps, ulp_distance(float_of(host[o + k]), float_of(gpu[o + k])));
+            const std::int64_t d = ulp_distance(float_of(host[o + k]), float_of(gpu[o + k]));
+            max_sky_ulps = std::max(max_sky_ulps, d);
+            if (d > kMaxSkyUlps) model.note(d <= kModelSkyUlps, "sky of item " + std::to_string(i));
         }
     }
     MESSAGE(kCount << " inputs, " << total_reflections << " totally reflected, " << index_one
                    << " at index 1; max differences: directions " << max_direction << ", R " << max_reflectance
                    << ", sky " << max_sky_ulps << " ULP; " << decision_mismatches << " decisions differ");
     CHECK(total_reflections > 1000);
-    CHECK_MESSAGE(decision_mismatches <= kCount / 10000, first);  // rays within rounding of the critical angle
-    CHECK(max_direction <= kMaxDirectionError);
-    CHECK(max_reflectance <= kMaxReflectanceError);
-    CHECK(max_sky_ulps <= kMaxSkyUlps);
+    if (!probe.tolerant()) {
+        CHECK_MESSAGE(decision_mismatches <= kCount / 10000, first);  // rays within rounding of the critical angle
+        CHECK(max_direction <= kMaxDirectionError);
+        CHECK(max_reflectance <= kMaxReflectanceError);
+        CHECK(max_sky_ulps <= kMaxSkyUlps);
+    } else {
+        MESSAGE("tolerant comparison: beyond the exact-GL limits, " << model.within
+                << " differ within the model's (critical-angle condition, sky " << kModelSkyUlps << " ULP), "
+                << model.outside << " outside");
+        CHECK_MESSAGE(model.outside == 0, model.first_outside);
+    }
 }
