@@ -12,6 +12,13 @@
 // which the affine map from the sheared triangle back to the world-space
 // triangle at time t keeps. Correct for vertices behind the eye; samples whose
 // hit lies closer than `near` are not covered.
+// a0 . (a1 x a2) with its terms added instead of cancelled, on magnitudes:
+// the scale of that product's rounding error.
+BC_FN real bc_det_terms(vec3 a0, vec3 a1, vec3 a2) {
+    return a0.x * (a1.y * a2.z + a2.y * a1.z) + a0.y * (a1.z * a2.x + a2.z * a1.x) +
+           a0.z * (a1.x * a2.y + a2.x * a1.y);
+}
+
 BC_FN bool covers_hit(BC_IN(MovingTriangle) tri, vec2 s, vec2 uv, real t, real near, BC_OUT(real) depth,
                       BC_OUT(vec3) barycentric) {
     depth = real(0);
@@ -25,13 +32,28 @@ BC_FN bool covers_hit(BC_IN(MovingTriangle) tri, vec2 s, vec2 uv, real t, real n
     real e1 = bc_dot3(cross(v2, v0), ray);
     real e2 = bc_dot3(cross(v0, v1), ray);
     real det = bc_dot3(v0, n12);
-    if (!(det != real(0))) return false;  // zero area seen edge-on (or NaN)
-    if (det < real(0)) {
+    // Which way the triangle faces the eye: det again, but taken relative to
+    // v0 (v0 . ((v1 - v0) x (v2 - v0)), equal in exact arithmetic), so its
+    // rounding is relative to the triangle's size, not to its distance, and
+    // its sign is right down to sub-pixel triangles. Where even this lies
+    // within its rounding, the triangle is seen edge-on through the eye and
+    // det's sign is unknown; with the wrong sign the edge tests accept the
+    // triangle's image behind the eye, a line far beyond the triangle that
+    // no bound contains. Such a triangle covers nothing, and where det
+    // disagrees with the facing, det is rounding and the ray misses
+    // (docs/kernel.md, "Seen edge-on within rounding"). Rejects NaN too.
+    vec3 d1 = v1 - v0;
+    vec3 d2 = v2 - v0;
+    real facing = bc_dot3(v0, cross(d1, d2));
+    real facing_error = real(32) * bc_epsilon() * bc_det_terms(abs(v0), abs(d1), abs(d2));
+    if (!(abs(facing) > facing_error)) return false;
+    if (facing < real(0)) {
         e0 = -e0;
         e1 = -e1;
         e2 = -e2;
         det = -det;
     }
+    if (!(det > real(0))) return false;
     if (!(e0 >= real(0) && e1 >= real(0) && e2 >= real(0))) return false;
     real sum = e0 + e1 + e2;
     if (!(sum > real(0))) return false;
