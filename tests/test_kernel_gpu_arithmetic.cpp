@@ -14,13 +14,14 @@
 //               footprint holding the sample, the footprint as its tile))
 //   stratum     stratum_screen_box of the sample's shutter/lens stratum
 // and, for every method alike, the depth floor: covers' depth >= depth_floor.
-// A false cull is a culled sample that covers accepts and that the double
-// covers accepts too on the same float inputs: asserted 0. Samples that only
-// the float covers' own rounding covers (the double covers says no: a nearly
-// edge-on triangle, whose float edge functions are rounding noise) are
-// counted apart, with how many each method culls, and reported, not
-// asserted: no bound promises them (docs/kernel.md, "Under the GPU
-// arithmetic model"); IEEE float (llvmpipe, kernel<float>) has them too.
+// A false cull is a culled sample that covers accepts. Those that the
+// double covers on the same float inputs accepts too are asserted 0: no
+// bound culls a sample that the triangle really covers. Those that only the
+// float covers' rounding covers (an edge value within its rounding error)
+// are counted and printed per method, with the largest |s| among them, not
+// asserted: the bounds' margins do not contain the float oracle's own
+// rounding everywhere, which issue 22 leaves open (docs/kernel.md, "What the
+// margins do not cover").
 // Families: the property families (kernel_generators.hpp), the stress
 // families (stress_generators.hpp) and the fuzz seed corpus (fuzz/corpus/kernel,
 // decoded as fuzz_kernel.cpp does). The rounding mode cycles per
@@ -62,11 +63,14 @@ struct Tally {
     // Of those, the ones that only the float covers' rounding covers: the
     // double covers on the same (float) inputs says not covered.
     std::uint64_t rounding_only = 0;
-    // Culled samples that covers accepts and that the double covers accepts
-    // too: the false culls the model must not have.
+    // Culled samples that covers accepts, per method and check (printed).
     std::uint64_t false_culls[method_count][kCheckCount] = {};
-    // Culled samples that only the float covers' rounding covers (reported).
+    // The same per sample and method, split: covered by float rounding only
+    // (the double covers says no; reported, with the largest |s| among
+    // them), and covered for the double covers too (asserted 0).
     std::uint64_t rounding_only_culls[method_count] = {};
+    std::uint64_t exact_culls[method_count] = {};
+    double rounding_cull_reach = 0.0;
     std::uint64_t floored = 0;  // covered samples with a depth floor above 0
     std::uint64_t below_floor = 0;
 
@@ -80,10 +84,12 @@ struct Tally {
         samples += o.samples;
         covered += o.covered;
         rounding_only += o.rounding_only;
+        rounding_cull_reach = std::max(rounding_cull_reach, o.rounding_cull_reach);
         floored += o.floored;
         below_floor += o.below_floor;
         for (int m = 0; m < method_count; ++m) {
             rounding_only_culls[m] += o.rounding_only_culls[m];
+            exact_culls[m] += o.exact_culls[m];
             for (int c = 0; c < kCheckCount; ++c) false_culls[m][c] += o.false_culls[m][c];
         }
     }
@@ -154,12 +160,17 @@ public:
             pass[kStratum] = s.x >= box.x && s.x <= box.z && s.y >= box.y && s.y <= box.w;
             bool culled = false;
             for (int c = 0; c < kCheckCount; ++c) {
-                if (pass[c] || !exact) continue;
+                if (pass[c]) continue;  // culled and covered by the GPU's covers: a false cull, rounding or not
                 if (tally_.method_false_culls(m) < 3) report(m, c, s, uv, t, depth);
                 ++tally_.false_culls[m][c];
             }
             for (int c = 0; c < kCheckCount; ++c) culled = culled || !pass[c];
-            if (culled && !exact) ++tally_.rounding_only_culls[m];
+            if (culled && !exact) {
+                ++tally_.rounding_only_culls[m];
+                tally_.rounding_cull_reach =
+                    std::max({tally_.rounding_cull_reach, double(std::abs(s.x.v)), double(std::abs(s.y.v))});
+            }
+            if (culled && exact) ++tally_.exact_culls[m];
         }
         if (std::isfinite(extent_.v) && std::abs(s.x.v) <= extent_.v && std::abs(s.y.v) <= extent_.v) {
             const G floor = K::depth_floor(tri_, time_range(ti), floor_scale_);
@@ -303,16 +314,19 @@ void print_row(const char* kind, const char* family, const Tally& t, double seco
     std::printf(" | depth floor: %" PRIu64 " floored, %" PRIu64 " below", t.floored, t.below_floor);
     std::printf(" | covered by float rounding only: %" PRIu64 ", culled by", t.rounding_only);
     for (int m : all_methods) std::printf(" %s %" PRIu64, method_name(m), t.rounding_only_culls[m]);
+    if (t.rounding_cull_reach > 0.0) std::printf(" (at |s| up to %g)", t.rounding_cull_reach);
     std::printf("\n");
     std::fflush(stdout);
 }
 
+// No false cull of a sample that the double covers accepts too: asserted 0.
+// False culls of samples covered by the float covers' rounding only are
+// printed (print_row), not asserted: issue 22 leaves them open
+// (docs/kernel.md, "What the margins do not cover").
 void check_tally(const Tally& t) {
     for (int m : all_methods) {
-        for (int c = 0; c < kCheckCount; ++c) {
-            INFO("method ", std::string(method_name(m)), ", check ", std::string(check_name(c)));
-            CHECK(t.false_culls[m][c] == 0);
-        }
+        INFO("method ", std::string(method_name(m)));
+        CHECK(t.exact_culls[m] == 0);
     }
     CHECK(t.below_floor == 0);
 }
@@ -386,7 +400,7 @@ void check_property_families(double millions) {
     for (int m : all_methods) worst = std::max(worst, total.rounding_only_culls[m]);
     MESSAGE(total.covered, " covered samples per method, ", total.rounding_only,
             " of them covered by float rounding only (double covers: no), of which up to ", worst,
-            " culled by a method (reported, not asserted)");
+            " culled by a method (reported, not asserted; at |s| up to ", total.rounding_cull_reach, ")");
 }
 
 // 1 million covered samples per family (each judged by all six methods) at
@@ -509,8 +523,12 @@ TEST_CASE("gpu arithmetic: fused multiply-add (outside the model: reported, not 
     Tally total;
     for (Family family : all_families()) total.add(run_property_family(family, target, family_seed(family) + 0x100, true));
     print_row("fused", "ALL", total, 0.0);
-    std::uint64_t false_culls = 0;
-    for (int m : all_methods) false_culls += total.method_false_culls(m);
-    MESSAGE("fused a*b+c: ", false_culls, " false culls over all methods and checks, ", total.below_floor,
+    std::uint64_t exact = 0, rounding = 0;
+    for (int m : all_methods) {
+        exact += total.exact_culls[m];
+        rounding += total.rounding_only_culls[m];
+    }
+    MESSAGE("fused a*b+c: ", exact, " false culls of samples the double covers accepts too, ", rounding,
+            " of samples covered by float rounding only (over all methods), ", total.below_floor,
             " depths below their floor, on ", total.covered, " covered samples");
 }
