@@ -2,8 +2,9 @@
 // every sample of a pixel (cpu, embree): the kernel's sampler_sample, bit for
 // bit, with the Owen-scrambled Sobol pattern's integer work (index shuffle,
 // Sobol sums, hashing, bit reversal) done eight samples at a time with AVX2
-// where the CPU has it. The lens mapping (a division and cos/sin) stays the
-// kernel's scalar code, so every value is the one sampler_sample returns
+// where the CPU has it, and the lens mapping (the kernel's own division and
+// cos/sin from + - *) eight at a time too (lens8), in the kernel's order, so
+// every value is the one sampler_sample returns
 // (tests/test_frontend_pixel_samples.cpp).
 #pragma once
 
