@@ -16,6 +16,7 @@
 
 using namespace blurcull;
 using namespace blurcull::testing;
+using Kf = kernel<float>;
 
 namespace {
 
@@ -118,6 +119,60 @@ TEST_CASE("oracle: simple cases, behind the eye and the near plane") {
     // Zero area: never covered.
     Kd::MovingTriangle line = static_triangle({-1, 0, 1}, {1, 0, 1}, {0, 0, 1});
     CHECK_FALSE(Kd::covers(line, {0.0, 0.0}, {0.0, 0.0}, 0.5, 0.01, depth));
+}
+
+// A triangle in a plane through the eye has det 0 exactly, but its float
+// det is rounding of either sign; with the wrong one the edge tests accepted
+// the triangle's image behind the eye, a line of "hits" far beyond it
+// (docs/kernel.md, "Seen edge-on within rounding"). covers orients by the
+// facing and declines such a triangle, while a sub-pixel triangle, whose
+// float det is just as small next to its distance, keeps its samples.
+TEST_CASE("oracle: seen edge-on within rounding covers nothing, a sub-pixel triangle still covers") {
+    // Triangles on planes y = k x + m w through the eye, their vertices
+    // rounded to float (so off the plane by rounding only), scanned along the
+    // plane's line on the screen, y = k x + m, far beyond their projection.
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    int accepted = 0, scanned = 0;
+    for (int n = 0; n < 200; ++n) {
+        const float k = unit(rng), m = unit(rng);
+        Kf::MovingTriangle edge_on;
+        for (int i = 0; i < 3; ++i) {
+            const float x = 2.0f * unit(rng), w = 2.0f + unit(rng);
+            edge_on.p[i] = edge_on.p[i + 3] = Kf::vec3(x, k * x + m * w, w);
+            edge_on.c[i] = edge_on.c[i + 3] = Kf::vec2(0.0f);
+        }
+        for (int i = -200; i <= 200; ++i) {
+            const float sx = 0.05f * float(i);
+            for (int j = -2; j <= 2; ++j) {
+                float depth = 0.0f;
+                const Kf::vec2 s(sx, k * sx + m + 1e-6f * float(j));
+                ++scanned;
+                if (Kf::covers(edge_on, s, Kf::vec2(0.0f), 0.5f, 0.01f, depth)) ++accepted;
+            }
+        }
+    }
+    CAPTURE(scanned);
+    CHECK(accepted == 0);
+    // A triangle 1e-3 NDC across (half a pixel at 1024 wide) at w = 5, off
+    // centre: its det is about 1e-6 of the vertices' magnitudes, under 32 eps
+    // of them, yet far above its facing's rounding.
+    const Kf::vec2 centre(0.3f, -0.2f);
+    const float depth_w = 5.0f, size = 1e-3f;
+    const Kf::vec2 corner[3] = {{0.0f, 0.0f}, {size, 0.0f}, {0.0f, size}};
+    Kf::MovingTriangle tiny;
+    for (int i = 0; i < 3; ++i) {
+        const Kf::vec2 p = (centre + corner[i]) * depth_w;
+        tiny.p[i] = tiny.p[i + 3] = Kf::vec3(p.x, p.y, depth_w);
+        tiny.c[i] = tiny.c[i + 3] = Kf::vec2(0.0f);
+    }
+    float depth = 0.0f;
+    const Kf::vec2 inside = centre + Kf::vec2(size / 3.0f);
+    CHECK(Kf::covers(tiny, inside, Kf::vec2(0.0f), 0.5f, 0.01f, depth));
+    // det / sum: both cancel to about 1e-6 of their terms, so the float
+    // depth of a triangle this small is off by about 0.3% (4.986).
+    CHECK(depth == doctest::Approx(5.0f).epsilon(1e-2));
+    CHECK_FALSE(Kf::covers(tiny, centre + Kf::vec2(size), Kf::vec2(0.0f), 0.5f, 0.01f, depth));
 }
 
 TEST_CASE("oracle: motion and lens move the triangle as the model says") {
