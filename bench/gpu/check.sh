@@ -29,9 +29,9 @@ mkdir -p "$dest"
 summary=$dest/summary.txt
 : >"$summary"
 say() { echo "$*" | tee -a "$summary"; }
-# Big enough for >= 10^7 covered samples per method on a GPU; the test's
-# default (BLURCULL_PROPERTY_SCALE) stays small for llvmpipe.
-export BLURCULL_GPU_PROPERTY_SCALE=${BLURCULL_GPU_PROPERTY_SCALE:-40}
+# 10^7 covered samples per method on a GPU (the issue's figure); the test's
+# default (200,000 x BLURCULL_PROPERTY_SCALE) stays small for llvmpipe.
+export BLURCULL_GPU_PROPERTY_SAMPLES=${BLURCULL_GPU_PROPERTY_SAMPLES:-10000000}
 export CI=true   # a missing GL context fails instead of skipping
 
 say "date: $(date -u +%FT%TZ)"
@@ -60,15 +60,16 @@ done
 # What the GPU-side property test counted (its MESSAGE lines).
 grep -h -E 'false culls|covered' "$out/test_frontend_gl_properties.log" 2>/dev/null | head -40 >>"$summary"
 
-# The golden gl renders, with the GPU tolerance the golden script applies
-# off llvmpipe (tests/golden/golden_renders.cmake).
+# The golden gl renders (tests/golden/golden_renders.cmake): exact PNG
+# hashes and hit counts, recorded on llvmpipe, so off llvmpipe they are
+# expected to differ at edges (issue 22); reported, not counted as a
+# failure, until the golden script has a GPU tolerance.
 golden=tests/golden/golden_renders.cmake
 if [ -z "${GPU_CHECK_TESTS:-}" ] && command -v cmake >/dev/null && [ -f "$golden" ]; then
   timeout 600 cmake -DBLURCULL="$(command -v blurcull)" -DEXPECTED=tests/golden/golden_renders.txt \
     -DWORK_DIR="$out/golden" -DBACKENDS=gl -P "$golden" >"$out/golden_gl.log" 2>&1
   rc=$?
-  say "golden_renders_gl: exit $rc; $(tail -n 2 "$out/golden_gl.log" | tr '\n' ' ')"
-  [ "$rc" -eq 0 ] || failed=$((failed + 1))
+  say "golden_renders_gl (reported): exit $rc; $(grep -c "got '" "$out/golden_gl.log") renders differ; $(tail -n 2 "$out/golden_gl.log" | tr '\n' ' ')"
   rm -rf "$out/golden"
 fi
 say "failed: $failed"
