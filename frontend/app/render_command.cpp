@@ -391,6 +391,16 @@ void load_frame(const RenderCommand& command, RenderJob& job, std::optional<long
     job.out_path = job.output.path_for(frame.value_or(0));
     const SceneRequest request = scene_request(command, job.settings, frame);
     job.scene = print_warnings ? load_scene(request) : load_scene(request.scene, request, WarningSink{});
+    // Motion segments chosen by auto (the default) where the backend or
+    // method carries one linear motion per triangle: the chords, warned.
+    const bool follows_segments = job.settings.method == RenderMethod::stochastic &&
+                                  (job.backend == Backend::cpu || job.backend == Backend::embree);
+    if (!follows_segments && job.scene.motion_segments_auto && scene_motion_segments(job.scene) > 1) {
+        const std::string who = job.backend == Backend::gl ? std::string("gl")
+                                                           : std::string("method ") + to_string(job.settings.method);
+        const int dropped = drop_motion_segments(job.scene);
+        if (print_warnings) std::fprintf(stderr, "warning: %s\n", dropped_motion_segments_warning(who, dropped).c_str());
+    }
 }
 
 // The frame's shutter open time on the scene's clock.

@@ -76,7 +76,8 @@ void SceneFlags::add_options(CLI::App& app, bool initial) {
     app.add_option("--seed", seed, "sample pattern seed")->capture_default_str();
     app.add_option("--motion-segments", motion_segments,
                    "glTF: K linear motion segments over the shutter (1 to " + std::to_string(max_motion_segments) +
-                       "), or auto: K from the largest rotation, chord within 1/4 pixel (cpu and embree)")
+                       "), or auto: K from the largest rotation, chord within 1/16 pixel (cpu and embree, method "
+                       "stochastic; elsewhere one segment, with a warning)")
         ->capture_default_str();
 }
 

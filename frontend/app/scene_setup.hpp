@@ -45,7 +45,7 @@ struct SceneFlags {
     std::string shutter;        // "OPEN,CLOSE"; empty: the scene's own
     double blur_scale = 1.0;
     std::uint32_t seed = 1;
-    std::string motion_segments = "1";  // K, or "auto" (parse_motion_segments)
+    std::string motion_segments = "auto";  // K, or "auto" (parse_motion_segments)
 
     // Adds --scene, --cull, --spp, --size, --lens-radius | --fstop, --focus,
     // --shutter, --blur-scale, --seed and --motion-segments, with their ranges. `initial`: the

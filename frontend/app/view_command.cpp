@@ -410,6 +410,12 @@ public:
             progressive_ = std::make_unique<ProgressiveView>([] { glfwPostEmptyEvent(); });
         } else {
             renderer_.emplace(gl::HeadlessContext::from_current(glfwGetProcAddress, "glfwGetProcAddress"));
+            // gl draws one linear motion per triangle: auto's segments (the
+            // default) become the chords, warned, as in `render --backend gl`.
+            if (base_.motion_segments_auto && scene_motion_segments(base_) > 1) {
+                const int dropped = drop_motion_segments(base_);
+                std::fprintf(stderr, "warning: %s\n", dropped_motion_segments_warning("gl", dropped).c_str());
+            }
         }
     }
 

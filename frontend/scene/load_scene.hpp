@@ -41,9 +41,10 @@ struct SceneSettings {
     double fstop = -1.0;         // > 0: the lens radius of this f-number (times blur_scale)
     double focus = -1.0;         // > 0: the focus distance
     // glTF: linear motion segments over the shutter, 1 to max_motion_segments,
-    // or 0 = auto for an image image_height pixels high (GltfOptions). Built-in
-    // scenes move linearly: any K is the same motion, so they stay one segment.
-    int motion_segments = 1;
+    // or 0 = auto (the default) for an image image_height pixels high
+    // (GltfOptions). Built-in scenes move linearly: any K is the same motion,
+    // so they stay one segment.
+    int motion_segments = 0;
     int image_height = 480;
 };
 

@@ -101,6 +101,11 @@ struct Scene {
     // k / K, k = 1 .. K - 1, position_at[k - 1] per vertex like position_open.
     // Empty (K = 1, every built-in scene): linear motion from open to close.
     std::vector<std::vector<glm::vec3>> position_at;
+    // position_at's K was chosen by --motion-segments auto (the default), not
+    // asked for: a renderer that carries one linear motion per triangle may
+    // then drop the interior times with a warning (drop_motion_segments)
+    // instead of refusing the scene.
+    bool motion_segments_auto = false;
     // Optional per-vertex surface attributes: each empty, or one per vertex.
     // texcoord: TEXCOORD_0; vertex_color: COLOR_0 (linear RGBA; (1, 1, 1, 1)
     // where a mesh has none); normal: world-space shading normal at shutter

@@ -31,9 +31,33 @@ inline int scene_motion_segments(const Scene& scene) { return static_cast<int>(s
 inline void refuse_motion_segments(const Scene& scene, const std::string& who) {
     const int segments = scene_motion_segments(scene);
     if (segments == 1) return;
+    if (scene.motion_segments_auto)
+        throw std::invalid_argument(who + ": the " + std::to_string(segments) +
+                                    " motion segments --motion-segments auto chose are not supported here "
+                                    "(drop_motion_segments, or load with motion_segments = 1)");
     throw std::invalid_argument(who + ": " + std::to_string(segments) +
                                 " motion segments are not supported here (--motion-segments > 1 renders on the cpu "
                                 "and embree backends, method stochastic)");
+}
+
+// The scene's K = 1 model: the interior times (Scene::position_at,
+// Camera::view_at) dropped, each vertex moving linearly from open to close.
+// Returns the number of segments the scene had. For the command, where the
+// default --motion-segments auto meets a renderer that carries one motion
+// per triangle: it warns and renders the chords instead of refusing.
+inline int drop_motion_segments(Scene& scene) {
+    const int segments = scene_motion_segments(scene);
+    scene.position_at.clear();
+    scene.camera.view_at.clear();
+    scene.motion_segments_auto = false;
+    return segments;
+}
+
+// The warning drop_motion_segments' callers print: one line naming `who`.
+inline std::string dropped_motion_segments_warning(const std::string& who, int segments) {
+    return who + " carries one linear motion per triangle: the " + std::to_string(segments) +
+           " motion segments --motion-segments auto chose are not used (rotations move along their chords; the cpu "
+           "and embree backends, method stochastic, follow them)";
 }
 
 // View-space position of `vertex` at time step `step` of K (0: shutter open,

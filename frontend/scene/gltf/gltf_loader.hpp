@@ -33,9 +33,9 @@ struct GltfOptions {
     float focus_distance = -1.0f;
     // Linear motion segments over the shutter (docs/reference-renderer.md,
     // "The motion model"): K >= 1 samples the animation at K + 1 times;
-    // 0 = auto, K from the largest rotation so the chord stays within a
-    // quarter pixel at an image image_height pixels high.
-    int motion_segments = 1;
+    // 0 = auto (the default), K from the largest rotation so the chord stays
+    // within 1/16 pixel at an image image_height pixels high.
+    int motion_segments = 0;
     int image_height = 480;
     // A frame of a sequence: the automatic camera (and a file camera's
     // automatic focus) frames the scene over its whole animation, sampled at

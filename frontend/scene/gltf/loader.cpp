@@ -115,6 +115,7 @@ Scene build_scene(const std::string& path, const GltfOptions& options, const War
                              ? auto_motion_segments(model, rendered, poses_at, options, t_open, t_close, scene, diagnostics)
                              : options.motion_segments;
     add_interior_times(model, rendered, poses_at, options, t_open, t_close, segments, scene, diagnostics);
+    scene.motion_segments_auto = options.motion_segments == 0;
     return scene;
 }
 
