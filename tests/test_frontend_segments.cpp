@@ -360,3 +360,41 @@ TEST_CASE("a disc turning 90 degrees: the default options match true rotation wi
     CHECK(quarter > 1.5 * noise);  // not vacuous: the old tolerance is outside the noise
     CHECK(chords > 3.0 * noise);
 }
+
+// Where one linear motion per triangle is all a renderer carries (gl, the
+// fixed-pass methods): auto's segments are dropped (the chords, the K = 1
+// model), an explicit K is refused, each in one line.
+TEST_CASE("auto's segments drop to the chords; an explicit K is refused") {
+    const std::string path = write_turning_disc(90.0, 64);
+    GltfOptions options;
+    options.shutter_open = 0.0f;
+    options.shutter_close = 1.0f;
+    options.image_height = 240;
+    Scene automatic = load_gltf_scene(path, options);
+    const int k = scene_motion_segments(automatic);
+    CHECK(k > 1);
+    CHECK(automatic.motion_segments_auto);
+    std::string message;
+    try {
+        refuse_motion_segments(automatic, "gl");
+    } catch (const std::invalid_argument& e) {
+        message = e.what();
+    }
+    CHECK(message.find("--motion-segments auto chose") != std::string::npos);
+    CHECK(message.find('\n') == std::string::npos);
+    CHECK(drop_motion_segments(automatic) == k);
+    CHECK(scene_motion_segments(automatic) == 1);
+    CHECK(automatic.camera.view_at.empty());
+    CHECK_NOTHROW(refuse_motion_segments(automatic, "gl"));
+    // The chords: the same image as loading one segment.
+    options.motion_segments = 1;
+    const Scene one = load_gltf_scene(path, options);
+    CHECK_FALSE(one.motion_segments_auto);
+    const RenderSettings settings = quiet_settings(80, 60, 4);
+    CHECK(rmse(render_cpu(automatic, settings).image, render_cpu(one, settings).image) == 0.0);
+    options.motion_segments = 4;
+    const Scene explicit_k = load_gltf_scene(path, options);
+    CHECK_FALSE(explicit_k.motion_segments_auto);
+    CHECK_THROWS_WITH_AS(refuse_motion_segments(explicit_k, "gl"), doctest::Contains("4 motion segments are not supported"),
+                         std::invalid_argument);
+}
