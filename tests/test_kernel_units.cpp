@@ -124,9 +124,10 @@ TEST_CASE("oracle: simple cases, behind the eye and the near plane") {
 // A triangle in a plane through the eye has det 0 exactly, but its float
 // det is rounding of either sign; with the wrong one the edge tests accepted
 // the triangle's image behind the eye, a line of "hits" far beyond it
-// (docs/kernel.md, "Seen edge-on within rounding"). covers orients by the
-// facing and declines such a triangle, while a sub-pixel triangle, whose
-// float det is just as small next to its distance, keeps its samples.
+// (docs/kernel.md, "The oracle's conditioning"). covers takes det and the
+// edge values relative to the first vertex and declines such a triangle,
+// while a sub-pixel triangle, whose float det taken from the vertices as
+// they are was just as small next to their magnitudes, keeps its samples.
 TEST_CASE("oracle: seen edge-on within rounding covers nothing, a sub-pixel triangle still covers") {
     // Triangles on planes y = k x + m w through the eye, their vertices
     // rounded to float (so off the plane by rounding only), scanned along the
@@ -155,8 +156,8 @@ TEST_CASE("oracle: seen edge-on within rounding covers nothing, a sub-pixel tria
     CAPTURE(scanned);
     CHECK(accepted == 0);
     // A triangle 1e-3 NDC across (half a pixel at 1024 wide) at w = 5, off
-    // centre: its det is about 1e-6 of the vertices' magnitudes, under 32 eps
-    // of them, yet far above its facing's rounding.
+    // centre: v0 . (v1 x v2) is about 1e-6 of the vertices' magnitudes, under
+    // 32 eps of them, yet far above det's rounding taken relative to v0.
     const Kf::vec2 centre(0.3f, -0.2f);
     const float depth_w = 5.0f, size = 1e-3f;
     const Kf::vec2 corner[3] = {{0.0f, 0.0f}, {size, 0.0f}, {0.0f, size}};

@@ -95,10 +95,10 @@
 //   triangle at time t (edges inclusive; homogeneous rasterization, so vertices
 //   behind the eye are handled) at a view depth >= near. depth: that view depth
 //   when covered; 0 when the ray misses; the too-close depth when false because
-//   the hit is nearer than near. A triangle seen edge-on through the eye
-//   within rounding (v0 . ((v1 - v0) x (v2 - v0)) within 32 eps of its
-//   terms) covers nothing: the sign that orients the edge tests is never a
-//   rounding's. NaN anywhere in the computation gives false; classify() flags such input.
+//   the hit is nearer than near. Computed relative to the first vertex, so
+//   an edge lands within about eps |s| of where it is whatever the
+//   triangle's size; a triangle seen edge-on through the eye within rounding
+//   (det within 32 eps of its terms) covers nothing. NaN anywhere in the computation gives false; classify() flags such input.
 //
 // bool covers_hit(MovingTriangle tri, vec2 s, vec2 uv, real t, real near, out real depth, out vec3 barycentric)
 //   covers, and where the sample is covered (true, or false only for the near

@@ -67,9 +67,9 @@ __attribute__((target("avx"))) inline __m256d pair4(__m256d p, __m256d q, __m256
 }
 
 // covers_hit's verdict and depth on four lanes. Where covers returns early
-// (seen edge-on within rounding or NaN, det against the facing, an edge
-// value negative, the sum not positive) the lane's mask is cleared instead;
-// the values computed on such lanes are discarded.
+// (seen edge-on within rounding or NaN, an edge value negative, the sum not
+// positive) the lane's mask is cleared instead; the values computed on such
+// lanes are discarded.
 __attribute__((target("avx"))) std::uint32_t covers4_avx(const kerneld::MovingTriangle& tri, const double* sx,
                                                          const double* sy, const double* u, const double* v,
                                                          const double* t, double near, double* depth) {
@@ -79,19 +79,15 @@ __attribute__((target("avx"))) std::uint32_t covers4_avx(const kerneld::MovingTr
     const Vertex4 v0 = vertex4(tri, 0, one_minus_t, T, U, V);
     const Vertex4 v1 = vertex4(tri, 1, one_minus_t, T, U, V);
     const Vertex4 v2 = vertex4(tri, 2, one_minus_t, T, U, V);
-    const Vertex4 n12 = cross4(v1, v2);
-    __m256d e0 = dot4(n12, SX, SY, one);
-    __m256d e1 = dot4(cross4(v2, v0), SX, SY, one);
-    __m256d e2 = dot4(cross4(v0, v1), SX, SY, one);
-    __m256d det = dot4(v0, n12.x, n12.y, n12.w);
     const __m256d zero = _mm256_setzero_pd(), sign = _mm256_set1_pd(-0.0);
-    // covers_hit's facing, v0 . ((v1 - v0) x (v2 - v0)), and its error
-    // bound 32 eps bc_det_terms(|v0|, |d1|, |d2|), in the body's order;
-    // |facing| > bound ordered, so NaN is rejected as in C++.
+    // covers_hit's values relative to v0, in the body's order: d1, d2,
+    // n = d1 x d2, det = v0 . n and its bound 32 eps bc_det_terms(|v0|, |d1|,
+    // |d2|) (|det| > bound ordered, so NaN is rejected as in C++), then
+    // q = ray x v0 and the edge values.
     const Vertex4 d1{_mm256_sub_pd(v1.x, v0.x), _mm256_sub_pd(v1.y, v0.y), _mm256_sub_pd(v1.w, v0.w)};
     const Vertex4 d2{_mm256_sub_pd(v2.x, v0.x), _mm256_sub_pd(v2.y, v0.y), _mm256_sub_pd(v2.w, v0.w)};
     const Vertex4 n = cross4(d1, d2);
-    const __m256d facing = dot4(v0, n.x, n.y, n.w);
+    __m256d det = dot4(v0, n.x, n.y, n.w);
     const Vertex4 a0{_mm256_andnot_pd(sign, v0.x), _mm256_andnot_pd(sign, v0.y), _mm256_andnot_pd(sign, v0.w)};
     const Vertex4 a1{_mm256_andnot_pd(sign, d1.x), _mm256_andnot_pd(sign, d1.y), _mm256_andnot_pd(sign, d1.w)};
     const Vertex4 a2{_mm256_andnot_pd(sign, d2.x), _mm256_andnot_pd(sign, d2.y), _mm256_andnot_pd(sign, d2.w)};
@@ -99,14 +95,19 @@ __attribute__((target("avx"))) std::uint32_t covers4_avx(const kerneld::MovingTr
                                                       _mm256_mul_pd(a0.y, pair4(a1.w, a2.x, a2.w, a1.x))),
                                         _mm256_mul_pd(a0.w, pair4(a1.x, a2.y, a2.x, a1.y)));
     const __m256d bound = _mm256_mul_pd(_mm256_set1_pd(32.0 * kerneld::bc_epsilon()), terms);
-    __m256d ok = _mm256_cmp_pd(_mm256_andnot_pd(sign, facing), bound, _CMP_GT_OQ);
-    // facing < 0: all four negated (a sign flip, exact).
-    const __m256d flip = _mm256_and_pd(_mm256_cmp_pd(facing, zero, _CMP_LT_OQ), sign);
+    __m256d ok = _mm256_cmp_pd(_mm256_andnot_pd(sign, det), bound, _CMP_GT_OQ);
+    const Vertex4 ray{SX, SY, one};
+    const Vertex4 q = cross4(ray, v0);
+    const Vertex4 d21{_mm256_sub_pd(d2.x, d1.x), _mm256_sub_pd(d2.y, d1.y), _mm256_sub_pd(d2.w, d1.w)};
+    __m256d e0 = _mm256_add_pd(dot4(d21, q.x, q.y, q.w), dot4(n, SX, SY, one));
+    __m256d e1 = _mm256_xor_pd(dot4(d2, q.x, q.y, q.w), sign);
+    __m256d e2 = dot4(d1, q.x, q.y, q.w);
+    // det < 0: all four negated (a sign flip, exact).
+    const __m256d flip = _mm256_and_pd(_mm256_cmp_pd(det, zero, _CMP_LT_OQ), sign);
     e0 = _mm256_xor_pd(e0, flip);
     e1 = _mm256_xor_pd(e1, flip);
     e2 = _mm256_xor_pd(e2, flip);
     det = _mm256_xor_pd(det, flip);
-    ok = _mm256_and_pd(ok, _mm256_cmp_pd(det, zero, _CMP_GT_OQ));
     ok = _mm256_and_pd(ok, _mm256_cmp_pd(e0, zero, _CMP_GE_OQ));
     ok = _mm256_and_pd(ok, _mm256_cmp_pd(e1, zero, _CMP_GE_OQ));
     ok = _mm256_and_pd(ok, _mm256_cmp_pd(e2, zero, _CMP_GE_OQ));

@@ -113,12 +113,29 @@ struct CoordinateMagnitude {
     return f.fma(nx, s, f.fma(ny, s, nz));
 }
 
-[[gnu::always_inline]] inline Bound oracle_edge(const VertexBounds& a, const VertexBounds& b, Bound s, const Rounding& r) {
-    auto component = [&](Bound p, Bound q, Bound u, Bound o) { return r.add(r.mul(p, q), r.mul(u, o)); };
-    const Bound nx = component(a.y, b.w, a.w, b.y);
-    const Bound ny = component(a.w, b.x, a.x, b.w);
-    const Bound nz = component(a.x, b.y, a.y, b.x);
-    return r.add(r.add(r.mul(nx, s), r.mul(ny, s)), nz);
+// The oracle's edge values (covers_hit): everything relative to v0, with
+// d1 = v1 - v0, d2 = v2 - v0, n = d1 x d2 and q = (sx, sy, 1) x v0,
+//   e0 = (d2 - d1) . q + n . (sx, sy, 1),   e1 = -d2 . q,   e2 = d1 . q,
+// every difference, product and sum rounded (GLM's cross, bc_dot3's order).
+// Equal to (V_a x V_b) . (sx, sy, 1) in exact arithmetic, so the bound is on
+// the oracle's distance from that value. Edge k is opposite vertex k.
+[[gnu::always_inline]] inline Bound oracle_edge(const VertexBounds v[3], int k, Bound s, const Rounding& r) {
+    auto sub = [&](const VertexBounds& a, const VertexBounds& b) {
+        return VertexBounds{r.add(a.x, b.x), r.add(a.y, b.y), r.add(a.w, b.w)};
+    };
+    auto cross = [&](const VertexBounds& a, const VertexBounds& b) {
+        auto component = [&](Bound p, Bound q, Bound u, Bound o) { return r.add(r.mul(p, q), r.mul(u, o)); };
+        return VertexBounds{component(a.y, b.w, b.y, a.w), component(a.w, b.x, b.w, a.x), component(a.x, b.y, b.x, a.y)};
+    };
+    auto dot = [&](const VertexBounds& a, const VertexBounds& b) {
+        return r.add(r.add(r.mul(a.x, b.x), r.mul(a.y, b.y)), r.mul(a.w, b.w));
+    };
+    const VertexBounds ray{s, s, Bound{1.0, 0.0}};
+    const VertexBounds d1 = sub(v[1], v[0]), d2 = sub(v[2], v[0]);
+    const VertexBounds q = cross(ray, v[0]);
+    if (k == 1) return dot(d2, q);
+    if (k == 2) return dot(d1, q);
+    return r.add(dot(sub(d2, d1), q), dot(cross(d1, d2), ray));
 }
 
 // Rounds a non-negative double up to a float no smaller than it.
@@ -346,7 +363,7 @@ CoverageSetup make_coverage_setup(const typename kernel<Real>::MovingTriangle& t
     for (int k = 0; k < 3; ++k) {
         const int a = (k + 1) % 3, b = (k + 2) % 3;
         const Bound fe = fast_edge(fast[a], fast[b], s_fast);
-        const Bound oe = oracle_edge(oracle[a], oracle[b], s_oracle, r);
+        const Bound oe = oracle_edge(oracle, k, s_oracle, r);
         setup.band[k] = round_up_to_float((fe.e + oe.e) * slack);
         setup.usable = setup.usable && fe.m < float_safe && std::isfinite(setup.band[k]);
     }

@@ -27,33 +27,37 @@ BC_FN bool covers_hit(BC_IN(MovingTriangle) tri, vec2 s, vec2 uv, real t, real n
     vec3 v1 = vertex_at(tri, 1, t, uv);
     vec3 v2 = vertex_at(tri, 2, t, uv);
     vec3 ray = vec3(s.x, s.y, real(1));
-    vec3 n12 = cross(v1, v2);
-    real e0 = bc_dot3(n12, ray);
-    real e1 = bc_dot3(cross(v2, v0), ray);
-    real e2 = bc_dot3(cross(v0, v1), ray);
-    real det = bc_dot3(v0, n12);
-    // Which way the triangle faces the eye: det again, but taken relative to
-    // v0 (v0 . ((v1 - v0) x (v2 - v0)), equal in exact arithmetic), so its
-    // rounding is relative to the triangle's size, not to its distance, and
-    // its sign is right down to sub-pixel triangles. Where even this lies
-    // within its rounding, the triangle is seen edge-on through the eye and
-    // det's sign is unknown; with the wrong sign the edge tests accept the
-    // triangle's image behind the eye, a line far beyond the triangle that
-    // no bound contains. Such a triangle covers nothing, and where det
-    // disagrees with the facing, det is rounding and the ray misses
-    // (docs/kernel.md, "Seen edge-on within rounding"). Rejects NaN too.
+    // Everything relative to v0 (docs/kernel.md, "The oracle's
+    // conditioning"): with d1 = v1 - v0,
+    // d2 = v2 - v0, n = d1 x d2 and q = ray x v0, in exact arithmetic
+    //   e1 = (v2 x v0) . ray = -d2 . q,   e2 = (v0 x v1) . ray = d1 . q,
+    //   e0 = (v1 x v2) . ray = (d2 - d1) . q + n . ray,   det = v0 . n.
+    // q cancels to the ray's offset from v0, so an edge lands within about
+    // eps |s| of where it is, whatever the triangle's size; the products of
+    // absolute vertices placed a short edge within eps (1 + |s|)^3 / length.
     vec3 d1 = v1 - v0;
     vec3 d2 = v2 - v0;
-    real facing = bc_dot3(v0, cross(d1, d2));
-    real facing_error = real(32) * bc_epsilon() * bc_det_terms(abs(v0), abs(d1), abs(d2));
-    if (!(abs(facing) > facing_error)) return false;
-    if (facing < real(0)) {
+    vec3 n = cross(d1, d2);
+    // det M, the facing: its rounding is relative to the triangle's size.
+    // Where it lies within that rounding the triangle is seen edge-on through
+    // the eye and its sign is unknown; with the wrong sign the edge tests
+    // would accept the triangle's image behind the eye, a line far beyond
+    // it that no bound contains. Such a triangle covers nothing. Rejects
+    // NaN too.
+    real det = bc_dot3(v0, n);
+    real det_error = real(32) * bc_epsilon() * bc_det_terms(abs(v0), abs(d1), abs(d2));
+    if (!(abs(det) > det_error)) return false;
+    vec3 q = cross(ray, v0);
+    vec3 d21 = d2 - d1;
+    real e0 = bc_dot3(d21, q) + bc_dot3(n, ray);
+    real e1 = -bc_dot3(d2, q);
+    real e2 = bc_dot3(d1, q);
+    if (det < real(0)) {
         e0 = -e0;
         e1 = -e1;
         e2 = -e2;
         det = -det;
     }
-    if (!(det > real(0))) return false;
     if (!(e0 >= real(0) && e1 >= real(0) && e2 >= real(0))) return false;
     real sum = e0 + e1 + e2;
     if (!(sum > real(0))) return false;
