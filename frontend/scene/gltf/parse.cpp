@@ -1,6 +1,9 @@
 #include "scene/gltf/parse.hpp"
 
+#include "scene/gltf/compressed_json.hpp"
 #include "scene/gltf/conformance.hpp"
+#include "scene/gltf/draco.hpp"
+#include "scene/gltf/meshopt.hpp"
 #include "scene/scene_name.hpp"
 
 #include <climits>
@@ -130,7 +133,11 @@ void check_glb_header(const std::vector<unsigned char>& bytes, const Diagnostics
 
 tg::Model parse_file(Diagnostics& diagnostics) {
     const std::string& path = diagnostics.path();
-    const std::vector<unsigned char> bytes = read_bytes(diagnostics);
+    std::vector<unsigned char> bytes = read_bytes(diagnostics);
+    const bool binary = scene_file_type(path) == SceneFileType::glb;
+    if (binary) check_glb_header(bytes, diagnostics);
+    bytes = with_compression_rewrites(std::move(bytes), binary);
+    if (bytes.size() >= UINT_MAX) diagnostics.fail("file is larger than 4 GiB");
     const auto length = static_cast<unsigned int>(bytes.size());
 
     tg::Model model;
@@ -139,8 +146,7 @@ tg::Model parse_file(Diagnostics& diagnostics) {
     std::string error;
     std::string warning;
     bool ok = false;
-    if (scene_file_type(path) == SceneFileType::glb) {
-        check_glb_header(bytes, diagnostics);
+    if (binary) {
         ok = parser.LoadBinaryFromMemory(&model, &error, &warning, bytes.data(), length, directory_of(path));
     } else {
         if (bytes.empty()) diagnostics.fail("file is empty");
@@ -156,6 +162,10 @@ tg::Model parse_file(Diagnostics& diagnostics) {
     const std::string other_warnings = one_line(without_image_file_warnings(warning));
     if (!other_warnings.empty()) diagnostics.warn_once("tinygltf", other_warnings);
     image_warnings(model, diagnostics);
+    // Compressed geometry, decoded into plain buffer views and accessors:
+    // meshopt's views first (a Draco mesh could sit in one).
+    decode_meshopt_views(model, diagnostics);
+    decode_draco_primitives(model, diagnostics);
     return model;
 }
 
