@@ -41,12 +41,14 @@ namespace {
 
 constexpr int kComponentFloat = 5126;
 constexpr int kComponentByte = 5120;
+constexpr int kComponentUnsignedByte = 5121;
 constexpr int kComponentUnsignedInt = 5125;
 
-// A bumpy 5 x 5 grid: 25 vertices with positions, normals and texture
-// coordinates, 32 triangles.
+// A bumpy 5 x 5 grid: 25 vertices with positions, normals, texture
+// coordinates and 8-bit colours, 32 triangles.
 struct SourceMesh {
     std::vector<float> positions, normals, texcoords;  // 3, 3, 2 per vertex
+    std::vector<std::uint8_t> colors;                  // RGBA, normalized
     std::vector<std::uint32_t> indices;
     std::size_t vertices() const { return positions.size() / 3; }
 };
@@ -63,6 +65,7 @@ SourceMesh grid_mesh() {
             mesh.positions.insert(mesh.positions.end(), {x, y, z});
             mesh.normals.insert(mesh.normals.end(), {normal.x, normal.y, normal.z});
             mesh.texcoords.insert(mesh.texcoords.end(), {float(i) / float(n - 1), float(j) / float(n - 1)});
+            mesh.colors.insert(mesh.colors.end(), {std::uint8_t(60 * i), std::uint8_t(60 * j), 200, 255});
         }
     }
     for (std::uint32_t j = 0; j + 1 < n; ++j) {
@@ -112,9 +115,9 @@ json accessor(int view, int component_type, const char* type, std::size_t count)
     return a;
 }
 
-// The document around one primitive whose accessors 0..3 are POSITION,
-// NORMAL, TEXCOORD_0 and the indices; `views` are the accessors' views (-1:
-// none).
+// The document around one primitive whose accessors 0..4 are POSITION,
+// NORMAL, TEXCOORD_0, the indices and COLOR_0; `views` are the accessors'
+// views (-1: none).
 json document(const SourceMesh& mesh, const std::vector<int>& views) {
     json doc;
     doc["asset"] = {{"version", "2.0"}};
@@ -127,7 +130,11 @@ json document(const SourceMesh& mesh, const std::vector<int>& views) {
     doc["accessors"] = json::array({position, accessor(views[1], kComponentFloat, "VEC3", mesh.vertices()),
                                     accessor(views[2], kComponentFloat, "VEC2", mesh.vertices()),
                                     accessor(views[3], kComponentUnsignedInt, "SCALAR", mesh.indices.size())});
-    json primitive = {{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}}}, {"indices", 3}};
+    json color = accessor(views[4], kComponentUnsignedByte, "VEC4", mesh.vertices());
+    color["normalized"] = true;
+    doc["accessors"].push_back(color);
+    json primitive = {{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}, {"COLOR_0", 4}}},
+                      {"indices", 3}};
     doc["meshes"] = json::array({{{"primitives", json::array({primitive})}}});
     return doc;
 }
@@ -140,12 +147,14 @@ void declare(json& doc, const std::string& extension, bool required) {
 Gltf plain_gltf(const SourceMesh& mesh) {
     Gltf g;
     const std::size_t p = append(g.bin, mesh.positions), n = append(g.bin, mesh.normals),
-                      t = append(g.bin, mesh.texcoords), i = append(g.bin, mesh.indices);
-    g.doc = document(mesh, {0, 1, 2, 3});
+                      t = append(g.bin, mesh.texcoords), i = append(g.bin, mesh.indices),
+                      c = append(g.bin, mesh.colors);
+    g.doc = document(mesh, {0, 1, 2, 3, 4});
     g.doc["bufferViews"] = json::array({{{"buffer", 0}, {"byteOffset", p}, {"byteLength", mesh.positions.size() * 4}},
                                         {{"buffer", 0}, {"byteOffset", n}, {"byteLength", mesh.normals.size() * 4}},
                                         {{"buffer", 0}, {"byteOffset", t}, {"byteLength", mesh.texcoords.size() * 4}},
-                                        {{"buffer", 0}, {"byteOffset", i}, {"byteLength", mesh.indices.size() * 4}}});
+                                        {{"buffer", 0}, {"byteOffset", i}, {"byteLength", mesh.indices.size() * 4}},
+                                        {{"buffer", 0}, {"byteOffset", c}, {"byteLength", mesh.colors.size()}}});
     g.doc["buffers"] = json::array({{{"byteLength", g.bin.size()}}});
     return g;
 }
@@ -206,8 +215,9 @@ Gltf meshopt_gltf(const SourceMesh& mesh, const MeshoptOptions& options) {
     }
     REQUIRE(!indices.empty());
     add_view(indices, index_count, 4, options.index_mode, "", false);
+    add_view(encode_vertices(mesh.colors.data(), count, 4), count, 4, "ATTRIBUTES", "", true);
 
-    g.doc = document(mesh, {0, 1, 2, 3});
+    g.doc = document(mesh, {0, 1, 2, 3, 4});
     if (options.octahedral_normals) {
         g.doc["accessors"][1]["componentType"] = kComponentByte;
         g.doc["accessors"][1]["normalized"] = true;
@@ -235,7 +245,7 @@ struct DracoOptions {
 
 struct DracoStream {
     std::vector<unsigned char> bytes;
-    int position_id = 0, normal_id = 0, texcoord_id = 0;
+    int position_id = 0, normal_id = 0, texcoord_id = 0, color_id = 0;
 };
 
 DracoStream draco_encode(const SourceMesh& mesh, bool quantized) {
@@ -256,6 +266,15 @@ DracoStream draco_encode(const SourceMesh& mesh, bool quantized) {
     stream.position_id = add(draco::GeometryAttribute::POSITION, mesh.positions, 3);
     stream.normal_id = add(draco::GeometryAttribute::NORMAL, mesh.normals, 3);
     stream.texcoord_id = add(draco::GeometryAttribute::TEX_COORD, mesh.texcoords, 2);
+    {
+        draco::GeometryAttribute attribute;
+        attribute.Init(draco::GeometryAttribute::COLOR, nullptr, 4, draco::DT_UINT8, true, 4, 0);
+        const int id = dm.AddAttribute(attribute, true, count);
+        for (std::uint32_t v = 0; v < count; ++v) {
+            dm.attribute(id)->SetAttributeValue(draco::AttributeValueIndex(v), &mesh.colors[v * 4u]);
+        }
+        stream.color_id = static_cast<int>(dm.attribute(id)->unique_id());
+    }
     for (std::size_t t = 0; t < mesh.indices.size(); t += 3) {
         dm.AddFace({draco::PointIndex(mesh.indices[t]), draco::PointIndex(mesh.indices[t + 1]),
                     draco::PointIndex(mesh.indices[t + 2])});
@@ -281,25 +300,29 @@ Gltf draco_gltf(const SourceMesh& mesh, const DracoOptions& options) {
     Gltf g;
     append(g.bin, stream.bytes);
     json views = json::array({{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", stream.bytes.size()}}});
-    std::vector<int> accessor_views = {-1, -1, -1, -1};
+    std::vector<int> accessor_views = {-1, -1, -1, -1, -1};
     if (options.fallback) {
         std::vector<float> moved = mesh.positions;
         for (float& x : moved) x += 10.0f;
         const std::size_t p = append(g.bin, moved), n = append(g.bin, mesh.normals),
-                          t = append(g.bin, mesh.texcoords), i = append(g.bin, mesh.indices);
+                          t = append(g.bin, mesh.texcoords), i = append(g.bin, mesh.indices),
+                          c = append(g.bin, mesh.colors);
         for (const auto& [offset, length] : std::vector<std::pair<std::size_t, std::size_t>>{
                  {p, moved.size() * 4}, {n, mesh.normals.size() * 4}, {t, mesh.texcoords.size() * 4},
-                 {i, mesh.indices.size() * 4}}) {
+                 {i, mesh.indices.size() * 4}, {c, mesh.colors.size()}}) {
             views.push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", length}});
         }
-        accessor_views = {1, 2, 3, 4};
+        accessor_views = {1, 2, 3, 4, 5};
     }
     g.doc = document(mesh, accessor_views);
     g.doc["meshes"][0]["primitives"][0]["extensions"] = {
         {"KHR_draco_mesh_compression",
          {{"bufferView", 0},
           {"attributes",
-           {{"POSITION", stream.position_id}, {"NORMAL", stream.normal_id}, {"TEXCOORD_0", stream.texcoord_id}}}}}};
+           {{"POSITION", stream.position_id},
+            {"NORMAL", stream.normal_id},
+            {"TEXCOORD_0", stream.texcoord_id},
+            {"COLOR_0", stream.color_id}}}}}};
     g.doc["bufferViews"] = views;
     g.doc["buffers"] = json::array({{{"byteLength", g.bin.size()}}});
     declare(g.doc, "KHR_draco_mesh_compression", options.required);
@@ -407,6 +430,7 @@ void check_same_geometry(const Scene& plain, const Scene& loaded) {
     CHECK(loaded.triangles == plain.triangles);
     CHECK(loaded.normal == plain.normal);
     CHECK(loaded.texcoord == plain.texcoord);
+    CHECK(loaded.vertex_color == plain.vertex_color);
 }
 
 float max_distance(const std::vector<glm::vec3>& a, const std::vector<glm::vec3>& b) {
@@ -430,6 +454,9 @@ TEST_CASE("EXT_meshopt_compression: lossless streams load and render as the plai
     const Scene plain = load(save("plain", plain_gltf(mesh)));
     REQUIRE(plain.triangles.size() == 32);
     REQUIRE(plain.position_open.size() == 25);
+    REQUIRE(plain.vertex_color.size() == 25);
+    REQUIRE(plain.texcoord.size() == 25);
+    REQUIRE(plain.normal.size() == 25);
     for (bool required : {true, false}) {
         for (const char* mode : {"TRIANGLES", "INDICES"}) {
             for (bool glb : {false, true}) {
