@@ -710,3 +710,23 @@ TEST_CASE("compressed geometry: every second byte of the streams replaced, and c
     MESSAGE(loads << " corrupted files loaded, " << refusals << " refused in one line");
     CHECK(refusals > 1000);
 }
+
+TEST_CASE("GLB: a BIN chunk 8 bytes too long for the file is refused, not read past the end") {
+    // tinygltf 2.7 checks the BIN chunk's length without its 8-byte header;
+    // found by fuzz_gltf once the meshopt rewrite rebuilt GLBs to their
+    // declared length (parse.cpp's check_glb_header now checks it).
+    for (bool meshopt : {false, true}) {
+        CAPTURE(meshopt);
+        const SourceMesh mesh = grid_mesh();
+        std::vector<unsigned char> bytes = glb_bytes(meshopt ? meshopt_gltf(mesh, MeshoptOptions{}) : plain_gltf(mesh));
+        std::uint32_t json_length = 0, bin_length = 0;
+        std::memcpy(&json_length, bytes.data() + 12, 4);
+        std::memcpy(&bin_length, bytes.data() + 20 + json_length, 4);
+        bin_length += 8;
+        std::memcpy(bytes.data() + 20 + json_length, &bin_length, 4);
+        const fs::path path = scratch_folder() / "bin_chunk_too_long.glb";
+        write_file(path, bytes);
+        const std::string message = error_of(path.string());
+        CHECK(message == path.string() + ": GLB BIN chunk runs past the end of the file");
+    }
+}

@@ -97,18 +97,19 @@ std::vector<unsigned char> with_compression_rewrites(std::vector<unsigned char> 
         if (json_text.empty()) return bytes;
         return std::vector<unsigned char>(json_text.begin(), json_text.end());
     }
-    // 12-byte header, the JSON chunk (8-byte header), then the rest up to
-    // the declared length.
+    // 12-byte header, the JSON chunk (8-byte header), then the rest: the
+    // declared length grows or shrinks with the JSON, and any bytes past it
+    // stay, as tinygltf would have seen them.
     const std::size_t json_length = read_u32(bytes, 12);
     const std::size_t total = read_u32(bytes, 8);
     const auto* text = reinterpret_cast<const char*>(bytes.data()) + 20;
     std::string json_text = rewritten_json(text, text + json_length);
     if (json_text.empty()) return bytes;
     while (json_text.size() % 4 != 0) json_text += ' ';
-    const std::size_t rest = total - 20 - json_length;
+    const std::size_t rest = bytes.size() - 20 - json_length;
     if (json_text.size() + rest + 20 >= std::numeric_limits<std::uint32_t>::max()) return bytes;
     std::vector<unsigned char> rebuilt(bytes.begin(), bytes.begin() + 8);
-    append_u32(rebuilt, static_cast<std::uint32_t>(20 + json_text.size() + rest));
+    append_u32(rebuilt, static_cast<std::uint32_t>(total - json_length + json_text.size()));
     append_u32(rebuilt, static_cast<std::uint32_t>(json_text.size()));
     append_u32(rebuilt, 0x4E4F534Au);  // "JSON"
     rebuilt.insert(rebuilt.end(), json_text.begin(), json_text.end());

@@ -127,6 +127,11 @@ void check_glb_header(const std::vector<unsigned char>& bytes, const Diagnostics
     const std::uint64_t json_end = 20ull + u32(12);
     if (json_end > u32(8)) diagnostics.fail("GLB JSON chunk runs past the end of the file");
     if (u32(16) != 0x4E4F534Au) diagnostics.fail("GLB first chunk is not JSON");
+    // tinygltf 2.7 checks the BIN chunk's length without its 8-byte header
+    // and would read up to 8 bytes past the declared end.
+    if (json_end + 12 <= u32(8) && json_end + 8 + u32(static_cast<std::size_t>(json_end)) > u32(8)) {
+        diagnostics.fail("GLB BIN chunk runs past the end of the file");
+    }
 }
 
 }  // namespace
