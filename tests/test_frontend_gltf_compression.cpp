@@ -730,3 +730,27 @@ TEST_CASE("GLB: a BIN chunk 8 bytes too long for the file is refused, not read p
         CHECK(message == path.string() + ": GLB BIN chunk runs past the end of the file");
     }
 }
+
+TEST_CASE("compressed geometry: many views or primitives sharing one stream are held to a total") {
+    // One stream decoded over and over is bounded by the file's buffers:
+    // 128x (meshopt) and 256x plus 1 MiB (Draco), not per view only.
+    const SourceMesh mesh = grid_mesh();
+    Gltf meshopt = meshopt_gltf(mesh, MeshoptOptions{});
+    const json view = meshopt.doc["bufferViews"][0];
+    for (int k = 0; k < 1000; ++k) meshopt.doc["bufferViews"].push_back(view);
+    const std::string meshopt_path = save("meshopt_shared", meshopt, true);
+    const std::string meshopt_message = error_of(meshopt_path);
+    CHECK(meshopt_message.find("EXT_meshopt_compression views decode to more than") != std::string::npos);
+
+    Gltf draco = draco_gltf(mesh, DracoOptions{});
+    const json primitive = draco.doc["meshes"][0]["primitives"][0];
+    for (int k = 0; k < 2000; ++k) draco.doc["meshes"][0]["primitives"].push_back(primitive);
+    const std::string draco_path = save("draco_shared", draco, true);
+    const std::string draco_message = error_of(draco_path);
+    CHECK(draco_message.find("KHR_draco_mesh_compression meshes decode to more than") != std::string::npos);
+
+    // A few sharing one stream still load.
+    Gltf few = draco_gltf(mesh, DracoOptions{});
+    for (int k = 0; k < 3; ++k) few.doc["meshes"][0]["primitives"].push_back(primitive);
+    CHECK(load(save("draco_shared_few", few, true)).triangles.size() == 4 * mesh.indices.size() / 3);
+}

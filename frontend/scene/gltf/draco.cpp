@@ -6,6 +6,7 @@
 #include <draco/compression/decode.h>
 #include <draco/mesh/mesh.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -27,6 +28,12 @@ struct DecodedBuffer {
     std::size_t index = 0;  // in model.buffers, once pushed
     tg::Buffer buffer;
     bool used = false;
+    // Primitives may share one Draco mesh: the file's decoded bytes are held
+    // to 256 times all its buffers' bytes (plus 1 MiB), checked per mesh
+    // before its values are converted.
+    std::size_t limit = 0;
+
+    bool fits(std::size_t more) const { return more <= limit - std::min(limit, buffer.data.size()); }
 
     // A view over `bytes` appended to the buffer; returns its index.
     int add_view(tg::Model& model, const std::vector<unsigned char>& bytes) {
@@ -241,6 +248,14 @@ void decode_primitive(tg::Model& model, tg::Primitive& primitive, const tg::Valu
 
     const std::unique_ptr<draco::Mesh> mesh =
         decode_mesh(model, extension.Get("bufferView").GetNumberAsInt(), owner, diagnostics);
+    // What this primitive's accessors will hold: at most 16 bytes per point
+    // per attribute (VEC4 of 4-byte components), 12 per triangle.
+    const std::size_t estimate = (ids.Keys().size() * std::size_t{mesh->num_points()} * 16) +
+                                 std::size_t{mesh->num_faces()} * 12;
+    if (!out.fits(estimate)) {
+        diagnostics.fail(owner + ": " + kExtension + " meshes decode to more than " + std::to_string(out.limit) +
+                         " bytes in all, 256 times the file's buffers");
+    }
     decode_attributes(model, primitive, *mesh, ids, owner, out, diagnostics);
     decode_indices(model, primitive, *mesh, owner, out, diagnostics);
 }
@@ -250,6 +265,8 @@ void decode_primitive(tg::Model& model, tg::Primitive& primitive, const tg::Valu
 void decode_draco_primitives(tg::Model& model, const Diagnostics& diagnostics) {
     DecodedBuffer out;
     out.index = model.buffers.size();
+    for (const tg::Buffer& buffer : model.buffers) out.limit += buffer.data.size() * 256;
+    out.limit += std::size_t{1} << 20;
     out.buffer.name = "KHR_draco_mesh_compression (decoded)";
     for (std::size_t m = 0; m < model.meshes.size(); ++m) {
         auto& primitives = model.meshes[m].primitives;

@@ -2,6 +2,7 @@
 
 #include <meshoptimizer.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -46,7 +47,9 @@ std::string string_property(const tg::Value& object, const char* key, const std:
     return object.Get(key).Get<std::string>();
 }
 
-bool is_placeholder(const tg::Buffer& buffer) { return buffer.uri == kMeshoptPlaceholderUri; }
+bool is_placeholder(const tg::Buffer& buffer) {
+    return buffer.uri == kMeshoptPlaceholderUri && buffer.extensions.count(kExtension) != 0;
+}
 
 // The decoded bytes of buffer view `index` (whose extension is `extension`).
 std::vector<unsigned char> decode_view(const tg::Model& model, std::size_t index, const tg::Value& extension,
@@ -145,6 +148,11 @@ void decode_meshopt_views(tg::Model& model, const Diagnostics& diagnostics) {
     decoded.name = "EXT_meshopt_compression (decoded)";
     const std::size_t decoded_index = model.buffers.size();
     bool any = false;
+    // Views may share one stream: the whole file's decoded bytes are held to
+    // the same bound against all its buffers' bytes.
+    std::size_t buffer_bytes = 0;
+    for (const tg::Buffer& buffer : model.buffers) buffer_bytes += buffer.data.size();
+    const std::size_t total_limit = buffer_bytes * kMaxExpansion + kDecodedSlack;
     for (std::size_t v = 0; v < model.bufferViews.size(); ++v) {
         tg::BufferView& view = model.bufferViews[v];
         const auto extension = view.extensions.find(kExtension);
@@ -158,6 +166,11 @@ void decode_meshopt_views(tg::Model& model, const Diagnostics& diagnostics) {
             continue;
         }
         const std::vector<unsigned char> bytes = decode_view(model, v, extension->second, diagnostics);
+        if (bytes.size() > total_limit - std::min(total_limit, decoded.data.size())) {
+            diagnostics.fail("buffer view " + std::to_string(v) + ": " + kExtension + " views decode to more than " +
+                             std::to_string(total_limit) + " bytes in all, " + std::to_string(kMaxExpansion) +
+                             " times the file's buffers");
+        }
         while (decoded.data.size() % 4 != 0) decoded.data.push_back(0);
         any = true;
         view.buffer = static_cast<int>(decoded_index);
