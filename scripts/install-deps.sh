@@ -18,6 +18,8 @@ packages=(
   doctest-dev libbenchmark-dev valgrind
   # frontend: scenes, CPU and Embree backends, PNG output
   libtinygltf-dev libembree-dev libstb-dev
+  # compressed glTF geometry: KHR_draco_mesh_compression, EXT_meshopt_compression
+  libdraco-dev libmeshoptimizer-dev
   # EXR output (-o out.exr): OpenEXR 3 and its Imath
   libopenexr-dev
   # the blurcull command: option parsing and JSON output

@@ -314,7 +314,10 @@ TEST_CASE("bad motion-segment input is one line") {
 // reference is that of a second reference drawn with other samples. One
 // segment (the chords) and auto at the old quarter-pixel tolerance do not.
 TEST_CASE("a disc turning 90 degrees: the default options match true rotation within noise") {
-    constexpr int w = 320, h = 240, spp = 64;
+    // Scaled down where the property tests are (the sanitizer run): 160x120,
+    // 16 spp, where the quarter-pixel case is not told from the noise.
+    const bool full = blurcull::testing::property_scale() >= 1.0;
+    const int w = full ? 320 : 160, h = full ? 240 : 120, spp = full ? 64 : 16;
     const std::string path = write_turning_disc(90.0, 256);
     auto options = [&](int segments) {
         GltfOptions o;
@@ -357,7 +360,7 @@ TEST_CASE("a disc turning 90 degrees: the default options match true rotation wi
     CHECK(scene_motion_segments(chosen) > quarter_k);
     // Measured: 1.08x (K = 23 at 77 px); the quarter pixel 2.68x, K = 1 56x.
     CHECK(by_default < 1.25 * noise);
-    CHECK(quarter > 1.5 * noise);  // not vacuous: the old tolerance is outside the noise
+    if (full) CHECK(quarter > 1.5 * noise);  // not vacuous: the old tolerance is outside the noise
     CHECK(chords > 3.0 * noise);
 }
 

@@ -44,9 +44,12 @@ const std::vector<std::string>& implemented_extensions() {
     // KHR_texture_transform: offset, rotation, scale (surface.cpp).
     // KHR_materials_transmission and KHR_materials_ior: glass
     // (specular_material.cpp; what is read and what is not: its header).
-    static const std::vector<std::string> names = {"KHR_mesh_quantization", "KHR_lights_punctual",
-                                                   "KHR_texture_transform", "KHR_materials_transmission",
-                                                   "KHR_materials_ior"};
+    // KHR_draco_mesh_compression (draco.cpp) and EXT_meshopt_compression
+    // (meshopt.cpp): compressed geometry, decoded when the file is parsed.
+    static const std::vector<std::string> names = {"KHR_mesh_quantization",     "KHR_lights_punctual",
+                                                   "KHR_texture_transform",     "KHR_materials_transmission",
+                                                   "KHR_materials_ior",         "KHR_draco_mesh_compression",
+                                                   "EXT_meshopt_compression"};
     return names;
 }
 

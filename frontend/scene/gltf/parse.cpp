@@ -1,6 +1,9 @@
 #include "scene/gltf/parse.hpp"
 
+#include "scene/gltf/compressed_json.hpp"
 #include "scene/gltf/conformance.hpp"
+#include "scene/gltf/draco.hpp"
+#include "scene/gltf/meshopt.hpp"
 #include "scene/scene_name.hpp"
 
 #include <climits>
@@ -124,13 +127,22 @@ void check_glb_header(const std::vector<unsigned char>& bytes, const Diagnostics
     const std::uint64_t json_end = 20ull + u32(12);
     if (json_end > u32(8)) diagnostics.fail("GLB JSON chunk runs past the end of the file");
     if (u32(16) != 0x4E4F534Au) diagnostics.fail("GLB first chunk is not JSON");
+    // tinygltf 2.7 checks the BIN chunk's length without its 8-byte header
+    // and would read up to 8 bytes past the declared end.
+    if (json_end + 12 <= u32(8) && json_end + 8 + u32(static_cast<std::size_t>(json_end)) > u32(8)) {
+        diagnostics.fail("GLB BIN chunk runs past the end of the file");
+    }
 }
 
 }  // namespace
 
 tg::Model parse_file(Diagnostics& diagnostics) {
     const std::string& path = diagnostics.path();
-    const std::vector<unsigned char> bytes = read_bytes(diagnostics);
+    std::vector<unsigned char> bytes = read_bytes(diagnostics);
+    const bool binary = scene_file_type(path) == SceneFileType::glb;
+    if (binary) check_glb_header(bytes, diagnostics);
+    bytes = with_compression_rewrites(std::move(bytes), binary);
+    if (bytes.size() >= UINT_MAX) diagnostics.fail("file is larger than 4 GiB");
     const auto length = static_cast<unsigned int>(bytes.size());
 
     tg::Model model;
@@ -139,8 +151,7 @@ tg::Model parse_file(Diagnostics& diagnostics) {
     std::string error;
     std::string warning;
     bool ok = false;
-    if (scene_file_type(path) == SceneFileType::glb) {
-        check_glb_header(bytes, diagnostics);
+    if (binary) {
         ok = parser.LoadBinaryFromMemory(&model, &error, &warning, bytes.data(), length, directory_of(path));
     } else {
         if (bytes.empty()) diagnostics.fail("file is empty");
@@ -156,6 +167,10 @@ tg::Model parse_file(Diagnostics& diagnostics) {
     const std::string other_warnings = one_line(without_image_file_warnings(warning));
     if (!other_warnings.empty()) diagnostics.warn_once("tinygltf", other_warnings);
     image_warnings(model, diagnostics);
+    // Compressed geometry, decoded into plain buffer views and accessors:
+    // meshopt's views first (a Draco mesh could sit in one).
+    decode_meshopt_views(model, diagnostics);
+    decode_draco_primitives(model, diagnostics);
     return model;
 }
 

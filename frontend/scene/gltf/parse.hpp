@@ -11,7 +11,9 @@ namespace blurcull::frontend::gltf {
 
 // Parses diagnostics.path() (binary when it ends in .glb, any case). Fails
 // when the file cannot be read or parsed; tinygltf's warnings become one
-// warning.
+// warning. Compressed geometry (EXT_meshopt_compression buffer views,
+// KHR_draco_mesh_compression primitives) comes back decoded into plain
+// buffer views and accessors (meshopt.hpp, draco.hpp).
 tinygltf::Model parse_file(Diagnostics& diagnostics);
 
 }  // namespace blurcull::frontend::gltf
