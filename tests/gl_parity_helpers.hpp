@@ -170,14 +170,16 @@ void main() {
 // The model's limits for the tolerant comparison, derived in docs/glsl.md
 // ("Parity on a GPU"):
 // - kEdgeTolerance: a decision of the exact test (covers) may differ only for
-//   a sample whose edge value e_i = (V_j x V_k) . (s, 1), the distance to
-//   edge i times |(V_j x V_k).xy|, is within 2^-18 (64 float roundoffs) of
-//   the sum of the magnitudes of its terms, or whose det or depth (against
-//   near) is that close. The value goes through vertex_at (4 roundings), a
-//   cross product (3) and a dot product (5); each of the ~12 roundings is
+//   a sample whose edge value (covers_hit's, relative to V0: e1 = -d2 . q,
+//   e2 = d1 . q, e0 = (d2 - d1) . q + n . (s, 1), q = (s, 1) x V0, the
+//   distance to edge i times the edge normal's length) is within 2^-18 (64
+//   float roundoffs) of the sum of the magnitudes of its terms, or whose det
+//   (against 0 and against the edge-on threshold) or depth (against near) is
+//   that close. The value goes through vertex_at (4 roundings), a difference
+//   (1), two cross products (3) and a dot product (5); each of the ~13 roundings is
 //   within 1 ULP under + - * (M1), within 2 where a GPU fuses a*b+c (not
-//   `precise`), so host and GPU differ by at most ~24 roundoffs of the terms;
-//   64 leaves a factor of 2.7. In screen units that is a distance of
+//   `precise`), so host and GPU differ by at most ~26 roundoffs of the terms;
+//   64 leaves a factor of 2.5. In screen units that is a distance of
 //   2^-18 |terms| / |normal| from the edge: a few float ULPs of the
 //   coordinates' magnitude for a well-shaped triangle.
 // - kDivisionUlps: a value computed through one or two divisions (2.5 ULP
@@ -226,25 +228,38 @@ inline CoversCondition covers_condition(const kernel<float>::MovingTriangle& tri
         a[i] = glm::abs(tri.p[i]) + glm::abs(tri.p[i + 3]) +
                Kd::vec3(glm::abs(tri.c[i]) + glm::abs(tri.c[i + 3]), 0.0);
     }
+    // covers_hit's evaluation (oracle_body.inl: the edges relative to V0),
+    // each value with the scale of its rounding error to first order (in
+    // units of the roundoff): what it inherits from its operands plus its
+    // own rounding. A vertex inherits a[i] (vertex_at's sums).
+    auto cross_terms = [](const Kd::vec3& x, const Kd::vec3& y) {
+        return Kd::vec3(x.y * y.z + x.z * y.y, x.z * y.x + x.x * y.z, x.x * y.y + x.y * y.x);
+    };
+    auto dot_error = [](const Kd::vec3& x, const Kd::vec3& x_err, const Kd::vec3& y, const Kd::vec3& y_err) {
+        return glm::dot(x_err, y) + glm::dot(x, y_err) + glm::dot(x, y);
+    };
     const Kd::vec3 ray(double(s_f.x), double(s_f.y), 1.0), ray_abs = glm::abs(ray);
+    const Kd::vec3 d1 = v[1] - v[0], d2 = v[2] - v[0], d21 = d2 - d1;
+    const Kd::vec3 d1_abs = glm::abs(d1), d2_abs = glm::abs(d2), d21_abs = glm::abs(d21), v0_abs = glm::abs(v[0]);
+    const Kd::vec3 d1_err = d1_abs + a[0] + a[1], d2_err = d2_abs + a[0] + a[2], d21_err = d21_abs + d1_err + d2_err;
+    const Kd::vec3 n = glm::cross(d1, d2), n_abs = glm::abs(n);
+    const Kd::vec3 n_err = cross_terms(d1_err, d2_abs) + cross_terms(d1_abs, d2_err) + cross_terms(d1_abs, d2_abs);
+    const Kd::vec3 q = glm::cross(ray, v[0]), q_abs = glm::abs(q);
+    const Kd::vec3 q_err = cross_terms(ray_abs, a[0]) + cross_terms(ray_abs, v0_abs);
+    const double e[3] = {glm::dot(d21, q) + glm::dot(n, ray), -glm::dot(d2, q), glm::dot(d1, q)};
+    const double terms[3] = {dot_error(d21_abs, d21_err, q_abs, q_err) + dot_error(n_abs, n_err, ray_abs, Kd::vec3(0.0)),
+                             dot_error(d2_abs, d2_err, q_abs, q_err), dot_error(d1_abs, d1_err, q_abs, q_err)};
     double margin = 1e300, e_sum = 0.0, e_terms = 0.0;
     for (int i = 0; i < 3; ++i) {
-        const Kd::vec3& vj = v[(i + 1) % 3];
-        const Kd::vec3& vk = v[(i + 2) % 3];
-        const Kd::vec3& aj = a[(i + 1) % 3];
-        const Kd::vec3& ak = a[(i + 2) % 3];
-        const Kd::vec3 n = glm::cross(vj, vk);
-        const Kd::vec3 n_terms(aj.y * ak.z + aj.z * ak.y, aj.z * ak.x + aj.x * ak.z, aj.x * ak.y + aj.y * ak.x);
-        const double e = glm::dot(n, ray), terms = glm::dot(n_terms, ray_abs);
-        margin = std::min(margin, std::abs(e) / std::max(terms, 1e-300));
-        e_sum += e;
-        e_terms += terms;
+        margin = std::min(margin, std::abs(e[i]) / std::max(terms[i], 1e-300));
+        e_sum += e[i];
+        e_terms += terms[i];
     }
-    const Kd::vec3 n12 = glm::cross(v[1], v[2]);
-    const Kd::vec3 n12_terms(a[1].y * a[2].z + a[1].z * a[2].y, a[1].z * a[2].x + a[1].x * a[2].z,
-                             a[1].x * a[2].y + a[1].y * a[2].x);
-    const double det = glm::dot(v[0], n12), det_terms = glm::dot(a[0], n12_terms);
-    margin = std::min(margin, std::abs(det) / std::max(det_terms, 1e-300));
+    // det = V0 . n, against 0 and against covers' edge-on threshold
+    // 32 eps bc_det_terms(|V0|, |d1|, |d2|) (float eps).
+    const double det = glm::dot(v[0], n), det_terms = dot_error(v0_abs, a[0], n_abs, n_err);
+    const double threshold = 32.0 * 0x1p-23 * glm::dot(v0_abs, cross_terms(d1_abs, d2_abs));
+    margin = std::min(margin, std::min(std::abs(det), std::abs(std::abs(det) - threshold)) / std::max(det_terms, 1e-300));
     CoversCondition out;
     out.depth_condition = 1e300;
     if (det != 0.0 && e_sum != 0.0) {

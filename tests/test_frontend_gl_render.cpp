@@ -2,16 +2,9 @@
 // same samples decided the same way, the same resolved image, the same
 // statistics; the static path's speed-up. No GL context: SKIPPED, or a failure
 // when CI=true.
-#include "frontend_test_helpers.hpp"
-#include "render/common/camera_model.hpp"
-#include "render/common/moving_triangle.hpp"
-#include "render/common/shading.hpp"
+#include "gl_render_reference.hpp"  // first: it keeps the host from contracting a*b+c
 #include "render/cpu/cpu_backend.hpp"
-#include "render/gl/gl_backend.hpp"
 #include "scene/builtin_scenes.hpp"
-
-#include <blurcull/kernel.hpp>
-#include <blurcull/patterns.hpp>
 
 #include <doctest/doctest.h>
 
@@ -31,75 +24,6 @@ using namespace blurcull::frontend;
 using namespace blurcull::frontend::test;
 
 namespace {
-
-// The CPU backend's decisions, sample by sample, without culling (its image
-// does not depend on the cull): kernel<Real>, strict depth test in triangle
-// order. Checked below to resolve to exactly render_cpu's image at the same
-// precision.
-template <class Real>
-std::vector<std::uint32_t> reference_sample_ids(const Scene& scene, const RenderSettings& settings, Image& image) {
-    using K = blurcull::kernel<Real>;
-    const CameraModel model(scene.camera, settings.width, settings.height);
-    const auto spp = static_cast<std::uint32_t>(settings.spp);
-    const std::size_t pixels = static_cast<std::size_t>(settings.width) * static_cast<std::size_t>(settings.height);
-    std::vector<std::uint32_t> ids(pixels * spp, no_triangle);
-    std::vector<Real> depth(ids.size(), std::numeric_limits<Real>::infinity());
-    struct Sample {
-        typename K::vec2 ndc, lens;
-        Real time;
-    };
-    std::vector<Sample> samples(ids.size());
-    for (int py = 0; py < settings.height; ++py) {
-        for (int px = 0; px < settings.width; ++px) {
-            const blurcull::patternsf::SamplerSetup pattern = blurcull::patternsf::sampler_setup(
-                settings.sampler, static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py), spp, settings.seed);
-            for (std::uint32_t j = 0; j < spp; ++j) {
-                const blurcull::kernelf::PixelSample s = blurcull::patternsf::sampler_sample(pattern, j);
-                samples[(static_cast<std::size_t>(py) * settings.width + px) * spp + j] =
-                    Sample{typename K::vec2(model.sample_ndc(px, py, s.offset)), typename K::vec2(s.lens),
-                           static_cast<Real>(s.time)};
-            }
-        }
-    }
-    for (std::size_t t = 0; t < scene.triangles.size(); ++t) {
-        const typename K::MovingTriangle tri = make_moving_triangle<Real>(scene, model, t);
-        if (K::classify(tri) == BC_INVALID) continue;
-        const Real near = static_cast<Real>(model.znear);
-        const typename K::ScreenBound bound = K::screen_bound(tri, near, BC_CULL_BBOX);
-        if (bound.empty) continue;
-        const glm::vec2 lo = model.ndc_to_raster(glm::vec2(static_cast<float>(bound.lo.x), static_cast<float>(bound.hi.y)));
-        const glm::vec2 hi = model.ndc_to_raster(glm::vec2(static_cast<float>(bound.hi.x), static_cast<float>(bound.lo.y)));
-        const int x0 = std::max(0, static_cast<int>(std::floor(std::max(lo.x, -1.0f))) - 1);
-        const int y0 = std::max(0, static_cast<int>(std::floor(std::max(lo.y, -1.0f))) - 1);
-        const int x1 = std::min(settings.width - 1, static_cast<int>(std::min(hi.x, 1e6f)) + 1);
-        const int y1 = std::min(settings.height - 1, static_cast<int>(std::min(hi.y, 1e6f)) + 1);
-        for (int py = y0; py <= y1; ++py) {
-            for (int px = x0; px <= x1; ++px) {
-                for (std::uint32_t j = 0; j < spp; ++j) {
-                    const std::size_t k = (static_cast<std::size_t>(py) * settings.width + px) * spp + j;
-                    Real z = Real(0);
-                    if (!K::screen_contains(bound, samples[k].ndc)) continue;
-                    if (!K::covers(tri, samples[k].ndc, samples[k].lens, samples[k].time, near, z)) continue;
-                    if (z < depth[k]) {
-                        depth[k] = z;
-                        ids[k] = static_cast<std::uint32_t>(t);
-                    }
-                }
-            }
-        }
-    }
-    const std::vector<glm::vec3> colours = shade_all(scene);
-    image = Image(settings.width, settings.height);
-    for (std::size_t p = 0; p < pixels; ++p) {
-        glm::vec3 sum(0.0f);
-        for (std::uint32_t j = 0; j < spp; ++j) {
-            const std::uint32_t id = ids[p * spp + j];
-            sum += id == no_triangle ? scene.background : colours[id];
-        }
-        image.pixels[p] = resolve_box(sum, settings.spp);
-    }
-    return ids;
-}
 
 // Samples that are covered (show some triangle) in both or in neither.
 double fraction_same_coverage(const std::vector<std::uint32_t>& a, const std::vector<std::uint32_t>& b) {
@@ -134,11 +58,17 @@ TEST_CASE("gl backend: every built-in scene agrees with the cpu backend sample b
             const RenderSettings settings = small_settings(spp);
             // The CPU backend's decisions in double (the reference) and in
             // float (the GL backend's arithmetic, kernel<float> and its GLSL
-            // twin being bit-identical); each checked to resolve to exactly
-            // render_cpu's image at that precision.
-            Image double_image, float_image;
-            const std::vector<std::uint32_t> double_ids = reference_sample_ids<double>(scene, settings, double_image);
-            const std::vector<std::uint32_t> float_ids = reference_sample_ids<float>(scene, settings, float_image);
+            // twin being bit-identical where the GL is IEEE-exact); each
+            // checked to resolve to exactly render_cpu's image at that
+            // precision. On a GL that is not, the float reference also
+            // counts the pairs within the edge tolerance.
+            const bool tolerant = render_probe(*gl).tolerant();
+            const SampleReference<double> double_ref = reference_samples<double>(scene, settings);
+            const SampleReference<float> float_ref = reference_samples<float>(scene, settings, tolerant);
+            const std::vector<std::uint32_t>& double_ids = double_ref.ids;
+            const std::vector<std::uint32_t>& float_ids = float_ref.ids;
+            const Image& double_image = double_ref.image;
+            const Image& float_image = float_ref.image;
             // Occlusion culling off: samples_hit counts every covered
             // sample, as the GL backend's does.
             CpuOptions double_options;
@@ -175,13 +105,33 @@ TEST_CASE("gl backend: every built-in scene agrees with the cpu backend sample b
                             "double %.6f  rmse %.6f (float %.6f)  within 1/255 %.5f  hits gl %.0f cpu float %.0f double %.0f\n",
                             name.c_str(), spp, to_string(cull), same_float, same_double, covered_float,
                             covered_double, error, error_float, close, hits_gl, hits_cpu_float, hits_cpu);
-                // Against the CPU in float, the same arithmetic: the same
-                // decisions but for depth ties between surfaces drawn by
-                // different paths (static before moving, not index order).
-                CHECK(same_float >= 0.999);
-                CHECK(covered_float >= 0.9999);
-                CHECK(hits_gl == hits_cpu_float);
-                CHECK(error_float < 0.001);
+                if (tolerant) {
+                    // A GPU that does not compute as the host: every sample
+                    // whose triangle differs is explained by the model (near
+                    // an edge, or a depth tie within a division's rounding),
+                    // the hit count lies within the pairs near an edge of the
+                    // host's, the image within what the explained samples
+                    // can move (plus float summation order, 1e-6).
+                    const SampleIdComparison cmp = compare_sample_ids(scene, float_ref, ids, spp);
+                    std::printf("%-9s spp %2d %-9s tolerant: %ld samples differ from cpu float (%ld near an edge, "
+                                "%ld depth ties, %ld outside the model); hits %.0f vs %.0f, %ld pairs near an edge; "
+                                "rmse %.6f, limit %.6f\n",
+                                name.c_str(), spp, to_string(cull), cmp.near_edge + cmp.depth_tie + cmp.outside,
+                                cmp.near_edge, cmp.depth_tie, cmp.outside, hits_gl, hits_cpu_float,
+                                float_ref.pairs_near_edge, error_float, cmp.image_rmse_limit);
+                    INFO("first outside the model: ", cmp.first_outside);
+                    CHECK(cmp.outside == 0);
+                    CHECK(std::abs(hits_gl - hits_cpu_float) <= double(float_ref.pairs_near_edge));
+                    CHECK(error_float <= cmp.image_rmse_limit + 1e-6);
+                } else {
+                    // Against the CPU in float, the same arithmetic: the same
+                    // decisions but for depth ties between surfaces drawn by
+                    // different paths (static before moving, not index order).
+                    CHECK(same_float >= 0.999);
+                    CHECK(covered_float >= 0.9999);
+                    CHECK(hits_gl == hits_cpu_float);
+                    CHECK(error_float < 0.001);
+                }
                 // Against the double reference: coverage agrees as closely;
                 // which of two near-coincident surfaces is in front can differ
                 // (float depth here), the dragonfly's stacked wings the most.

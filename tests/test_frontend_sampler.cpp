@@ -4,10 +4,9 @@
 // the CPU's time-sorted footprints still visit only a time run and every
 // cull gives the same image with the Sobol patterns, and a bad id is refused.
 // No GL context: the GL part is SKIPPED, or a failure when CI=true.
-#include "frontend_test_helpers.hpp"
+#include "gl_render_reference.hpp"  // first: it keeps the host from contracting a*b+c
 #include "render/cpu/cpu_backend.hpp"
 #include "render/embree/embree_backend.hpp"
-#include "render/gl/gl_backend.hpp"
 #include "scene/builtin_scenes.hpp"
 
 #include <blurcull/pattern_names.hpp>
@@ -149,9 +148,27 @@ TEST_CASE("gl backend: the same samples as the cpu backend for every sampler") {
                     same, static_cast<unsigned long long>(on_gl.stats.samples_hit),
                     static_cast<unsigned long long>(on_cpu.stats.samples_hit));
         INFO(blurcull::sample_pattern_name(sampler), ": same triangle ", same);
-        // As tests/test_frontend_gl_render.cpp: equal but for depth ties between paths.
-        CHECK(same >= 0.999);
-        CHECK(on_gl.stats.samples_hit == on_cpu.stats.samples_hit);
+        if (render_probe(*gl).tolerant()) {
+            // A GPU that does not compute as the host: each differing sample
+            // explained by the model (tests/gl_render_reference.hpp), the
+            // hits within the pairs near an edge, the image within what the
+            // explained samples can move.
+            const SampleReference<float> ref = reference_samples<float>(scene, settings, true);
+            const SampleIdComparison cmp = compare_sample_ids(scene, ref, ids, settings.spp);
+            const double error = rmse(on_gl.image, ref.image);
+            std::printf("  tolerant: %ld near an edge, %ld depth ties, %ld outside the model; %ld pairs near an "
+                        "edge; rmse %.6f, limit %.6f\n",
+                        cmp.near_edge, cmp.depth_tie, cmp.outside, ref.pairs_near_edge, error, cmp.image_rmse_limit);
+            INFO("first outside the model: ", cmp.first_outside);
+            CHECK(cmp.outside == 0);
+            CHECK(std::abs(double(on_gl.stats.samples_hit) - double(on_cpu.stats.samples_hit)) <=
+                  double(ref.pairs_near_edge));
+            CHECK(error <= cmp.image_rmse_limit + 1e-6);
+        } else {
+            // As tests/test_frontend_gl_render.cpp: equal but for depth ties between paths.
+            CHECK(same >= 0.999);
+            CHECK(on_gl.stats.samples_hit == on_cpu.stats.samples_hit);
+        }
         cpu_ids.push_back(cpu);
     }
     // The check can fail: another pattern's samples see other triangles.

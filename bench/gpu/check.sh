@@ -59,6 +59,11 @@ done
 
 # What the GPU-side property test counted (its MESSAGE lines).
 grep -h -E 'false culls|covered' "$out/test_frontend_gl_properties.log" 2>/dev/null | head -40 >>"$summary"
+# What the whole-render comparisons explained (tests/gl_render_reference.hpp:
+# samples near an edge, depth ties, outside the model), on a GPU that is not
+# IEEE-exact.
+grep -h -E 'GL arithmetic|tolerant:' "$out/test_frontend_gl_render.log" "$out/test_frontend_sampler.log" 2>/dev/null |
+  head -60 >>"$summary"
 
 # The golden gl renders (tests/golden/golden_renders.cmake): exact PNG
 # hashes and hit counts, recorded on llvmpipe, so off llvmpipe they are
