@@ -314,6 +314,7 @@ SceneRequest scene_request(const RenderCommand& command, const RenderSettings& s
     request.fstop = command.fstop;
     request.focus = command.focus;
     request.motion_segments = parse_motion_segments(command.motion_segments);
+    request.blend_opaque = command.alpha_blend == "opaque";
     request.image_height = settings.height;
     return request;
 }

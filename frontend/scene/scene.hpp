@@ -52,8 +52,10 @@ struct TextureRef {
     glm::mat3 transform{1.0f};
 };
 
-// glTF alphaMode: BLEND is rendered opaque (with a warning from the loader).
-enum class AlphaMode : std::uint8_t { opaque, mask };
+// glTF alphaMode. BLEND is stochastic transparency: a covered sample stays
+// covered with probability alpha (surface_shared.h, bc_blend_kept), then the
+// depth rule applies as for opaque surfaces.
+enum class AlphaMode : std::uint8_t { opaque, mask, blend };
 
 struct Material {
     glm::vec3 base_color{0.8f, 0.8f, 0.8f};

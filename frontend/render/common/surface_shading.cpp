@@ -89,7 +89,7 @@ SurfaceShader::SurfaceShader(const Scene& scene, const CameraModel& model)
       per_hit_(scene.triangles.size(), 0), masked_(scene.triangles.size(), 0) {
     for (std::size_t t = 0; t < scene.triangles.size(); ++t) {
         per_hit_[t] = shades_per_hit(scene, t) ? 1 : 0;
-        masked_[t] = scene.materials[scene.triangle_material[t]].alpha_mode == AlphaMode::mask ? 1 : 0;
+        masked_[t] = scene.materials[scene.triangle_material[t]].alpha_mode != AlphaMode::opaque ? 1 : 0;
         any_per_hit_ = any_per_hit_ || per_hit_[t] != 0;
         any_masked_ = any_masked_ || masked_[t] != 0;
     }
@@ -109,8 +109,9 @@ glm::vec3 SurfaceShader::barycentrics(std::uint32_t triangle, glm::vec2 ndc, glm
 
 bool SurfaceShader::sample_kept(std::uint32_t triangle, glm::vec2 ndc, glm::vec2 lens, float time) const {
     if (masked_[triangle] == 0) return true;
-    const float cutoff = scene_.materials[scene_.triangle_material[triangle]].alpha_cutoff;
-    return surface::bc_alpha_kept(hit_alpha(scene_, triangle, barycentrics(triangle, ndc, lens, time)), cutoff);
+    const Material& material = scene_.materials[scene_.triangle_material[triangle]];
+    return surface::bc_alpha_test(hit_alpha(scene_, triangle, barycentrics(triangle, ndc, lens, time)),
+                                  material.alpha_cutoff, material.alpha_mode == AlphaMode::blend, triangle, ndc, time);
 }
 
 glm::vec3 SurfaceShader::sample_colour(std::uint32_t triangle, glm::vec2 ndc, glm::vec2 lens, float time) const {

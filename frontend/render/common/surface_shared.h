@@ -18,6 +18,8 @@
 #include <glm/glm.hpp>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 namespace blurcull::frontend::surface {
 using glm::vec2;
@@ -32,7 +34,14 @@ using glm::max;
 using glm::dot;
 using glm::mix;
 using glm::sqrt;
+using uint = std::uint32_t;
 inline float pow(float a, float b) { return std::pow(a, b); }
+// GLSL's floatBitsToUint.
+inline uint floatBitsToUint(float value) {
+    uint bits = 0;
+    std::memcpy(&bits, &value, sizeof bits);
+    return bits;
+}
 #define BC_SURFACE_FN inline
 }  // namespace blurcull::frontend::surface
 namespace blurcull::frontend {
@@ -145,6 +154,52 @@ BC_SURFACE_FN float bc_hit_alpha(float base_alpha, float vertex_alpha, float tex
 // alphaMode MASK: whether a covered sample of alpha `alpha` stays covered.
 BC_SURFACE_FN bool bc_alpha_kept(float alpha, float cutoff) {
     return alpha >= cutoff;
+}
+
+// alphaMode BLEND as stochastic transparency (Enderton et al., I3D 2010): a
+// covered sample stays covered with probability alpha, decided by a hash of
+// the sample (its ndc and time, the floats every backend tests it at) and the
+// triangle, so that every backend keeps the same samples and the depth rule
+// then picks the nearest kept one. uint32 arithmetic only: host and GPU hash
+// alike bit for bit. The lens position is left out: for a pinhole camera the
+// CPU and Embree backends skip drawing it (0, 0) where the GL backend draws
+// it, and a frame's samples differ in ndc and time already.
+
+// lowbias32 (C. Wellons, hash-prospector): a bijective 32-bit mixer.
+BC_SURFACE_FN uint bc_mix32(uint x) {
+    x ^= x >> 16u;
+    x *= 0x7feb352du;
+    x ^= x >> 15u;
+    x *= 0x846ca68bu;
+    x ^= x >> 16u;
+    return x;
+}
+
+// A float's bits with -0 read as +0 (a compare, which no compiler folds away).
+BC_SURFACE_FN uint bc_sample_bits(float value) {
+    return value == 0.0f ? 0u : floatBitsToUint(value);
+}
+
+// The hash of (sample, triangle) that decides a BLEND sample.
+BC_SURFACE_FN uint bc_blend_hash(uint triangle, vec2 ndc, float time) {
+    uint h = bc_mix32(triangle ^ 0x9e3779b9u);
+    h = bc_mix32(h ^ bc_sample_bits(ndc.x));
+    h = bc_mix32(h ^ bc_sample_bits(ndc.y));
+    return bc_mix32(h ^ bc_sample_bits(time));
+}
+
+// alphaMode BLEND: whether a covered sample of alpha `alpha` stays covered,
+// for `hash` = bc_blend_hash: its top 24 bits as a uniform value in [0, 1)
+// (exact in float), below alpha. Alpha 1 keeps every sample, 0 none.
+BC_SURFACE_FN bool bc_blend_kept(float alpha, uint hash) {
+    return float(hash >> 8u) * (1.0f / 16777216.0f) < alpha;
+}
+
+// The raster decision of an alpha-tested triangle (MASK, or BLEND where
+// `blend`) for a covered sample (ndc, time) of alpha `alpha`.
+BC_SURFACE_FN bool bc_alpha_test(float alpha, float cutoff, bool blend, uint triangle, vec2 ndc, float time) {
+    if (blend) return bc_blend_kept(alpha, bc_blend_hash(triangle, ndc, time));
+    return bc_alpha_kept(alpha, cutoff);
 }
 
 // The diffuse term's cosine |n . l| / (|n| |l|) of a normal and the light

@@ -174,7 +174,7 @@ void read_surface_material(const tg::Material& source, TextureLoader& textures, 
         material.alpha_mode = AlphaMode::mask;
         material.alpha_cutoff = finite_or(source.alphaCutoff, 0.5f);
     } else if (source.alphaMode == "BLEND") {
-        diagnostics.warn_once("blend", "alphaMode BLEND is rendered opaque");
+        material.alpha_mode = AlphaMode::blend;
     }
     if (source.emissiveFactor.size() >= 3) {
         material.emissive = glm::max(glm::vec3(finite_or(source.emissiveFactor[0], 0.0f), finite_or(source.emissiveFactor[1], 0.0f),
