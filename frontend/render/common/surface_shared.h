@@ -1,8 +1,9 @@
 // The per-hit surface formulas of the shading contract (docs/reference-renderer.md,
-// "Shading"): texture wrap and bilinear weights, the sRGB decode, and the lit
+// "Shading"): texture wrap and bilinear weights, the sRGB decode, the lights
+// (directional, point and spot with their falloffs) and the lit or unlit
 // colour, the texture fetch (transform, wrap, bilinear), the interpolation of
-// vertex attributes and the alpha mask's test, in float, in one operation
-// order. Written in the C++/GLSL subset of optics_shared.h: the host resolve
+// vertex attributes and the alpha test (MASK's cutoff, BLEND's stochastic
+// transparency), in float, in one operation order. Written in the C++/GLSL subset of optics_shared.h: the host resolve
 // of every backend runs it in C++, the GL backend's alpha mask test
 // (shaders/render_mask.glsl) runs the same text in GLSL.
 //
@@ -213,11 +214,59 @@ BC_SURFACE_FN float bc_lambert(vec3 normal, vec3 light) {
     return min(abs(dot(normal, light)) / product, 1.0f);  // rounding can step past 1
 }
 
-// The shaded colour of a hit: base colour lit by ambient plus the diffuse
-// term, plus emission.
-BC_SURFACE_FN vec3 bc_lit_colour(vec3 base, float lambert, vec3 light_color, vec3 emissive, float ambient,
-                                 float diffuse) {
-    return base * (vec3(ambient) + (diffuse * lambert) * light_color) + emissive;
+// Light types (LightType, scene.hpp) as ints: the scene's own directional
+// light and KHR_lights_punctual's (Scene::lights).
+#define BC_LIGHT_DIRECTIONAL 0
+#define BC_LIGHT_POINT 1
+#define BC_LIGHT_SPOT 2
+
+// The distance falloff of a point or spot light at squared distance
+// distance_squared: the inverse square, windowed to 0 at `range` as the
+// KHR_lights_punctual README recommends, max(min(1 - (d / range)^4, 1), 0) / d^2;
+// range <= 0 (undefined in the file): the inverse square alone. 0 at d = 0.
+BC_SURFACE_FN float bc_range_attenuation(float distance_squared, float range) {
+    if (!(distance_squared > 0.0f)) return 0.0f;
+    float falloff = 1.0f / distance_squared;
+    if (range <= 0.0f) return falloff;
+    float ratio_squared = distance_squared / (range * range);
+    return max(min(1.0f - ratio_squared * ratio_squared, 1.0f), 0.0f) * falloff;
+}
+
+// A spot light's smooth falloff between its cones (the README's sample):
+// t = clamp((cos_angle - cos_outer) / (cos_inner - cos_outer), 0, 1), then t^2,
+// cos_angle the cosine between the spot's axis and the direction from the
+// light to the point; the cones' gap at least 0.001 in cosine.
+BC_SURFACE_FN float bc_spot_attenuation(float cos_angle, float cos_inner, float cos_outer) {
+    float scale = 1.0f / max(0.001f, cos_inner - cos_outer);
+    float t = clamp((cos_angle - cos_outer) * scale, 0.0f, 1.0f);
+    return t * t;
+}
+
+// The diffuse light a punctual light of type `type` (BC_LIGHT_*) gives a
+// point `p` with normal `normal` (two-sided, bc_lambert): `colour` (colour x
+// intensity) x the cosine x the falloffs, x the diffuse weight. `position`:
+// the light's (point, spot); `direction`: where it shines (spot), towards the
+// light (directional).
+BC_SURFACE_FN vec3 bc_punctual_light(int type, vec3 position, vec3 direction, vec3 colour, float range,
+                                     float cos_inner, float cos_outer, vec3 p, vec3 normal, float diffuse) {
+    if (type == BC_LIGHT_DIRECTIONAL) return (diffuse * bc_lambert(normal, direction)) * colour;
+    vec3 to_light = position - p;
+    float distance_squared = dot(to_light, to_light);
+    float attenuation = bc_range_attenuation(distance_squared, range);
+    if (type == BC_LIGHT_SPOT && attenuation > 0.0f) {
+        float axis_length = sqrt(dot(direction, direction));
+        float cos_angle = axis_length > 0.0f ? -dot(to_light, direction) / (sqrt(distance_squared) * axis_length) : -1.0f;
+        attenuation *= bc_spot_attenuation(cos_angle, cos_inner, cos_outer);
+    }
+    return (diffuse * bc_lambert(normal, to_light) * attenuation) * colour;
+}
+
+// The shaded colour of a hit whose lights (bc_punctual_light of each) sum to
+// `light`: base colour lit by ambient plus that diffuse light, plus
+// emission; KHR_materials_unlit: the base colour as it is.
+BC_SURFACE_FN vec3 bc_material_colour(bool unlit, vec3 base, vec3 light, vec3 emissive, float ambient) {
+    if (unlit) return base;
+    return base * (vec3(ambient) + light) + emissive;
 }
 
 #ifdef __cplusplus
