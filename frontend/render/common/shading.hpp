@@ -5,7 +5,8 @@
 // colour) + emissive, where n is the unit geometric normal of the triangle's
 // WORLD positions at shutter OPEN (two-sided, hence |.|) and l the unit light
 // direction, plus the same term for each of scene.lights (point and spot
-// lights with their falloffs at the centroid); KHR_materials_unlit: the base colour. The colour is constant over the shutter and the triangle. A
+// lights with their falloffs at the centroid); KHR_materials_unlit: the base
+// colour. The colour is constant over the shutter and the triangle. A
 // triangle with surface attributes (textures, vertex colours, normals, an
 // alpha mask) is shaded per sample instead: surface_shading.hpp, the
 // contract in docs/reference-renderer.md, "Shading". A sample that hits nothing gets
