@@ -274,6 +274,19 @@ TEST_CASE("gltf lights: a directional light keeps the default model, the limit w
     CHECK(has_warning(warnings, "unknown type 'area'"));
     CHECK(warnings.size() == 3);
     CHECK(render_cpu(bad, quiet_settings(16, 12, 1)).stats.samples_hit > 0);
+    // An emissive strength that is not a number in [0, 1e6]: one warning, the factor alone.
+    for (const char* strength : {"-3", "\"big\"", "1e9"}) {
+        INFO(strength);
+        std::string text = lit_file(kPointAndSpot, kPointAndSpotNodes);
+        const std::size_t at = text.find("\"emissiveStrength\": 2");
+        REQUIRE(at != std::string::npos);
+        text.replace(at, 21, std::string("\"emissiveStrength\": ") + strength);
+        warnings.clear();
+        const Scene strong = load(temp.write("strength.gltf", text), warnings);
+        CHECK(warnings.size() == 1);
+        CHECK(has_warning(warnings, "emissiveStrength is not a number in [0, 1e6]; 1 is used"));
+        CHECK(strong.materials[0].emissive.x == doctest::Approx(0.05));
+    }
     // An extension the loader does not read still warns, once.
     warnings.clear();
     load(temp.write("unknown.gltf", lit_file(kPointAndSpot, kPointAndSpotNodes, R"(, "EXT_not_a_thing")")), warnings);
