@@ -138,14 +138,15 @@ std::string read_file(const std::string& path) {
     return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
-// attributes.gltf with its MASK material made BLEND, in a temporary folder.
-std::string blend_attributes_file(const fs::path& folder) {
-    std::string text = read_file(kData + "attributes.gltf");
+// tests/data/shading/`name` (attributes.gltf by default) with its MASK
+// material made BLEND, in a temporary folder.
+std::string blend_attributes_file(const fs::path& folder, const std::string& name = "attributes.gltf") {
+    std::string text = read_file(kData + name);
     const std::size_t at = text.find("\"MASK\"");
     REQUIRE(at != std::string::npos);
     text.replace(at, 6, "\"BLEND\"");
     fs::create_directories(folder);
-    const fs::path file = folder / "attributes_blend.gltf";
+    const fs::path file = folder / ("blend_" + name);
     std::ofstream(file, std::ios::binary) << text;
     return file.string();
 }
@@ -321,9 +322,11 @@ TEST_CASE("gl: BLEND keeps the cpu backend's samples (stochastic path, full path
     GlRenderer* gl = renderer_or_skip();
     if (gl == nullptr) return;
     const auto start = std::chrono::steady_clock::now();
-    // The moving quads, and a textured, vertex-coloured BLEND material from glTF.
+    // The moving quads, and BLEND materials from glTF: alpha from COLOR_0
+    // (attributes.gltf), from a texture with wrap modes and a transform (mask_texture.gltf).
     const fs::path folder = fs::temp_directory_path() / ("blurcull_alpha_blend_gl_" + std::to_string(::getpid()));
-    const std::vector<Scene> scenes{moving_blend_scene(), load_scene(blend_attributes_file(folder))};
+    const std::vector<Scene> scenes{moving_blend_scene(), load_scene(blend_attributes_file(folder)),
+                                    load_scene(blend_attributes_file(folder, "mask_texture.gltf"))};
     fs::remove_all(folder);
     for (const Scene& scene : scenes) {
         INFO(scene.name);
