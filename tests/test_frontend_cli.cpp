@@ -461,9 +461,11 @@ TEST_CASE("blurcull render --alpha-blend: BLEND is stochastic by default, opaque
     INFO(stochastic.err);
     REQUIRE(stochastic.status == 0);
     CHECK(stochastic.err.empty());  // BLEND no longer warns
+    CHECK(nlohmann::json::parse(stochastic.out)["alpha_blend"] == "stochastic");
     Run opaque = run_cli("render --scene '" + blended + "' --backend cpu --size 48x36 --spp 4 --alpha-blend opaque " +
                          "--json -q -o opaque.png");
     REQUIRE(opaque.status == 0);
+    CHECK(nlohmann::json::parse(opaque.out)["alpha_blend"] == "opaque");
     // The samples that pass through the outer box hit the inner one or nothing.
     CHECK(nlohmann::json::parse(stochastic.out)["samples_hit"] < nlohmann::json::parse(opaque.out)["samples_hit"]);
     Run bad = run_cli("render --scene '" + blended + "' --size 48x36 --spp 4 --alpha-blend sometimes -q -o never.png");

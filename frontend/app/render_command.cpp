@@ -499,6 +499,7 @@ void print_json_summary(const RenderCommand& command, const RenderJob& job, cons
     summary["focus_distance"] = job.scene.camera.focus_distance;
     summary["triangles"] = stats.triangles;
     summary["motion_segments"] = scene_motion_segments(job.scene);
+    summary["alpha_blend"] = command.alpha_blend;
     summary["samples_tested"] = stats.samples_tested;
     summary["samples_hit"] = stats.samples_hit;
     if (stats.secondary_rays > 0) summary["secondary_rays"] = stats.secondary_rays;
