@@ -19,3 +19,10 @@ common=(--backend cpu --size 320x240 --spp 32 -q)
 "$blurcull" render --scene $k/Cameras.gltf --lens-radius 0.05 "${common[@]}" -o $out/gallery-cameras.png
 "$blurcull" render --scene $k/Cube/Cube.gltf --lens-radius 0.1 "${common[@]}" -o $out/gallery-cube.png
 "$blurcull" render --scene $k/SparseMorphCube/singleBlendshapeCube_sparse.glb "${common[@]}" -o $out/gallery-sparsemorphcube.png
+# BoxAnimated with both materials made alphaMode BLEND (alpha 0.5 inner,
+# 0.35 outer) in a temporary copy: stochastic transparency, motion blur and
+# depth of field together (64 spp: the transparency is noise at 32).
+blend=$(mktemp --suffix=.gltf)
+python3 -c "import json, sys; d = json.load(open(sys.argv[1])); [m.update(alphaMode='BLEND') or m['pbrMetallicRoughness']['baseColorFactor'].__setitem__(3, a) for m, a in zip(d['materials'], (0.5, 0.35))]; json.dump(d, open(sys.argv[2], 'w'))" $k/BoxAnimated.gltf "$blend"
+"$blurcull" render --scene "$blend" --shutter 1.5,1.9 --lens-radius 0.5 --backend cpu --size 320x240 --spp 64 -q -o $out/gallery-boxanimated-blend.png
+rm -f "$blend"

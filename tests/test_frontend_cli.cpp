@@ -432,6 +432,50 @@ TEST_CASE("blurcull render --motion-segments: K or auto reaches the scene, bad v
     }
 }
 
+TEST_CASE("blurcull render --alpha-blend: BLEND is stochastic by default, opaque on request, bad values are one line" *
+          doctest::test_suite("scene_files")) {
+    // BoxAnimated with its outer box made BLEND at alpha 0.4.
+    std::string text;
+    {
+        FILE* f = std::fopen(box.c_str(), "rb");
+        REQUIRE(f != nullptr);
+        std::array<char, 4096> buffer{};
+        while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), f)) text.append(buffer.data(), n);
+        std::fclose(f);
+    }
+    const std::size_t outer = text.find("\"name\": \"outer\"");
+    REQUIRE(outer != std::string::npos);
+    const std::size_t alpha = text.rfind("1.0", outer);
+    REQUIRE(alpha != std::string::npos);
+    text.replace(outer, 0, "\"alphaMode\": \"BLEND\", ");
+    text.replace(alpha, 3, "0.4");
+    std::filesystem::create_directories(scratch_folder());
+    const std::string blended = (scratch_folder() / "box_blend.gltf").string();
+    {
+        FILE* f = std::fopen(blended.c_str(), "wb");
+        REQUIRE(f != nullptr);
+        std::fwrite(text.data(), 1, text.size(), f);
+        std::fclose(f);
+    }
+    Run stochastic = run_cli("render --scene '" + blended + "' --backend cpu --size 48x36 --spp 4 --json -q -o blend.png");
+    INFO(stochastic.err);
+    REQUIRE(stochastic.status == 0);
+    CHECK(stochastic.err.empty());  // BLEND no longer warns
+    CHECK(nlohmann::json::parse(stochastic.out)["alpha_blend"] == "stochastic");
+    Run opaque = run_cli("render --scene '" + blended + "' --backend cpu --size 48x36 --spp 4 --alpha-blend opaque " +
+                         "--json -q -o opaque.png");
+    REQUIRE(opaque.status == 0);
+    CHECK(nlohmann::json::parse(opaque.out)["alpha_blend"] == "opaque");
+    // The samples that pass through the outer box hit the inner one or nothing.
+    CHECK(nlohmann::json::parse(stochastic.out)["samples_hit"] < nlohmann::json::parse(opaque.out)["samples_hit"]);
+    Run bad = run_cli("render --scene '" + blended + "' --size 48x36 --spp 4 --alpha-blend sometimes -q -o never.png");
+    INFO(bad.err);
+    CHECK(bad.status != 0);
+    CHECK(lines(bad.err) == 1);
+    CHECK(bad.err.find("--alpha-blend") != std::string::npos);
+    CHECK_FALSE(std::filesystem::exists(scratch_folder() / "never.png"));
+}
+
 namespace {
 
 const std::string cli_folder = (scratch_folder()).string();

@@ -314,6 +314,7 @@ SceneRequest scene_request(const RenderCommand& command, const RenderSettings& s
     request.fstop = command.fstop;
     request.focus = command.focus;
     request.motion_segments = parse_motion_segments(command.motion_segments);
+    request.blend_opaque = command.alpha_blend == "opaque";
     request.image_height = settings.height;
     return request;
 }
@@ -498,6 +499,7 @@ void print_json_summary(const RenderCommand& command, const RenderJob& job, cons
     summary["focus_distance"] = job.scene.camera.focus_distance;
     summary["triangles"] = stats.triangles;
     summary["motion_segments"] = scene_motion_segments(job.scene);
+    summary["alpha_blend"] = command.alpha_blend;
     summary["samples_tested"] = stats.samples_tested;
     summary["samples_hit"] = stats.samples_hit;
     if (stats.secondary_rays > 0) summary["secondary_rays"] = stats.secondary_rays;

@@ -79,6 +79,11 @@ void SceneFlags::add_options(CLI::App& app, bool initial) {
                        "), or auto: K from the largest rotation, chord within 1/16 pixel (cpu and embree, method "
                        "stochastic; elsewhere one segment, with a warning)")
         ->capture_default_str();
+    app.add_option("--alpha-blend", alpha_blend,
+                   "glTF alphaMode BLEND: stochastic (a sample is covered with probability alpha, then the depth "
+                   "test) or opaque (drawn as alphaMode OPAQUE)")
+        ->check(CLI::IsMember({"stochastic", "opaque"}))
+        ->capture_default_str();
 }
 
 }  // namespace blurcull::frontend

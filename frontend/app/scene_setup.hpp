@@ -46,9 +46,10 @@ struct SceneFlags {
     double blur_scale = 1.0;
     std::uint32_t seed = 1;
     std::string motion_segments = "auto";  // K, or "auto" (parse_motion_segments)
+    std::string alpha_blend = "stochastic";  // or "opaque" (SceneSettings::blend_opaque)
 
     // Adds --scene, --cull, --spp, --size, --lens-radius | --fstop, --focus,
-    // --shutter, --blur-scale, --seed and --motion-segments, with their ranges. `initial`: the
+    // --shutter, --blur-scale, --seed, --motion-segments and --alpha-blend, with their ranges. `initial`: the
     // help says they are starting values (the window changes them).
     void add_options(CLI::App& app, bool initial);
 };

@@ -349,6 +349,7 @@ SceneRequest view_scene_request(const ViewCommand& command, int width, int heigh
     request.fstop = command.fstop;
     request.focus = command.focus;
     request.motion_segments = parse_motion_segments(command.motion_segments);
+    request.blend_opaque = command.alpha_blend == "opaque";
     request.image_height = height;
     return request;
 }

@@ -83,6 +83,16 @@ std::pair<double, double> frame_shutter_interval(const std::string& name_or_path
     return {f / frame.fps, (f + open_fraction) / frame.fps};
 }
 
+namespace {
+
+void apply_alpha_blend(Scene& scene, const SceneSettings& settings) {
+    if (!settings.blend_opaque) return;
+    for (Material& material : scene.materials)
+        if (material.alpha_mode == AlphaMode::blend) material.alpha_mode = AlphaMode::opaque;
+}
+
+}  // namespace
+
 Scene load_scene(const std::string& name_or_path, const SceneSettings& given, const WarningSink& warn) {
     SceneSettings settings = given;
     if (settings.has_frame) {
@@ -96,6 +106,7 @@ Scene load_scene(const std::string& name_or_path, const SceneSettings& given, co
         case SceneFileType::glb: {
             Scene scene = build_gltf(name_or_path, settings, warn);
             apply_lens_settings(scene.camera, settings);
+            apply_alpha_blend(scene, settings);
             gltf::validate_loaded_scene(scene, name_or_path);
             return scene;
         }
@@ -106,6 +117,7 @@ Scene load_scene(const std::string& name_or_path, const SceneSettings& given, co
     }
     Scene scene = build_builtin(name_or_path, settings);
     apply_lens_settings(scene.camera, settings);
+    apply_alpha_blend(scene, settings);
     validate_scene(scene);
     scene.validated = true;
     return scene;

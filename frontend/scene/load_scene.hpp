@@ -46,6 +46,10 @@ struct SceneSettings {
     // so they stay one segment.
     int motion_segments = 0;
     int image_height = 480;
+    // --alpha-blend opaque: alphaMode BLEND materials are drawn opaque (as
+    // before stochastic transparency); else each covered sample stays
+    // covered with probability alpha (AlphaMode::blend).
+    bool blend_opaque = false;
 };
 
 // Lens radius for an f-number: R = f / (2 N), with the focal length of a

@@ -11,6 +11,7 @@
 
 #include <glm/glm.hpp>
 
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -52,8 +53,10 @@ struct TextureRef {
     glm::mat3 transform{1.0f};
 };
 
-// glTF alphaMode: BLEND is rendered opaque (with a warning from the loader).
-enum class AlphaMode : std::uint8_t { opaque, mask };
+// glTF alphaMode. BLEND is stochastic transparency: a covered sample stays
+// covered with probability alpha (surface_shared.h, bc_blend_kept), then the
+// depth rule applies as for opaque surfaces.
+enum class AlphaMode : std::uint8_t { opaque, mask, blend };
 
 struct Material {
     glm::vec3 base_color{0.8f, 0.8f, 0.8f};
@@ -67,9 +70,29 @@ struct Material {
     TextureRef base_color_texture{};    // times base_color (and base_alpha)
     AlphaMode alpha_mode = AlphaMode::opaque;
     float alpha_cutoff = 0.5f;          // mask: a sample is covered only where alpha >= cutoff
-    glm::vec3 emissive{0.0f};           // added to the shaded colour
+    glm::vec3 emissive{0.0f};           // added to the shaded colour (x KHR_materials_emissive_strength)
     TextureRef emissive_texture{};      // times emissive
+    bool unlit = false;                 // KHR_materials_unlit: the base colour, neither lit nor emissive
 };
+
+// A light besides the scene's directional one (Scene::light_direction,
+// light_color): KHR_lights_punctual's point and spot lights and further
+// directional lights, in world space at shutter open (render/common/
+// surface_shared.h, bc_punctual_light: the falloffs).
+enum class LightType : std::uint8_t { directional, point, spot };  // BC_LIGHT_*
+
+struct PunctualLight {
+    LightType type = LightType::point;
+    glm::vec3 position{0.0f};     // point, spot
+    glm::vec3 direction{0.0f, 0.0f, -1.0f};  // spot: where it shines; directional: towards the light
+    glm::vec3 colour{1.0f};       // colour x intensity (>= 0)
+    float range = 0.0f;           // > 0: the distance where the light ends; 0: unlimited
+    float cos_inner = 1.0f;       // spot: cos innerConeAngle
+    float cos_outer = 0.70710678f;// spot: cos outerConeAngle (default pi / 4)
+};
+
+// The most lights Scene::lights holds; the loader keeps the first ones, warned.
+inline constexpr std::size_t max_punctual_lights = 16;
 
 // Right-handed view space, camera at the origin looking down -z (OpenGL).
 // view depth w = -z_view. Projection: x_clip = (k_y / aspect) x_view,
@@ -122,6 +145,8 @@ struct Scene {
     Camera camera;
     glm::vec3 light_direction{0.3f, 0.8f, 0.5f};  // towards the light, world space
     glm::vec3 light_color{1.0f, 1.0f, 1.0f};      // scales the diffuse term (KHR_lights_punctual colour x intensity)
+    // glTF's other lights (at most max_punctual_lights); the built-in scenes have none.
+    std::vector<PunctualLight> lights;
     glm::vec3 background{0.02f, 0.02f, 0.03f};
     // What a ray that leaves the scene sees: BC_ENVIRONMENT_NONE (the
     // background colour) or BC_ENVIRONMENT_SKY (render/common/optics_shared.h).

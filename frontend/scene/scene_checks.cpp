@@ -120,6 +120,18 @@ void validate_surface_attributes(const Scene& scene) {
         }
     }
     if (!is_finite(scene.light_color)) fail(scene, "light colour is not finite");
+    if (scene.lights.size() > max_punctual_lights) {
+        fail(scene, std::to_string(scene.lights.size()) + " lights (at most " + std::to_string(max_punctual_lights) +
+                        ")");
+    }
+    for (std::size_t k = 0; k < scene.lights.size(); ++k) {
+        const PunctualLight& light = scene.lights[k];
+        if (!is_finite(light.position) || !is_finite(light.direction) || !is_finite(light.colour) ||
+            !std::isfinite(light.range) || !std::isfinite(light.cos_inner) || !std::isfinite(light.cos_outer) ||
+            light.range < 0.0f) {
+            fail(scene, "light " + std::to_string(k) + " has a non-finite field or a negative range");
+        }
+    }
 }
 
 }  // namespace

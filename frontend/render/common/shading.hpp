@@ -4,7 +4,9 @@
 // colour(triangle) = base colour of its material * (0.2 + 0.8 |n . l| light
 // colour) + emissive, where n is the unit geometric normal of the triangle's
 // WORLD positions at shutter OPEN (two-sided, hence |.|) and l the unit light
-// direction. The colour is constant over the shutter and the triangle. A
+// direction, plus the same term for each of scene.lights (point and spot
+// lights with their falloffs at the centroid); KHR_materials_unlit: the base
+// colour. The colour is constant over the shutter and the triangle. A
 // triangle with surface attributes (textures, vertex colours, normals, an
 // alpha mask) is shaded per sample instead: surface_shading.hpp, the
 // contract in docs/reference-renderer.md, "Shading". A sample that hits nothing gets
@@ -28,6 +30,27 @@ namespace blurcull::frontend {
 constexpr float shading_ambient = 0.2f;
 constexpr float shading_diffuse = 0.8f;
 
+// The diffuse light at world point `p` with normal `normal`: the scene's
+// directional light, then each of scene.lights (bc_punctual_light; the sum
+// is the directional term alone, bit for bit, where there are none).
+inline glm::vec3 scene_light(const Scene& scene, glm::vec3 p, glm::vec3 normal) {
+    glm::vec3 light = surface::bc_punctual_light(BC_LIGHT_DIRECTIONAL, glm::vec3(0.0f), scene.light_direction,
+                                                 scene.light_color, 0.0f, 1.0f, 1.0f, p, normal, shading_diffuse);
+    for (const PunctualLight& l : scene.lights) {
+        light += surface::bc_punctual_light(static_cast<int>(l.type), l.position, l.direction, l.colour, l.range,
+                                            l.cos_inner, l.cos_outer, p, normal, shading_diffuse);
+    }
+    return light;
+}
+
+// Whether some light's contribution varies over a flat triangle (a point or
+// spot light): then every diffuse triangle shades per hit (surface_shading.hpp).
+inline bool lights_vary(const Scene& scene) {
+    for (const PunctualLight& l : scene.lights)
+        if (l.type != LightType::directional) return true;
+    return false;
+}
+
 // The caller guarantees the triangle's vertex and material indices are valid
 // (validate_scene in scene/scene_checks.hpp checks them). A degenerate triangle or
 // zero light direction (or one so large its length overflows) gets ambient light only.
@@ -39,10 +62,11 @@ inline glm::vec3 shade(const Scene& scene, std::size_t triangle) {
     const glm::uvec3& tri = scene.triangles[triangle];
     glm::vec3 p0 = scene.position_open[tri.x];
     glm::vec3 normal = glm::cross(scene.position_open[tri.y] - p0, scene.position_open[tri.z] - p0);
-    const float lambert = surface::bc_lambert(normal, scene.light_direction);
+    // The lights at the centroid (point and spot lights shade per hit instead).
+    const glm::vec3 centroid = (p0 + scene.position_open[tri.y] + scene.position_open[tri.z]) / 3.0f;
     const Material& material = scene.materials[scene.triangle_material[triangle]];
-    return surface::bc_lit_colour(material.base_color, lambert, scene.light_color, material.emissive, shading_ambient,
-                                  shading_diffuse);
+    return surface::bc_material_colour(material.unlit, material.base_color, scene_light(scene, centroid, normal),
+                                       material.emissive, shading_ambient);
 }
 
 // shade() for every triangle, computed once per render.

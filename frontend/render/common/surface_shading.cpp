@@ -52,6 +52,7 @@ glm::vec3 hit_normal(const Scene& scene, const glm::uvec3& tri, glm::vec3 b) {
 
 bool shades_per_hit(const Scene& scene, std::size_t triangle) {
     const Material& material = scene.materials[scene.triangle_material[triangle]];
+    if (lights_vary(scene) && material.kind == MaterialKind::diffuse && !material.unlit) return true;
     if (material.base_color_texture.texture >= 0 || material.emissive_texture.texture >= 0) return true;
     if (!scene.vertex_color.empty()) return true;
     if (scene.normal.empty()) return false;
@@ -80,8 +81,10 @@ glm::vec3 shade_hit(const Scene& scene, std::size_t triangle, glm::vec3 barycent
     glm::vec3 emissive = material.emissive;
     if (material.emissive_texture.texture >= 0)
         emissive *= glm::vec3(texture_at(scene, material.emissive_texture, tri, barycentric));
-    const float lambert = surface::bc_lambert(hit_normal(scene, tri, barycentric), scene.light_direction);
-    return surface::bc_lit_colour(base, lambert, scene.light_color, emissive, shading_ambient, shading_diffuse);
+    // Point and spot lights see the hit where its normal is taken: at shutter open.
+    const glm::vec3 p = scene.lights.empty() ? glm::vec3(0.0f) : interpolate(scene.position_open, tri, barycentric);
+    return surface::bc_material_colour(material.unlit, base, scene_light(scene, p, hit_normal(scene, tri, barycentric)),
+                                       emissive, shading_ambient);
 }
 
 SurfaceShader::SurfaceShader(const Scene& scene, const CameraModel& model)
@@ -89,7 +92,7 @@ SurfaceShader::SurfaceShader(const Scene& scene, const CameraModel& model)
       per_hit_(scene.triangles.size(), 0), masked_(scene.triangles.size(), 0) {
     for (std::size_t t = 0; t < scene.triangles.size(); ++t) {
         per_hit_[t] = shades_per_hit(scene, t) ? 1 : 0;
-        masked_[t] = scene.materials[scene.triangle_material[t]].alpha_mode == AlphaMode::mask ? 1 : 0;
+        masked_[t] = scene.materials[scene.triangle_material[t]].alpha_mode != AlphaMode::opaque ? 1 : 0;
         any_per_hit_ = any_per_hit_ || per_hit_[t] != 0;
         any_masked_ = any_masked_ || masked_[t] != 0;
     }
@@ -109,8 +112,9 @@ glm::vec3 SurfaceShader::barycentrics(std::uint32_t triangle, glm::vec2 ndc, glm
 
 bool SurfaceShader::sample_kept(std::uint32_t triangle, glm::vec2 ndc, glm::vec2 lens, float time) const {
     if (masked_[triangle] == 0) return true;
-    const float cutoff = scene_.materials[scene_.triangle_material[triangle]].alpha_cutoff;
-    return surface::bc_alpha_kept(hit_alpha(scene_, triangle, barycentrics(triangle, ndc, lens, time)), cutoff);
+    const Material& material = scene_.materials[scene_.triangle_material[triangle]];
+    return surface::bc_alpha_test(hit_alpha(scene_, triangle, barycentrics(triangle, ndc, lens, time)),
+                                  material.alpha_cutoff, material.alpha_mode == AlphaMode::blend, triangle, ndc, time);
 }
 
 glm::vec3 SurfaceShader::sample_colour(std::uint32_t triangle, glm::vec2 ndc, glm::vec2 lens, float time) const {

@@ -50,8 +50,8 @@ public:
 
     SurfaceShader(const Scene& scene, const CameraModel& model);
 
-    // Whether `triangle`'s material is alphaMode MASK: its coverage depends
-    // on sample_kept, which the raster decision must call.
+    // Whether `triangle`'s material is alphaMode MASK or BLEND: its coverage
+    // depends on sample_kept, which the raster decision must call.
     bool masked(std::uint32_t triangle) const { return masked_[triangle] != 0; }
     bool any_masked() const { return any_masked_; }
     // Whether some triangle shades per hit (shades_per_hit).
@@ -61,7 +61,8 @@ public:
 
     // The raster decision's alpha test: whether a sample that the exact test
     // finds covered by `triangle` stays covered (MASK: hit_alpha >= cutoff;
-    // always true for other triangles). Every backend calls it where it
+    // BLEND: with probability hit_alpha, by the hash of the sample and the
+    // triangle, surface_shared.h's bc_alpha_test; always true for opaque triangles). Every backend calls it where it
     // decides the nearest hit, so a masked-out sample never wins a depth test.
     bool sample_kept(std::uint32_t triangle, glm::vec2 ndc, glm::vec2 lens, float time) const;
 

@@ -1,8 +1,9 @@
 // The per-hit surface formulas of the shading contract (docs/reference-renderer.md,
-// "Shading"): texture wrap and bilinear weights, the sRGB decode, and the lit
+// "Shading"): texture wrap and bilinear weights, the sRGB decode, the lights
+// (directional, point and spot with their falloffs) and the lit or unlit
 // colour, the texture fetch (transform, wrap, bilinear), the interpolation of
-// vertex attributes and the alpha mask's test, in float, in one operation
-// order. Written in the C++/GLSL subset of optics_shared.h: the host resolve
+// vertex attributes and the alpha test (MASK's cutoff, BLEND's stochastic
+// transparency), in float, in one operation order. Written in the C++/GLSL subset of optics_shared.h: the host resolve
 // of every backend runs it in C++, the GL backend's alpha mask test
 // (shaders/render_mask.glsl) runs the same text in GLSL.
 //
@@ -18,6 +19,8 @@
 #include <glm/glm.hpp>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 namespace blurcull::frontend::surface {
 using glm::vec2;
@@ -32,7 +35,14 @@ using glm::max;
 using glm::dot;
 using glm::mix;
 using glm::sqrt;
+using uint = std::uint32_t;
 inline float pow(float a, float b) { return std::pow(a, b); }
+// GLSL's floatBitsToUint.
+inline uint floatBitsToUint(float value) {
+    uint bits = 0;
+    std::memcpy(&bits, &value, sizeof bits);
+    return bits;
+}
 #define BC_SURFACE_FN inline
 }  // namespace blurcull::frontend::surface
 namespace blurcull::frontend {
@@ -147,6 +157,52 @@ BC_SURFACE_FN bool bc_alpha_kept(float alpha, float cutoff) {
     return alpha >= cutoff;
 }
 
+// alphaMode BLEND as stochastic transparency (Enderton et al., I3D 2010): a
+// covered sample stays covered with probability alpha, decided by a hash of
+// the sample (its ndc and time, the floats every backend tests it at) and the
+// triangle, so that every backend keeps the same samples and the depth rule
+// then picks the nearest kept one. uint32 arithmetic only: host and GPU hash
+// alike bit for bit. The lens position is left out: for a pinhole camera the
+// CPU and Embree backends skip drawing it (0, 0) where the GL backend draws
+// it, and a frame's samples differ in ndc and time already.
+
+// lowbias32 (C. Wellons, hash-prospector): a bijective 32-bit mixer.
+BC_SURFACE_FN uint bc_mix32(uint x) {
+    x ^= x >> 16u;
+    x *= 0x7feb352du;
+    x ^= x >> 15u;
+    x *= 0x846ca68bu;
+    x ^= x >> 16u;
+    return x;
+}
+
+// A float's bits with -0 read as +0 (a compare, which no compiler folds away).
+BC_SURFACE_FN uint bc_sample_bits(float value) {
+    return value == 0.0f ? 0u : floatBitsToUint(value);
+}
+
+// The hash of (sample, triangle) that decides a BLEND sample.
+BC_SURFACE_FN uint bc_blend_hash(uint triangle, vec2 ndc, float time) {
+    uint h = bc_mix32(triangle ^ 0x9e3779b9u);
+    h = bc_mix32(h ^ bc_sample_bits(ndc.x));
+    h = bc_mix32(h ^ bc_sample_bits(ndc.y));
+    return bc_mix32(h ^ bc_sample_bits(time));
+}
+
+// alphaMode BLEND: whether a covered sample of alpha `alpha` stays covered,
+// for `hash` = bc_blend_hash: its top 24 bits as a uniform value in [0, 1)
+// (exact in float), below alpha. Alpha 1 keeps every sample, 0 none.
+BC_SURFACE_FN bool bc_blend_kept(float alpha, uint hash) {
+    return float(hash >> 8u) * (1.0f / 16777216.0f) < alpha;
+}
+
+// The raster decision of an alpha-tested triangle (MASK, or BLEND where
+// `blend`) for a covered sample (ndc, time) of alpha `alpha`.
+BC_SURFACE_FN bool bc_alpha_test(float alpha, float cutoff, bool blend, uint triangle, vec2 ndc, float time) {
+    if (blend) return bc_blend_kept(alpha, bc_blend_hash(triangle, ndc, time));
+    return bc_alpha_kept(alpha, cutoff);
+}
+
 // The diffuse term's cosine |n . l| / (|n| |l|) of a normal and the light
 // direction (two-sided); 0 for a zero length or a product of lengths that
 // is not finite (3.40282347e38 is FLT_MAX).
@@ -158,11 +214,59 @@ BC_SURFACE_FN float bc_lambert(vec3 normal, vec3 light) {
     return min(abs(dot(normal, light)) / product, 1.0f);  // rounding can step past 1
 }
 
-// The shaded colour of a hit: base colour lit by ambient plus the diffuse
-// term, plus emission.
-BC_SURFACE_FN vec3 bc_lit_colour(vec3 base, float lambert, vec3 light_color, vec3 emissive, float ambient,
-                                 float diffuse) {
-    return base * (vec3(ambient) + (diffuse * lambert) * light_color) + emissive;
+// Light types (LightType, scene.hpp) as ints: the scene's own directional
+// light and KHR_lights_punctual's (Scene::lights).
+#define BC_LIGHT_DIRECTIONAL 0
+#define BC_LIGHT_POINT 1
+#define BC_LIGHT_SPOT 2
+
+// The distance falloff of a point or spot light at squared distance
+// distance_squared: the inverse square, windowed to 0 at `range` as the
+// KHR_lights_punctual README recommends, max(min(1 - (d / range)^4, 1), 0) / d^2;
+// range <= 0 (undefined in the file): the inverse square alone. 0 at d = 0.
+BC_SURFACE_FN float bc_range_attenuation(float distance_squared, float range) {
+    if (!(distance_squared > 0.0f)) return 0.0f;
+    float falloff = 1.0f / distance_squared;
+    if (range <= 0.0f) return falloff;
+    float ratio_squared = distance_squared / (range * range);
+    return max(min(1.0f - ratio_squared * ratio_squared, 1.0f), 0.0f) * falloff;
+}
+
+// A spot light's smooth falloff between its cones (the README's sample):
+// t = clamp((cos_angle - cos_outer) / (cos_inner - cos_outer), 0, 1), then t^2,
+// cos_angle the cosine between the spot's axis and the direction from the
+// light to the point; the cones' gap at least 0.001 in cosine.
+BC_SURFACE_FN float bc_spot_attenuation(float cos_angle, float cos_inner, float cos_outer) {
+    float scale = 1.0f / max(0.001f, cos_inner - cos_outer);
+    float t = clamp((cos_angle - cos_outer) * scale, 0.0f, 1.0f);
+    return t * t;
+}
+
+// The diffuse light a punctual light of type `type` (BC_LIGHT_*) gives a
+// point `p` with normal `normal` (two-sided, bc_lambert): `colour` (colour x
+// intensity) x the cosine x the falloffs, x the diffuse weight. `position`:
+// the light's (point, spot); `direction`: where it shines (spot), towards the
+// light (directional).
+BC_SURFACE_FN vec3 bc_punctual_light(int type, vec3 position, vec3 direction, vec3 colour, float range,
+                                     float cos_inner, float cos_outer, vec3 p, vec3 normal, float diffuse) {
+    if (type == BC_LIGHT_DIRECTIONAL) return (diffuse * bc_lambert(normal, direction)) * colour;
+    vec3 to_light = position - p;
+    float distance_squared = dot(to_light, to_light);
+    float attenuation = bc_range_attenuation(distance_squared, range);
+    if (type == BC_LIGHT_SPOT && attenuation > 0.0f) {
+        float axis_length = sqrt(dot(direction, direction));
+        float cos_angle = axis_length > 0.0f ? -dot(to_light, direction) / (sqrt(distance_squared) * axis_length) : -1.0f;
+        attenuation *= bc_spot_attenuation(cos_angle, cos_inner, cos_outer);
+    }
+    return (diffuse * bc_lambert(normal, to_light) * attenuation) * colour;
+}
+
+// The shaded colour of a hit whose lights (bc_punctual_light of each) sum to
+// `light`: base colour lit by ambient plus that diffuse light, plus
+// emission; KHR_materials_unlit: the base colour as it is.
+BC_SURFACE_FN vec3 bc_material_colour(bool unlit, vec3 base, vec3 light, vec3 emissive, float ambient) {
+    if (unlit) return base;
+    return base * (vec3(ambient) + light) + emissive;
 }
 
 #ifdef __cplusplus

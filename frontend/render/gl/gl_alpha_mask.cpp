@@ -53,6 +53,7 @@ gpu::MaskTriangle mask_triangle(const Scene& scene, std::size_t t, std::map<int,
     m.uv01 = glm::vec4(uv0, uv1);
     m.uv2_alpha = glm::vec4(uv2, material.base_alpha, material.alpha_cutoff);
     int flags = scene.texcoord.empty() ? 0 : BC_GL_MASK_HAS_TEXCOORD;
+    if (material.alpha_mode == AlphaMode::blend) flags |= BC_GL_MASK_BLEND;
     if (!scene.vertex_color.empty()) {
         flags |= BC_GL_MASK_HAS_COLOR;
         m.vertex_alpha = glm::vec4(scene.vertex_color[tri.x].w, scene.vertex_color[tri.y].w,
@@ -86,7 +87,7 @@ MaskData mask_data(const Scene& scene) {
     }
     std::map<int, std::int32_t> uploaded;  // texture -> its first alpha byte
     for (std::size_t t = 0; t < scene.triangles.size(); ++t) {
-        if (scene.materials[scene.triangle_material[t]].alpha_mode != AlphaMode::mask) continue;
+        if (scene.materials[scene.triangle_material[t]].alpha_mode == AlphaMode::opaque) continue;
         data.slots[t] = static_cast<std::int32_t>(data.triangles.size());
         data.triangles.push_back(mask_triangle(scene, t, uploaded, data));
     }

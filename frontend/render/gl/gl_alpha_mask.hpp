@@ -16,7 +16,7 @@ struct MaskData;  // gl_alpha_mask.cpp: the buffers' contents
 }
 
 // The MaskSlots, MaskTriangles and MaskTexels buffers (gpu_layout_shared.h)
-// of a scene: every triangle's slot (-1 unless alphaMode MASK), the masked
+// of a scene: every triangle's slot (-1 unless alphaMode MASK or BLEND), the masked
 // triangles' texture coordinates, COLOR_0 alphas, factors and texture, and
 // the alpha bytes of their base colour textures. Throws gl::GlError when
 // those bytes exceed the context's largest storage block.
@@ -26,7 +26,7 @@ public:
 
     // Binds the buffers at BC_GL_MASK_*_BINDING.
     void bind() const;
-    // Triangles whose material is alphaMode MASK.
+    // Triangles whose material is alphaMode MASK or BLEND.
     std::size_t masked_triangles() const { return masked_; }
 
 private:

@@ -127,7 +127,7 @@ struct MethodBox {
 
 // The alpha mask test's buffers (shaders/render_mask.glsl, filled by
 // gl_alpha_mask.cpp): MaskSlots holds per triangle its entry in
-// MaskTriangles, or -1 when its material is not alphaMode MASK; MaskTexels
+// MaskTriangles, or -1 when its material is opaque (not MASK or BLEND); MaskTexels
 // holds BC_GL_ALPHA_CODES floats (code / 255 of every 8-bit alpha, so the
 // GPU reads the host's value), then the masked textures' alpha bytes, four
 // per uint (texel k of a texture at byte texture.x + k, little end first).
@@ -138,8 +138,10 @@ struct MethodBox {
 // host's hit_alpha takes 1 for a missing one, not an interpolated 1).
 #define BC_GL_MASK_HAS_TEXCOORD 1
 #define BC_GL_MASK_HAS_COLOR 2
+// alphaMode BLEND (stochastic transparency) instead of MASK's cutoff.
+#define BC_GL_MASK_BLEND 4
 
-// One triangle of an alphaMode MASK material: what hit_alpha reads.
+// One triangle of an alphaMode MASK or BLEND material: what hit_alpha reads.
 struct MaskTriangle {
     vec4 uv01;           // TEXCOORD_0 of vertices 0 (xy) and 1 (zw)
     vec4 uv2_alpha;      // vertex 2's (xy); z: baseColorFactor's alpha, w: alphaCutoff

@@ -40,7 +40,8 @@ std::string implemented_list() {
 const std::vector<std::string>& implemented_extensions() {
     // KHR_mesh_quantization: integer positions and morph targets, decoded
     // by accessors.cpp; the node transform dequantises them.
-    // KHR_lights_punctual: the first directional light (lights.cpp);
+    // KHR_lights_punctual: directional, point and spot lights (lights.cpp);
+    // KHR_materials_emissive_strength and KHR_materials_unlit (surface.cpp);
     // KHR_texture_transform: offset, rotation, scale (surface.cpp).
     // KHR_materials_transmission and KHR_materials_ior: glass
     // (specular_material.cpp; what is read and what is not: its header).
@@ -49,7 +50,8 @@ const std::vector<std::string>& implemented_extensions() {
     static const std::vector<std::string> names = {"KHR_mesh_quantization",     "KHR_lights_punctual",
                                                    "KHR_texture_transform",     "KHR_materials_transmission",
                                                    "KHR_materials_ior",         "KHR_draco_mesh_compression",
-                                                   "EXT_meshopt_compression"};
+                                                   "EXT_meshopt_compression",   "KHR_materials_emissive_strength",
+                                                   "KHR_materials_unlit"};
     return names;
 }
 

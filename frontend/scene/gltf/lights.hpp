@@ -1,6 +1,9 @@
-// KHR_lights_punctual: the first directional light on a rendered node becomes
-// the scene's light (direction and colour x intensity); without one the
-// default light stays. Other lights are ignored with a warning.
+// KHR_lights_punctual: every light on a rendered node. The first directional
+// light becomes the scene's light (direction and colour x intensity); point,
+// spot and further directional lights go to Scene::lights (at most
+// max_punctual_lights, the rest ignored with one warning). A file whose
+// rendered nodes carry lights but no directional one turns the default light
+// off: its own lights light it.
 #pragma once
 
 #include "scene/gltf/diagnostics.hpp"
@@ -14,7 +17,8 @@
 namespace blurcull::frontend::gltf {
 
 // Sets scene.light_direction (towards the light: the node's +Z in the world
-// at shutter open) and scene.light_color from the first directional light.
+// at shutter open), scene.light_color and scene.lights (positions and spot
+// axes from the node's world transform at shutter open).
 void setup_light(const tinygltf::Model& model, const std::vector<int>& rendered, const NodePoses& poses, Scene& scene,
                  Diagnostics& diagnostics);
 

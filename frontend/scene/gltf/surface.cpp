@@ -174,7 +174,7 @@ void read_surface_material(const tg::Material& source, TextureLoader& textures, 
         material.alpha_mode = AlphaMode::mask;
         material.alpha_cutoff = finite_or(source.alphaCutoff, 0.5f);
     } else if (source.alphaMode == "BLEND") {
-        diagnostics.warn_once("blend", "alphaMode BLEND is rendered opaque");
+        material.alpha_mode = AlphaMode::blend;
     }
     if (source.emissiveFactor.size() >= 3) {
         material.emissive = glm::max(glm::vec3(finite_or(source.emissiveFactor[0], 0.0f), finite_or(source.emissiveFactor[1], 0.0f),
@@ -184,6 +184,20 @@ void read_surface_material(const tg::Material& source, TextureLoader& textures, 
     material.emissive_texture = texture_ref(source.emissiveTexture.index, source.emissiveTexture.texCoord,
                                             source.emissiveTexture.extensions, textures, diagnostics);
     // An emissive texture multiplies the factor, which defaults to 0 (glTF).
+    const auto strength = source.extensions.find("KHR_materials_emissive_strength");
+    if (strength != source.extensions.end() && strength->second.IsObject() &&
+        strength->second.Has("emissiveStrength")) {
+        const tg::Value& value = strength->second.Get("emissiveStrength");
+        const double factor = value.IsNumber() ? value.GetNumberAsDouble() : -1.0;
+        if (!(factor >= 0.0) || !std::isfinite(factor) || factor > 1e6) {
+            diagnostics.warn_once("emissive strength", "KHR_materials_emissive_strength emissiveStrength is not a "
+                                                       "number in [0, 1e6]; 1 is used");
+        } else {
+            material.emissive *= static_cast<float>(factor);
+        }
+    }
+    // KHR_materials_unlit: an object, no properties.
+    material.unlit = source.extensions.count("KHR_materials_unlit") > 0;
 }
 
 }  // namespace blurcull::frontend::gltf

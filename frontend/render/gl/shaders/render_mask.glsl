@@ -1,10 +1,12 @@
-// alphaMode MASK in the raster decision (docs/reference-renderer.md,
+// alphaMode MASK and BLEND in the raster decision (docs/reference-renderer.md,
 // "Shading"): compiled after surface_shared.h and before the mains that draw
 // triangles (render_static.frag, render_static_group.frag, render_moving.frag,
 // render_method.frag). A covered sample of a masked triangle stays covered
-// only where hit_alpha >= alphaCutoff, the host's SurfaceShader::sample_kept
-// with the formulas of surface_shared.h, at the barycentrics of the kernel's
-// bc_covers_hit (float, the triangle the sample was tested against).
+// only where hit_alpha >= alphaCutoff, one of a BLEND triangle with
+// probability hit_alpha (by the hash of the sample and the triangle): the
+// host's SurfaceShader::sample_kept with the formulas of surface_shared.h
+// (bc_alpha_test), at the barycentrics of the kernel's bc_covers_hit (float,
+// the triangle the sample was tested against).
 layout(std430, binding = BC_GL_MASK_SLOTS_BINDING) readonly buffer MaskSlots { int mask_slot[]; };
 layout(std430, binding = BC_GL_MASK_TRIANGLES_BINDING) readonly buffer MaskTriangles { MaskTriangle mask_triangles[]; };
 layout(std430, binding = BC_GL_MASK_TEXELS_BINDING) readonly buffer MaskTexels {
@@ -21,7 +23,7 @@ vec4 bc_texel(ivec4 tex, int x, int y) {
 }
 
 // Whether sample (ndc, lens, time), which bc_sample_test found covered by
-// `triangle`, stays covered: always for a triangle that is not masked.
+// `triangle`, stays covered: always for an opaque triangle.
 bool mask_keeps(int triangle, vec2 ndc, vec2 lens, float time) {
     int slot = mask_slot[triangle];
     if (slot < 0) return true;
@@ -43,5 +45,6 @@ bool mask_keeps(int triangle, vec2 ndc, vec2 lens, float time) {
         texture_alpha = bc_transformed_texture(m.texture, m.texture.y, m.texture.z, m.wrap_flags.x, m.wrap_flags.y,
                                                m.transform_row0.xyz, m.transform_row1.xyz, uv).w;
     }
-    return bc_alpha_kept(bc_hit_alpha(m.uv2_alpha.z, vertex_alpha, texture_alpha), m.uv2_alpha.w);
+    return bc_alpha_test(bc_hit_alpha(m.uv2_alpha.z, vertex_alpha, texture_alpha), m.uv2_alpha.w,
+                         (flags & BC_GL_MASK_BLEND) != 0, uint(triangle), ndc, time);
 }
