@@ -252,6 +252,7 @@ void refuse_unhonoured_options(const RenderCommand& command, Backend backend) {
         {"--occlusion", command.occlusion_option, backend_bit(Backend::cpu)},
         {"--precision", command.precision_option, backend_bit(Backend::cpu)},
         {"--gl-cell", command.gl_cell_option, backend_bit(Backend::gl)},
+        {"--gl-pipeline", command.gl_pipeline_option, backend_bit(Backend::gl)},
         {"--secondary", command.secondary_option, backend_bit(Backend::embree)},
         {"--layer-images", command.layer_images_option, backend_bit(Backend::gl)},
     };
@@ -261,6 +262,17 @@ void refuse_unhonoured_options(const RenderCommand& command, Backend backend) {
     if (own_samples && command.sampler_option != nullptr && command.sampler_option->count() > 0) {
         throw std::invalid_argument(std::string("--sampler: method ") + method.name +
                                     " draws its own samples (only stochastic and dof-secondary take it)");
+    }
+    // The compute pipeline: the stochastic method, no cells (docs/gl-backend.md, "The compute pipeline").
+    if (command.gl_pipeline == "compute" && backend == Backend::gl) {
+        if (method.method != RenderMethod::stochastic) {
+            throw std::invalid_argument(std::string("--gl-pipeline compute: only the stochastic method takes it (method ") +
+                                        method.name + ")");
+        }
+        if (command.gl_cell_option != nullptr && command.gl_cell_option->count() > 0) {
+            throw std::invalid_argument("--gl-cell: only --gl-pipeline fragment takes it (the compute pipeline bounds "
+                                        "samples per 8x8-pixel tile)");
+        }
     }
     for (const BackendOption& option : options) {
         if (option.option == nullptr || option.option->count() == 0) continue;
@@ -337,6 +349,7 @@ RenderJob set_up(const RenderCommand& command) {
     job.cpu.occlusion = command.occlusion == "on";
     job.cpu.precision = parse_kernel_precision(command.precision);
     job.gl.cell_pixels = command.gl_cell;
+    job.gl.pipeline = parse_gl_pipeline(command.gl_pipeline);
 #if BLURCULL_HAVE_EMBREE
     job.embree.secondary = parse_embree_secondary(command.secondary);
 #endif
@@ -483,6 +496,12 @@ void print_json_summary(const RenderCommand& command, const RenderJob& job, cons
     summary["backend"] = to_string(job.backend);
     summary["method"] = to_string(job.settings.method);
     summary["cull"] = culled(job) ? to_string(job.settings.cull) : "none";
+    if (job.backend == Backend::gl) {
+        if (job.settings.method == RenderMethod::stochastic) summary["gl_pipeline"] = to_string(job.gl.pipeline);
+#if BLURCULL_HAVE_GL
+        if (job.gl_renderer) summary["gl_renderer"] = job.gl_renderer->description();
+#endif
+    }
     if (job.backend == Backend::cpu && job.settings.method == RenderMethod::stochastic) {
         summary["precision"] = to_string(job.cpu.precision);
     }
@@ -650,6 +669,11 @@ void RenderCommand::add_options(CLI::App& app) {
                                     "computed for")
                          ->check(CLI::Range(1, 4096))
                          ->capture_default_str();
+    gl_pipeline_option = app.add_option("--gl-pipeline", gl_pipeline,
+                                        "gl, stochastic method: fragment (MSAA passes of four samples) or compute "
+                                        "(binned to screen tiles, a work group per tile); the same image")
+                             ->check(CLI::IsMember({"fragment", "compute"}))
+                             ->capture_default_str();
     secondary_option = app.add_option("--secondary", secondary,
                                       "embree: what a ray that hits a mirror or glass sees; bounce: one exact bounce "
                                       "of reflection and refraction; none: the primary-only image (the environment "
