@@ -350,6 +350,15 @@ RenderJob set_up(const RenderCommand& command) {
     job.cpu.precision = parse_kernel_precision(command.precision);
     job.gl.cell_pixels = command.gl_cell;
     job.gl.pipeline = parse_gl_pipeline(command.gl_pipeline);
+    // --backend auto chose gl, so a hardware GPU: the stochastic method on
+    // the compute pipeline, which uses all of a compute GPU's
+    // multiprocessors (docs/gl-backend.md), unless --gl-pipeline or
+    // --gl-cell (the fragment pipeline's) says otherwise.
+    const auto given = [](const CLI::Option* option) { return option != nullptr && option->count() > 0; };
+    if (command.backend == "auto" && job.backend == Backend::gl && job.settings.method == RenderMethod::stochastic &&
+        !given(command.gl_pipeline_option) && !given(command.gl_cell_option)) {
+        job.gl.pipeline = GlPipeline::compute;
+    }
 #if BLURCULL_HAVE_EMBREE
     job.embree.secondary = parse_embree_secondary(command.secondary);
 #endif
