@@ -33,10 +33,13 @@ RenderSettings settings_for(int width, int height, int spp) {
     return settings;
 }
 
-GlOptions compute_options() {
+// Occlusion off: samples_hit then counts every covered sample, as the
+// fragment pipeline's and the cpu's with occlusion off do.
+GlOptions compute_options(bool occlusion = false) {
     GlOptions options;
     options.pipeline = GlPipeline::compute;
     options.keep_sample_ids = true;
+    options.occlusion = occlusion;
     return options;
 }
 
@@ -139,6 +142,33 @@ TEST_CASE("gl compute pipeline: every cull method and sampler, the same decision
     }
 }
 
+TEST_CASE("gl compute pipeline: occlusion per tile skips work, never a winner") {
+    GlRenderer* gl = renderer_or_skip();
+    if (gl == nullptr) return;
+    // The forest (deep, many layers) and the car, at 96x72, 8 spp: two
+    // chunks of samples, so the held keys carry over between dispatches.
+    for (const std::string name : {"forest", "car"}) {
+        const Scene scene = small_scene(name, 96, 72);
+        const RenderSettings settings = settings_for(96, 72, 8);
+        std::vector<std::uint32_t> ids, occluded_ids;
+        const RenderResult all = gl->render(scene, settings, compute_options(false), &ids);
+        const RenderResult occluded = gl->render(scene, settings, compute_options(true), &occluded_ids);
+        std::printf("%-6s 96x72 8 spp: tested %llu -> %llu, hits %llu -> %llu, entries occluded %.0f\n", name.c_str(),
+                    static_cast<unsigned long long>(all.stats.samples_tested),
+                    static_cast<unsigned long long>(occluded.stats.samples_tested),
+                    static_cast<unsigned long long>(all.stats.samples_hit),
+                    static_cast<unsigned long long>(occluded.stats.samples_hit),
+                    counter(occluded.stats, "occluded_entries"));
+        INFO(name);
+        CHECK(occluded_ids == ids);
+        CHECK(same_pixels(occluded.image, all.image));
+        CHECK(counter(all.stats, "occluded_entries") == 0.0);
+        CHECK(counter(occluded.stats, "occluded_entries") > 0.0);
+        CHECK(occluded.stats.samples_tested < all.stats.samples_tested);
+        CHECK(occluded.stats.samples_hit < all.stats.samples_hit);
+    }
+}
+
 TEST_CASE("gl compute pipeline: an overflowing tile list is binned again, the same image") {
     GlRenderer* gl = renderer_or_skip();
     if (gl == nullptr) return;
@@ -192,8 +222,8 @@ Run run_cli(const std::string& arguments) {
 
 TEST_CASE("gl compute pipeline: --gl-pipeline on the command line, the JSON, the refusals") {
     if (renderer_or_skip() == nullptr) return;
-    const Run run = run_cli("render --backend gl --gl-pipeline compute --scene hand --size 32x24 --spp 4 --json -q "
-                            "-o hand_compute.png");
+    const Run run = run_cli("render --backend gl --gl-pipeline compute --occlusion off --scene hand --size 32x24 "
+                            "--spp 4 --json -q -o hand_compute.png");
     INFO(run.err);
     REQUIRE(run.status == 0);
     const nlohmann::json summary = nlohmann::json::parse(run.out);
@@ -212,13 +242,15 @@ TEST_CASE("gl compute pipeline: --gl-pipeline on the command line, the JSON, the
     // One line each, naming the flag.
     for (const char* refused : {"render --backend gl --gl-pipeline compute --method interleave --size 32x24 -q",
                                 "render --backend gl --gl-pipeline compute --gl-cell 4 --size 32x24 -q",
+                                "render --backend gl --occlusion on --size 32x24 -q",
                                 "render --backend cpu --gl-pipeline compute --size 32x24 -q",
                                 "render --backend gl --gl-pipeline tiles --size 32x24 -q"}) {
         const Run bad = run_cli(refused);
         INFO(refused, ": ", bad.err);
         CHECK(bad.status != 0);
-        const bool names_flag =
-            bad.err.find("--gl-pipeline") != std::string::npos || bad.err.find("--gl-cell") != std::string::npos;
+        const bool names_flag = bad.err.find("--gl-pipeline") != std::string::npos ||
+                                bad.err.find("--gl-cell") != std::string::npos ||
+                                bad.err.find("--occlusion") != std::string::npos;
         CHECK(names_flag);
     }
 }

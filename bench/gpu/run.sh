@@ -13,11 +13,12 @@
 # run, labelled software, at 128x96, 4 spp, one run each unless BENCH_SIZE,
 # BENCH_SPP, BENCH_RUNS say otherwise. On a hardware GPU: 1024x768, 16 spp,
 # 3 runs each (medians). BENCH_SCENES (default: hand car dragonfly forest)
-# and BENCH_BACKENDS (default: compute fragment cpu embree) pick a subset.
+# and BENCH_BACKENDS (default: compute compute-noocc fragment cpu embree)
+# pick a subset; compute-noocc is the compute pipeline with --occlusion off,
+# whose samples_hit counts every covered sample as the fragment pipeline's.
 # Writes bench.csv (one line per render) and summary.txt (medians) under
 # $OUT (or ./gpu-bench when unset); exits non-zero if a render failed or, on
-# llvmpipe, the compute and fragment pipelines disagree on a scene's
-# samples_hit.
+# llvmpipe, compute-noocc and fragment disagree on a scene's samples_hit.
 set -u
 blurcull=$(command -v blurcull || true)
 [ -n "$blurcull" ] || blurcull=build/frontend/blurcull
@@ -44,7 +45,7 @@ size=${BENCH_SIZE:-$def_size}
 spp=${BENCH_SPP:-$def_spp}
 runs=${BENCH_RUNS:-$def_runs}
 scenes=${BENCH_SCENES:-"hand car dragonfly forest"}
-backends=${BENCH_BACKENDS:-"compute fragment cpu embree"}
+backends=${BENCH_BACKENDS:-"compute compute-noocc fragment cpu embree"}
 say "date: $(date -u +%FT%TZ)"
 command -v nvidia-smi >/dev/null && say "gpu: $(nvidia-smi --query-gpu=name,driver_version --format=csv,noheader 2>&1)"
 say "gl: $renderer ($kind)"
@@ -57,6 +58,7 @@ for scene in $scenes; do
   for backend in $backends; do
     case "$backend" in
       compute) args="--backend gl --gl-pipeline compute" ;;
+      compute-noocc) args="--backend gl --gl-pipeline compute --occlusion off" ;;
       fragment) args="--backend gl --gl-pipeline fragment" ;;
       *) args="--backend $backend" ;;
     esac
@@ -98,7 +100,7 @@ def med(values):
     return statistics.median(values) if values else float("nan")
 print("\nframe ms (render minus shader compile), median; compute phases in ms (gpu: timer queries, wall: host clock)"
       + (" -- SOFTWARE GL" if kind == "software" else ""))
-print("%-10s %-9s %10s %10s  %s" % ("scene", "backend", "frame_ms", "hits", "compute phases gpu setup/binning/raster/resolve | wall"))
+print("%-10s %-14s %10s %10s  %s" % ("scene", "backend", "frame_ms", "hits", "compute phases gpu setup/binning/raster/resolve | wall"))
 bad = 0
 for scene in dict.fromkeys(r["scene"] for r in rows):
     hits = {}
@@ -106,14 +108,14 @@ for scene in dict.fromkeys(r["scene"] for r in rows):
         rs = [r for r in rows if r["scene"] == scene and r["backend"] == backend]
         hits[backend] = rs[0]["samples_hit"]
         phases = ""
-        if backend == "compute":
+        if backend.startswith("compute"):
             phases = "/".join("%.1f" % med(r[k] for r in rs) for k in ("gpu_setup", "gpu_binning", "gpu_raster", "gpu_resolve"))
             phases += " | " + "/".join("%.1f" % med(r[k] for r in rs) for k in ("wall_setup", "wall_binning", "wall_raster", "wall_resolve"))
-        print("%-10s %-9s %10.1f %10s  %s" % (scene, backend, med(r["frame_ms"] for r in rs), hits[backend], phases))
-    if "compute" in hits and "fragment" in hits and hits["compute"] != hits["fragment"]:
+        print("%-10s %-14s %10.1f %10s  %s" % (scene, backend, med(r["frame_ms"] for r in rs), hits[backend], phases))
+    if "compute-noocc" in hits and "fragment" in hits and hits["compute-noocc"] != hits["fragment"]:
         # llvmpipe is IEEE-exact, so there they must agree; a GPU may
         # compile the same GLSL differently in two shaders (../shared/gpu/README.md).
-        print("  %s: compute and fragment hits differ (%s, %s)%s" % (scene, hits["compute"], hits["fragment"],
+        print("  %s: compute (occlusion off) and fragment hits differ (%s, %s)%s" % (scene, hits["compute-noocc"], hits["fragment"],
               "" if kind == "software" else ": reported, not a failure off llvmpipe"))
         bad += kind == "software"
 sys.exit(1 if bad else 0)

@@ -249,7 +249,7 @@ void refuse_unhonoured_options(const RenderCommand& command, Backend backend) {
         {"--footprint", command.footprint_option, backend_bit(Backend::cpu)},
         {"--time-strata", command.time_strata_option, backend_bit(Backend::cpu)},
         {"--lens-strata", command.lens_strata_option, backend_bit(Backend::cpu)},
-        {"--occlusion", command.occlusion_option, backend_bit(Backend::cpu)},
+        {"--occlusion", command.occlusion_option, backend_bit(Backend::cpu) | backend_bit(Backend::gl)},
         {"--precision", command.precision_option, backend_bit(Backend::cpu)},
         {"--gl-cell", command.gl_cell_option, backend_bit(Backend::gl)},
         {"--gl-pipeline", command.gl_pipeline_option, backend_bit(Backend::gl)},
@@ -273,6 +273,16 @@ void refuse_unhonoured_options(const RenderCommand& command, Backend backend) {
             throw std::invalid_argument("--gl-cell: only --gl-pipeline fragment takes it (the compute pipeline bounds "
                                         "samples per 8x8-pixel tile)");
         }
+    }
+    // On gl, --occlusion is the compute pipeline's (given or chosen by auto below).
+    const auto given = [](const CLI::Option* option) { return option != nullptr && option->count() > 0; };
+    const bool compute_pipeline =
+        method.method == RenderMethod::stochastic &&
+        (command.gl_pipeline == "compute" ||
+         (command.backend == "auto" && !given(command.gl_pipeline_option) && !given(command.gl_cell_option)));
+    if (backend == Backend::gl && !compute_pipeline && command.occlusion_option != nullptr &&
+        command.occlusion_option->count() > 0) {
+        throw std::invalid_argument("--occlusion: on gl only --gl-pipeline compute takes it");
     }
     for (const BackendOption& option : options) {
         if (option.option == nullptr || option.option->count() == 0) continue;
@@ -350,6 +360,7 @@ RenderJob set_up(const RenderCommand& command) {
     job.cpu.precision = parse_kernel_precision(command.precision);
     job.gl.cell_pixels = command.gl_cell;
     job.gl.pipeline = parse_gl_pipeline(command.gl_pipeline);
+    job.gl.occlusion = command.occlusion == "on";
     // --backend auto chose gl, so a hardware GPU: the stochastic method on
     // the compute pipeline, which uses all of a compute GPU's
     // multiprocessors (docs/gl-backend.md), unless --gl-pipeline or
@@ -662,8 +673,9 @@ void RenderCommand::add_options(CLI::App& app) {
             ->capture_default_str();
     occlusion_option =
         app.add_option("--occlusion", occlusion,
-                       "cpu, bbox and hull: skip a moving triangle's samples that nearer triangles already hold "
-                       "(on or off; the same image, fewer samples tested and counted in samples_hit)")
+                       "cpu, bbox and hull: skip a moving triangle's samples that nearer triangles already hold; "
+                       "gl --gl-pipeline compute, every cull: skip a tile's triangles behind all it holds (on or "
+                       "off; the same image, fewer samples tested and counted in samples_hit)")
             ->check(CLI::IsMember({"on", "off"}))
             ->capture_default_str();
     std::string precision_help = "cpu: the kernel's arithmetic";

@@ -43,6 +43,11 @@ struct GlOptions {
     // more is detected on the GPU and binned again with room for all (counter
     // tile_list_retries); a tiny value forces that path (the tests do).
     std::size_t tile_list_capacity = 0;
+    // Compute pipeline: hierarchical occlusion per tile (an entry whose
+    // kernel depth floor is behind every sample its tile holds is skipped).
+    // The same image; fewer samples tested, and fewer counted in
+    // samples_hit, as the cpu backend's CpuOptions::occlusion.
+    bool occlusion = true;
     // Every triangle through the moving path (per-sample kernel test), even
     // static in-focus ones: to measure what the static path saves.
     bool force_full_path = false;

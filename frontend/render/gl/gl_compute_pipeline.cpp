@@ -214,13 +214,14 @@ public:
 
     // The raster pass: a dispatch per chunk of samples and slice of the
     // lists (slice_entries of them; the lists are at most max_count long).
-    void run_raster(std::uint32_t max_count, std::uint32_t slice_entries, PhaseTimers& timers) {
+    void run_raster(std::uint32_t max_count, std::uint32_t slice_entries, bool occlusion, PhaseTimers& timers) {
         timers.begin(PhaseTimers::raster);
         set_common(gl_, programs_.raster, model_, settings_, 0);
         set_int(gl_, programs_.raster, "method", kernel_cull_method(settings_.cull));
         set_int(gl_, programs_.raster, "tile_bounds", cull_method_info(settings_.cull).bounds_samples ? 1 : 0);
         set_uint(gl_, programs_.raster, "tiles_x", tiles_x_);
         set_uint(gl_, programs_.raster, "slice_entries", slice_entries);
+        set_int(gl_, programs_.raster, "occlusion", occlusion ? 1 : 0);
         const auto spp = static_cast<std::uint32_t>(settings_.spp);
         for (std::uint32_t chunk = 0; chunk < spp; chunk += raster_chunk) {
             set_uint(gl_, programs_.raster, "chunk_base", chunk);
@@ -363,11 +364,12 @@ RenderResult render_gl_compute(const gl::HeadlessContext& context, std::shared_p
     if (options.tile_list_capacity == 0) programs->needed_entries = state.entries;
     const std::uint32_t slice =
         software_renderer(context.renderer()) ? software_slice_entries : std::max<std::uint32_t>(state.max_count, 1);
-    frame.run_raster(state.max_count, slice, timers);
+    frame.run_raster(state.max_count, slice, options.occlusion, timers);
     frame.run_resolve(timers, stats);
     stats.ms_per_phase.emplace_back("raster+resolve", ms_since(phase));
 
-    if (frame.final_state().overflow != 0) {
+    const TileBinState final_state = frame.final_state();
+    if (final_state.overflow != 0) {
         throw gl::GlError("gl: the compute pipeline's tile lists overflowed after they were sized");
     }
     phase = RenderClock::now();
@@ -380,6 +382,7 @@ RenderResult render_gl_compute(const gl::HeadlessContext& context, std::shared_p
     stats.counters.emplace_back("tile_list_retries", static_cast<double>(retries));
     stats.counters.emplace_back("tile_list_longest", static_cast<double>(state.max_count));
     stats.counters.emplace_back("raster_slice_entries", static_cast<double>(slice));
+    stats.counters.emplace_back("occluded_entries", static_cast<double>(final_state.occluded));
     stats.ms_total = ms_since(start);
     return result;
 }

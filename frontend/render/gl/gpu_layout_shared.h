@@ -143,7 +143,7 @@ struct TileBinState {
     uint capacity;      // entries the TileList buffer holds
     uint overflow;      // 1: entries > capacity (found by the scan), 2: the fill found no room
     uint max_count;     // the longest tile list
-    uint padding0;
+    uint occluded;      // (tile, entry, chunk of samples) the raster's occlusion test skipped
     uint padding1;
     uint padding2;
 };

@@ -33,11 +33,17 @@ uniform uint tiles_x;       // tiles per row
 uniform uint chunk_base;    // this dispatch's samples: chunk_base ... chunk_base + CHUNK - 1
 uniform uint slice_first;   // and list entries: slice_first ... slice_first + slice_entries - 1
 uniform uint slice_entries;
+uniform int occlusion;      // 1: skip an entry whose depth floor is behind every sample the tile holds
 
 #define BATCH (BC_GL_TILE_SIZE * BC_GL_TILE_SIZE)
 #define CHUNK 8
 #define NO_TRIANGLE 0xffffffffu
 
+// The smallest depth key the tile's samples (this chunk) hold, as float
+// bits (positive floats order as their bits; 0: a sample shows the
+// background), double-buffered by batch: the loaders of batch j read what
+// the invocations left after batch j - 1.
+shared uint tile_min_key[2];
 shared uint batch_triangle[BATCH];
 // Each batch entry's pixels in the tile (empty: x0 > x1) and sample bounds.
 shared CellBounds batch_bounds[BATCH];
@@ -78,10 +84,24 @@ void main() {
         }
     }
     uint local = gl_LocalInvocationIndex;
-    uint tested_here = 0u, hit_here = 0u;
+    uint tested_here = 0u, hit_here = 0u, occluded_here = 0u;
+    const uint no_key = 0x7f800000u;  // +infinity: nothing held yet
+    if (local == 0u) {
+        tile_min_key[0] = no_key;
+        tile_min_key[1] = no_key;
+    }
+    memoryBarrierShared();
+    barrier();
+    if (inside && occlusion != 0) {
+        float held = uintBitsToFloat(no_key);
+        for (uint k = 0u; k < samples_here; ++k) held = min(held, best_key[k]);
+        atomicMin(tile_min_key[1], floatBitsToUint(held));
+    }
     for (uint b = slice_first; b < slice_end; b += uint(BATCH)) {
+        uint parity = ((b - slice_first) / uint(BATCH)) & 1u;
         memoryBarrierShared();
-        barrier();  // the previous batch is no longer read
+        barrier();  // the previous batch is no longer read, its keys are in tile_min_key[1 - parity]
+        if (local == 0u) tile_min_key[parity] = no_key;
         if (b + local < slice_end) {
             uint i = tile_list[first + b + local];
             batch_triangle[local] = i;
@@ -95,6 +115,20 @@ void main() {
                 vec4 footprint = bc_pixel_rect_ndc(c.rect, image_size);
                 sb = bc_sample_bounds(triangles[i], footprint.xy, footprint.zw, method);
                 if (sb.empty) c.rect = ivec4(0, 0, -1, -1);
+            }
+            // Hierarchical occlusion, per tile: the kernel's depth floor (no
+            // covered sample of the triangle is nearer) against the farthest
+            // sample the tile holds; strictly behind it, the triangle wins no
+            // sample of the tile (bc_depth_key is monotone in the depth).
+            if (occlusion != 0 && c.rect.x <= c.rect.z && c.rect.y <= c.rect.w) {
+                float held = uintBitsToFloat(tile_min_key[1u - parity]);
+                // Every sample has |NDC| <= 1; 2 leaves room for their rounding (as the cpu's frame_setup).
+                float scale = bc_depth_floor_scale(triangles[i], vec2(0.0, 1.0), vec2(-1.0, 1.0), vec2(-1.0, 1.0), 2.0);
+                float floor_depth = bc_depth_floor(triangles[i], vec2(0.0, 1.0), scale);
+                if (floor_depth > 0.0 && bc_depth_key(near_plane, floor_depth) < held) {
+                    c.rect = ivec4(0, 0, -1, -1);
+                    ++occluded_here;
+                }
             }
             c.lens = vec4(sb.u_range, sb.v_range);
             c.time_lines_u_a = sb.u_time_a;
@@ -140,6 +174,11 @@ void main() {
                 }
             }
         }
+        if (occlusion != 0) {
+            float held = uintBitsToFloat(no_key);
+            for (uint k = 0u; k < samples_here; ++k) held = min(held, best_key[k]);
+            atomicMin(tile_min_key[parity], floatBitsToUint(held));
+        }
     }
     if (inside) {
         for (uint k = 0u; k < samples_here; ++k) {
@@ -149,4 +188,5 @@ void main() {
     }
     if (tested_here > 0u) atomicAdd(tested, tested_here);
     if (hit_here > 0u) atomicAdd(hit, hit_here);
+    if (occluded_here > 0u) atomicAdd(bin_state.occluded, occluded_here);
 }
