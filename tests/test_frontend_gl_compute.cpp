@@ -9,6 +9,7 @@
 #include "render/cpu/cpu_backend.hpp"
 #include "render/gl/gl_backend.hpp"
 #include "scene/builtin_scenes.hpp"
+#include "scene/gltf/gltf_loader.hpp"
 
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
@@ -166,6 +167,34 @@ TEST_CASE("gl compute pipeline: occlusion per tile skips work, never a winner") 
         CHECK(counter(occluded.stats, "occluded_entries") > 0.0);
         CHECK(occluded.stats.samples_tested < all.stats.samples_tested);
         CHECK(occluded.stats.samples_hit < all.stats.samples_hit);
+    }
+}
+
+TEST_CASE("gl compute pipeline: alpha masks and per-hit shading as the cpu float path") {
+    GlRenderer* gl = renderer_or_skip();
+    if (gl == nullptr) return;
+    // tests/data/shading: COLOR_0 and texture alpha masks (MASK), vertex
+    // colours and textures resolved per hit on the host from the ids.
+    const std::string data = std::string(BLURCULL_SOURCE_DIR) + "/tests/data/shading/";
+    for (const char* file : {"attributes.gltf", "mask_texture.gltf"}) {
+        Scene scene = load_gltf_scene(data + file, GltfOptions{}, [](const std::string&) {});
+        for (int variant = 0; variant < 2; ++variant) {
+            if (variant == 1) {  // defocus: the lens and time bounds and the hull
+                scene.camera.lens_radius = 0.08f;
+                scene.camera.focus_distance = 4.0f;
+            }
+            RenderSettings settings = settings_for(96, 72, 8);
+            settings.cull = variant == 1 ? CullMethod::two_stage : CullMethod::bbox;
+            CpuOptions cpu_options;
+            cpu_options.occlusion = false;
+            cpu_options.precision = KernelPrecision::float32;
+            const RenderResult cpu = render_cpu(scene, settings, cpu_options);
+            const RenderResult compute = gl->render(scene, settings, compute_options());
+            INFO(file, ", variant ", variant, ": hits compute ", compute.stats.samples_hit, " cpu ",
+                 cpu.stats.samples_hit, ", rmse ", rmse(compute.image, cpu.image));
+            CHECK(compute.stats.samples_hit == cpu.stats.samples_hit);
+            CHECK(same_pixels(compute.image, cpu.image));
+        }
     }
 }
 
