@@ -48,6 +48,11 @@ struct GlOptions {
     // The same image; fewer samples tested, and fewer counted in
     // samples_hit, as the cpu backend's CpuOptions::occlusion.
     bool occlusion = true;
+    // Compute pipeline: a moving or defocused triangle's samples tested only
+    // inside the screen box of their shutter slice (BC_GL_TIME_STRATA of
+    // them, the kernel's stratum_screen_box). The same image, fewer samples
+    // tested.
+    bool time_strata = true;
     // Every triangle through the moving path (per-sample kernel test), even
     // static in-focus ones: to measure what the static path saves.
     bool force_full_path = false;

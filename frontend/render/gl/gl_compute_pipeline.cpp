@@ -28,6 +28,7 @@ using gl::shader_stage;
 
 struct GlComputePrograms {
     gl::Program setup;
+    gl::Program strata;
     gl::Program bin;
     gl::Program scan;
     gl::Program raster;
@@ -38,6 +39,7 @@ struct GlComputePrograms {
 
     explicit GlComputePrograms(const gl::Functions& gl)
         : setup(gl, {shader_stage(GL_COMPUTE_SHADER, "render_setup.comp")}),
+          strata(gl, {shader_stage(GL_COMPUTE_SHADER, "render_compute_strata.comp")}),
           bin(gl, {shader_stage(GL_COMPUTE_SHADER, "render_compute_bin.comp")}),
           scan(gl, {shader_stage(GL_COMPUTE_SHADER, "render_compute_scan.comp")}),
           raster(gl, {shader_stage(GL_COMPUTE_SHADER, "render_compute_raster.comp", gl::Prelude::render_masked)}),
@@ -153,13 +155,16 @@ public:
                                     "sample ids")),
           key_buffer_(bounded_buffer(gl_, pixels_ * static_cast<std::size_t>(settings.spp) * sizeof(float),
                                      "sample depth keys")),
+          stratum_buffer_(bounded_buffer(gl_, std::max<std::size_t>(count_, 1) * BC_GL_TIME_STRATA * sizeof(glm::vec4),
+                                         "stratum boxes")),
           tile_count_buffer_(storage_buffer(gl_, tiles_ * sizeof(std::uint32_t))),
           tile_end_buffer_(storage_buffer(gl_, tiles_ * sizeof(std::uint32_t))),
           state_buffer_(storage_buffer(gl_, sizeof(TileBinState))),
           mask_(gl_, scene) {}
 
-    // render_setup.comp: each triangle's screen bound, pixel rectangle, path.
-    void run_setup(PhaseTimers& timers) {
+    // render_setup.comp: each triangle's screen bound, pixel rectangle, path;
+    // render_compute_strata.comp: its shutter slices' screen boxes.
+    void run_setup(bool time_strata, PhaseTimers& timers) {
         bind_common();
         timers.begin(PhaseTimers::setup);
         if (count_ > 0) {
@@ -167,6 +172,11 @@ public:
             set_int(gl_, programs_.setup, "triangle_count", static_cast<int>(count_));
             set_int(gl_, programs_.setup, "method", kernel_cull_method(settings_.cull));
             set_int(gl_, programs_.setup, "force_full", 0);
+            gl_.DispatchCompute(groups(count_, 64), 1, 1);
+            gl_.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+            set_common(gl_, programs_.strata, model_, settings_, 0);
+            set_int(gl_, programs_.strata, "triangle_count", static_cast<int>(count_));
+            set_int(gl_, programs_.strata, "time_strata", time_strata ? 1 : 0);
             gl_.DispatchCompute(groups(count_, 64), 1, 1);
             gl_.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         }
@@ -305,6 +315,7 @@ private:
         sum_buffer_.bind_base(BC_GL_SUMS_BINDING);
         id_buffer_.bind_base(BC_GL_SAMPLE_IDS_BINDING);
         key_buffer_.bind_base(BC_GL_SAMPLE_KEYS_BINDING);
+        stratum_buffer_.bind_base(BC_GL_STRATUM_BOXES_BINDING);
         class_buffer_.bind_base(BC_GL_CLASSES_BINDING);
         tile_count_buffer_.bind_base(BC_GL_TILE_COUNTS_BINDING);
         tile_end_buffer_.bind_base(BC_GL_TILE_ENDS_BINDING);
@@ -322,7 +333,7 @@ private:
     FrameTriangles triangles_;
     gl::Buffer triangle_buffer_, info_buffer_, class_buffer_;
     SampleCounters counters_;
-    gl::Buffer colour_buffer_, sum_buffer_, id_buffer_, key_buffer_;
+    gl::Buffer colour_buffer_, sum_buffer_, id_buffer_, key_buffer_, stratum_buffer_;
     gl::Buffer tile_count_buffer_, tile_end_buffer_, state_buffer_;
     GlAlphaMask mask_;
     std::optional<gl::Buffer> list_buffer_;
@@ -351,7 +362,7 @@ RenderResult render_gl_compute(const gl::HeadlessContext& context, std::shared_p
     std::vector<std::uint32_t>* kept_ids = options.keep_sample_ids && sample_ids != nullptr ? sample_ids : &winners;
     PhaseTimers timers(gl);
     ComputeFrame frame(gl, *programs, scene, settings);
-    frame.run_setup(timers);
+    frame.run_setup(options.time_strata, timers);
     stats.ms_per_phase.emplace_back("setup", ms_since(phase));
 
     phase = RenderClock::now();

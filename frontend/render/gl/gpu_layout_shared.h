@@ -74,6 +74,11 @@ using uint = std::uint32_t;
 #define BC_GL_TILE_LIST_BINDING 8      // TileList: the tiles' triangle lists, one after another
 #define BC_GL_TILE_STATE_BINDING 10    // TileState: TileBinState
 #define BC_GL_SAMPLE_KEYS_BINDING 11   // SampleKeys: per sample the depth key of its winner so far
+#define BC_GL_STRATUM_BOXES_BINDING 12 // StratumBoxes: per triangle BC_GL_TIME_STRATA screen boxes
+// The compute pipeline's shutter slices: a moving triangle's samples of
+// slice s (time in [s, s + 1] / BC_GL_TIME_STRATA) are tested only inside
+// the kernel's stratum_screen_box of that slice.
+#define BC_GL_TIME_STRATA 4
 // render_resolve.comp's sampler of the pass's triangle ids: a texture unit.
 #define BC_GL_PASS_IDS_UNIT 0
 // The interleave / interval / accum passes (gl_sampling_methods.cpp;
@@ -245,6 +250,7 @@ static_assert(distinct_bindings({BC_GL_TRIANGLES_BINDING, BC_GL_INFOS_BINDING, B
                                  BC_GL_COLOURS_BINDING, BC_GL_SUMS_BINDING, BC_GL_SAMPLE_IDS_BINDING,
                                  BC_GL_CLASSES_BINDING, BC_GL_TILE_COUNTS_BINDING, BC_GL_TILE_ENDS_BINDING,
                                  BC_GL_TILE_LIST_BINDING, BC_GL_TILE_STATE_BINDING, BC_GL_SAMPLE_KEYS_BINDING,
+                                 BC_GL_STRATUM_BOXES_BINDING,
                                  BC_GL_MASK_SLOTS_BINDING,
                                  BC_GL_MASK_TRIANGLES_BINDING, BC_GL_MASK_TEXELS_BINDING}),
               "the compute pipeline's bindings");

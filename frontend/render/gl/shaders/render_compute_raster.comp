@@ -24,6 +24,8 @@ layout(std430, binding = BC_GL_INFOS_BINDING) readonly buffer Infos { TriangleIn
 layout(std430, binding = BC_GL_COUNTERS_BINDING) buffer Counters { uint tested; uint hit; };
 layout(std430, binding = BC_GL_SAMPLE_IDS_BINDING) buffer SampleIds { uint sample_ids[]; };
 layout(std430, binding = BC_GL_SAMPLE_KEYS_BINDING) buffer SampleKeys { float sample_keys[]; };
+// render_compute_strata.comp: per triangle the screen box of each shutter slice.
+layout(std430, binding = BC_GL_STRATUM_BOXES_BINDING) readonly buffer StratumBoxes { vec4 stratum_boxes[]; };
 TILE_BUFFERS
 
 uniform int sampler;        // BC_PATTERN_* (RenderSettings::sampler)
@@ -157,6 +159,14 @@ void main() {
             screen.hull_count = infos[i].hull_count;
             for (int h = 0; h < screen.hull_count; ++h) screen.hull_edge[h] = infos[i].hull[h].xyz;
             for (uint k = 0u; k < samples_here; ++k) {
+                // The sample's shutter slice: outside its screen box the
+                // triangle covers it at no lens position (culled, not tested).
+                int slice = min(int(times[k] * float(BC_GL_TIME_STRATA)), BC_GL_TIME_STRATA - 1);
+                vec4 box = stratum_boxes[i * BC_GL_TIME_STRATA + slice];
+                if (!(ndc_lens[k].x >= box.x && ndc_lens[k].y >= box.y && ndc_lens[k].x <= box.z &&
+                      ndc_lens[k].y <= box.w)) {
+                    continue;
+                }
                 float depth;
                 int verdict = bc_sample_test(triangles[i], screen, true, sb, ndc_lens[k].xy, ndc_lens[k].zw, times[k],
                                              near_plane, depth);
