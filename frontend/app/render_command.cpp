@@ -249,9 +249,10 @@ void refuse_unhonoured_options(const RenderCommand& command, Backend backend) {
         {"--footprint", command.footprint_option, backend_bit(Backend::cpu)},
         {"--time-strata", command.time_strata_option, backend_bit(Backend::cpu)},
         {"--lens-strata", command.lens_strata_option, backend_bit(Backend::cpu)},
-        {"--occlusion", command.occlusion_option, backend_bit(Backend::cpu)},
+        {"--occlusion", command.occlusion_option, backend_bit(Backend::cpu) | backend_bit(Backend::gl)},
         {"--precision", command.precision_option, backend_bit(Backend::cpu)},
         {"--gl-cell", command.gl_cell_option, backend_bit(Backend::gl)},
+        {"--gl-pipeline", command.gl_pipeline_option, backend_bit(Backend::gl)},
         {"--secondary", command.secondary_option, backend_bit(Backend::embree)},
         {"--layer-images", command.layer_images_option, backend_bit(Backend::gl)},
     };
@@ -261,6 +262,27 @@ void refuse_unhonoured_options(const RenderCommand& command, Backend backend) {
     if (own_samples && command.sampler_option != nullptr && command.sampler_option->count() > 0) {
         throw std::invalid_argument(std::string("--sampler: method ") + method.name +
                                     " draws its own samples (only stochastic and dof-secondary take it)");
+    }
+    // The compute pipeline: the stochastic method, no cells (docs/gl-backend.md, "The compute pipeline").
+    if (command.gl_pipeline == "compute" && backend == Backend::gl) {
+        if (method.method != RenderMethod::stochastic) {
+            throw std::invalid_argument(std::string("--gl-pipeline compute: only the stochastic method takes it (method ") +
+                                        method.name + ")");
+        }
+        if (command.gl_cell_option != nullptr && command.gl_cell_option->count() > 0) {
+            throw std::invalid_argument("--gl-cell: only --gl-pipeline fragment takes it (the compute pipeline bounds "
+                                        "samples per 8x8-pixel tile)");
+        }
+    }
+    // On gl, --occlusion is the compute pipeline's (given or chosen by auto below).
+    const auto given = [](const CLI::Option* option) { return option != nullptr && option->count() > 0; };
+    const bool compute_pipeline =
+        method.method == RenderMethod::stochastic &&
+        (command.gl_pipeline == "compute" ||
+         (command.backend == "auto" && !given(command.gl_pipeline_option) && !given(command.gl_cell_option)));
+    if (backend == Backend::gl && !compute_pipeline && command.occlusion_option != nullptr &&
+        command.occlusion_option->count() > 0) {
+        throw std::invalid_argument("--occlusion: on gl only --gl-pipeline compute takes it");
     }
     for (const BackendOption& option : options) {
         if (option.option == nullptr || option.option->count() == 0) continue;
@@ -338,6 +360,17 @@ RenderJob set_up(const RenderCommand& command) {
     job.cpu.occlusion = command.occlusion == "on";
     job.cpu.precision = parse_kernel_precision(command.precision);
     job.gl.cell_pixels = command.gl_cell;
+    job.gl.pipeline = parse_gl_pipeline(command.gl_pipeline);
+    job.gl.occlusion = command.occlusion == "on";
+    // --backend auto chose gl, so a hardware GPU: the stochastic method on
+    // the compute pipeline, which uses all of a compute GPU's
+    // multiprocessors (docs/gl-backend.md), unless --gl-pipeline or
+    // --gl-cell (the fragment pipeline's) says otherwise.
+    const auto given = [](const CLI::Option* option) { return option != nullptr && option->count() > 0; };
+    if (command.backend == "auto" && job.backend == Backend::gl && job.settings.method == RenderMethod::stochastic &&
+        !given(command.gl_pipeline_option) && !given(command.gl_cell_option)) {
+        job.gl.pipeline = GlPipeline::compute;
+    }
 #if BLURCULL_HAVE_EMBREE
     job.embree.secondary = parse_embree_secondary(command.secondary);
 #endif
@@ -484,6 +517,12 @@ void print_json_summary(const RenderCommand& command, const RenderJob& job, cons
     summary["backend"] = to_string(job.backend);
     summary["method"] = to_string(job.settings.method);
     summary["cull"] = culled(job) ? to_string(job.settings.cull) : "none";
+    if (job.backend == Backend::gl) {
+        if (job.settings.method == RenderMethod::stochastic) summary["gl_pipeline"] = to_string(job.gl.pipeline);
+#if BLURCULL_HAVE_GL
+        if (job.gl_renderer) summary["gl_renderer"] = job.gl_renderer->description();
+#endif
+    }
     if (job.backend == Backend::cpu && job.settings.method == RenderMethod::stochastic) {
         summary["precision"] = to_string(job.cpu.precision);
     }
@@ -636,8 +675,9 @@ void RenderCommand::add_options(CLI::App& app) {
             ->capture_default_str();
     occlusion_option =
         app.add_option("--occlusion", occlusion,
-                       "cpu, bbox and hull: skip a moving triangle's samples that nearer triangles already hold "
-                       "(on or off; the same image, fewer samples tested and counted in samples_hit)")
+                       "cpu, bbox and hull: skip a moving triangle's samples that nearer triangles already hold; "
+                       "gl --gl-pipeline compute, every cull: skip a tile's triangles behind all it holds (on or "
+                       "off; the same image, fewer samples tested and counted in samples_hit)")
             ->check(CLI::IsMember({"on", "off"}))
             ->capture_default_str();
     std::string precision_help = "cpu: the kernel's arithmetic";
@@ -652,6 +692,11 @@ void RenderCommand::add_options(CLI::App& app) {
                                     "computed for")
                          ->check(CLI::Range(1, 4096))
                          ->capture_default_str();
+    gl_pipeline_option = app.add_option("--gl-pipeline", gl_pipeline,
+                                        "gl, stochastic method: fragment (MSAA passes of four samples) or compute "
+                                        "(binned to screen tiles, a work group per tile); the same image")
+                             ->check(CLI::IsMember({"fragment", "compute"}))
+                             ->capture_default_str();
     secondary_option = app.add_option("--secondary", secondary,
                                       "embree: what a ray that hits a mirror or glass sees; bounce: one exact bounce "
                                       "of reflection and refraction; none: the primary-only image (the environment "

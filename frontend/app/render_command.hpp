@@ -38,6 +38,7 @@ struct RenderCommand : SceneFlags, SecondaryFlags {
     std::string occlusion = CpuOptions{}.occlusion ? "on" : "off";  // cpu: CpuOptions::occlusion
     std::string precision = to_string(CpuOptions{}.precision);
     int gl_cell = GlOptions{}.cell_pixels;
+    std::string gl_pipeline = to_string(GlOptions{}.pipeline);  // gl: fragment or compute (GlPipeline)
     std::string secondary = "bounce";  // embree: bounce or none (EmbreeSecondary)
     bool quiet = false;
     std::string layer_images = "gl";  // dof-secondary on gl: where the layers are built, gl or host
@@ -52,6 +53,7 @@ struct RenderCommand : SceneFlags, SecondaryFlags {
     CLI::Option* occlusion_option = nullptr;
     CLI::Option* precision_option = nullptr;
     CLI::Option* gl_cell_option = nullptr;
+    CLI::Option* gl_pipeline_option = nullptr;
     CLI::Option* secondary_option = nullptr;
     CLI::Option* layer_images_option = nullptr;  // --layer-images, gl only
     // The sequence's and the EXR's options, refused without --frames or an .exr output.

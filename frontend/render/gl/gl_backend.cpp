@@ -8,7 +8,9 @@
 #include "render/common/shading.hpp"
 #include "render/common/surface_shading.hpp"
 #include "render/gl/gl_alpha_mask.hpp"
+#include "render/gl/gl_compute_pipeline.hpp"
 #include "render/gl/gl_context.hpp"
+#include "render/gl/gl_frame_common.hpp"
 #include "render/gl/gl_render_targets.hpp"
 #include "render/gl/gl_sampling_methods.hpp"
 #include "render/gl/gpu_layout_shared.h"
@@ -76,6 +78,8 @@ struct GlRenderer::State {
     // interleave / interval / accum (gl_sampling_methods.cpp), compiled on first use;
     // declared after the context, so destroyed before it.
     std::shared_ptr<GlMethodPrograms> methods;
+    // The compute pipeline (gl_compute_pipeline.cpp), compiled on first use.
+    std::shared_ptr<GlComputePrograms> compute;
 
     explicit State(gl::HeadlessContext&& made)
         : context(made_current(std::move(made))),
@@ -101,38 +105,6 @@ struct GlRenderer::State {
 
 namespace {
 
-void set_int(const gl::Functions& gl, const gl::Program& program, const char* name, int value) {
-    gl.Uniform1i(gl.GetUniformLocation(program.id(), name), value);
-}
-void set_uint(const gl::Functions& gl, const gl::Program& program, const char* name, std::uint32_t value) {
-    gl.Uniform1ui(gl.GetUniformLocation(program.id(), name), value);
-}
-void set_float(const gl::Functions& gl, const gl::Program& program, const char* name, float value) {
-    gl.Uniform1f(gl.GetUniformLocation(program.id(), name), value);
-}
-
-// The uniforms of render_common.glsl.
-void set_common(const gl::Functions& gl, const gl::Program& program, const CameraModel& model,
-                const RenderSettings& settings, std::uint32_t pass_base) {
-    gl.UseProgram(program.id());
-    gl.Uniform2f(gl.GetUniformLocation(program.id(), "image_size"), static_cast<float>(settings.width),
-                 static_cast<float>(settings.height));
-    set_float(gl, program, "near_plane", model.znear);
-    set_uint(gl, program, "spp", static_cast<std::uint32_t>(settings.spp));
-    set_uint(gl, program, "seed", settings.seed);
-    set_int(gl, program, "sampler", settings.sampler);  // render_samples.comp only; -1 elsewhere, ignored
-    set_uint(gl, program, "pass_base", pass_base);
-}
-
-// A shader storage buffer of `bytes` bytes, or holding `data`.
-gl::Buffer storage_buffer(const gl::Functions& gl, std::size_t bytes) {
-    return gl::Buffer(gl, GL_SHADER_STORAGE_BUFFER, bytes);
-}
-template <class T>
-gl::Buffer storage_buffer(const gl::Functions& gl, const std::vector<T>& data) {
-    return gl::Buffer(gl, GL_SHADER_STORAGE_BUFFER, data.size() * sizeof(T), data.data());
-}
-
 // What GlRenderer::render checks before any GL work.
 void check_stochastic_request(const Scene& scene, const RenderSettings& settings, const GlOptions& options) {
     validate_settings(settings);
@@ -150,55 +122,6 @@ void check_triangle_limit(std::size_t count) {
         throw GlError("gl: " + std::to_string(count) + " triangles exceed the backend's limit of " +
                       std::to_string(triangle_limit));
     }
-}
-
-// The frame's triangles as the shaders see them, and each path's draw list.
-struct FrameTriangles {
-    // make_moving_triangle<float> of each, as the kernel's GLSL sees them; at
-    // least one entry (GL refuses empty buffers).
-    std::vector<GpuMovingTriangle> gpu;
-    std::vector<std::int32_t> classes;  // classify() of each (BC_INVALID in the padding)
-    // The triangles each path draws, in index order: static_count and
-    // moving_count entries, padded to one when empty (GL refuses empty
-    // buffers; drawn with count 0).
-    std::vector<std::uint32_t> static_list, moving_list;
-    std::size_t static_count = 0, moving_count = 0;
-};
-
-// classify() here, on the float triangle the GLSL sees (kernel<float> and its
-// GLSL twin are bit-identical), so each path draws a list of only its own
-// triangles, in index order: no vertex, cell or bounds work for the other
-// path's triangles.
-FrameTriangles frame_triangles(const Scene& scene, const CameraModel& model, bool force_full_path) {
-    const std::size_t count = scene.triangles.size();
-    FrameTriangles out;
-    out.gpu.resize(std::max<std::size_t>(count, 1));
-    out.classes.assign(std::max<std::size_t>(count, 1), BC_INVALID);
-    for (std::size_t i = 0; i < count; ++i) {
-        const kernelf::MovingTriangle tri = make_moving_triangle<float>(scene, model, i);
-        out.classes[i] = kernelf::classify(tri);
-        if (out.classes[i] == 0 && !force_full_path) {
-            out.static_list.push_back(static_cast<std::uint32_t>(i));
-        } else if (out.classes[i] != BC_INVALID) {
-            out.moving_list.push_back(static_cast<std::uint32_t>(i));
-        }
-        out.gpu[i] = gpu::to_gpu(tri);
-    }
-    out.static_count = out.static_list.size();
-    out.moving_count = out.moving_list.size();
-    if (out.static_list.empty()) out.static_list.push_back(0);
-    if (out.moving_list.empty()) out.moving_list.push_back(0);
-    return out;
-}
-
-// Each triangle's shaded colour, then the background's (index = triangle count).
-std::vector<glm::vec4> frame_colours(const Scene& scene) {
-    const std::vector<glm::vec3> shaded = shade_all(scene);
-    std::vector<glm::vec4> colours;
-    colours.reserve(shaded.size() + 1);
-    for (const glm::vec3& colour : shaded) colours.emplace_back(colour, 1.0f);
-    colours.emplace_back(scene.background, 1.0f);
-    return colours;
 }
 
 // GlOptions::time_steps: milliseconds per step of the passes, summed over the
@@ -490,6 +413,7 @@ void StochasticFrame::resolve_pass(std::uint32_t pass_base, RenderStats& stats) 
     set_uint(gl_, state_.resolve, "background", static_cast<std::uint32_t>(count_));
     set_int(gl_, state_.resolve, "keep_ids", keep_ids_ ? 1 : 0);
     set_int(gl_, state_.resolve, "pass_ids", 0);
+    set_int(gl_, state_.resolve, "ids_in_buffer", 0);
     gl_.DispatchCompute(static_cast<GLuint>((settings_.width + 7) / 8), static_cast<GLuint>((settings_.height + 7) / 8),
                         1);
     gl_.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -498,15 +422,7 @@ void StochasticFrame::resolve_pass(std::uint32_t pass_base, RenderStats& stats) 
 }
 
 Image StochasticFrame::read_back(std::vector<std::uint32_t>* sample_ids) const {
-    std::vector<glm::vec4> sums(pixels_);
-    sum_buffer_.read(sums.data(), pixels_ * sizeof(glm::vec4));
-    Image image(settings_.width, settings_.height);
-    image.coverage.resize(pixels_);
-    for (std::size_t i = 0; i < pixels_; ++i) {
-        image.pixels[i] = resolve_box(glm::vec3(sums[i]), settings_.spp);
-        // .w counts the samples that hit (render_resolve.comp): exact in float up to 2^24.
-        image.coverage[i] = resolve_coverage(static_cast<std::uint32_t>(sums[i].w), settings_.spp);
-    }
+    Image image = image_from_sums(sum_buffer_, settings_);
     if (keep_ids_) {
         sample_ids->assign(pixels_ * spp_, no_triangle);
         id_buffer_.read(sample_ids->data(), sample_ids->size() * sizeof(std::uint32_t));
@@ -542,6 +458,10 @@ std::string GlRenderer::description() const {
 
 RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settings, const GlOptions& options,
                                 std::vector<std::uint32_t>* sample_ids) {
+    if (options.pipeline == GlPipeline::compute) {
+        state_->context.make_current();
+        return render_gl_compute(state_->context, state_->compute, scene, settings, options, sample_ids);
+    }
     if (settings.method != RenderMethod::stochastic) {
         state_->context.make_current();
         return render_gl_method(state_->context, state_->methods, scene, settings,

@@ -7,8 +7,10 @@
 #include "render/common/render_types.hpp"
 #include "scene/scene.hpp"
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -18,7 +20,39 @@ class HeadlessContext;
 
 namespace blurcull::frontend {
 
+// How --backend gl rasterizes the stochastic method: the fragment pipeline
+// (MSAA passes of four samples, gl_SampleMask; docs/gl-backend.md, "Design")
+// or the compute pipeline (setup, binning to screen tiles, a work group per
+// tile; gl_compute_pipeline.hpp and docs/gl-backend.md, "The compute pipeline").
+// Same samples, same decisions, same image.
+enum class GlPipeline { fragment, compute };
+inline const char* to_string(GlPipeline pipeline) {
+    return pipeline == GlPipeline::compute ? "compute" : "fragment";
+}
+// "fragment" or "compute"; throws std::invalid_argument naming the valid ones.
+inline GlPipeline parse_gl_pipeline(const std::string& name) {
+    if (name == "fragment") return GlPipeline::fragment;
+    if (name == "compute") return GlPipeline::compute;
+    throw std::invalid_argument("unknown gl pipeline '" + name + "' (valid: fragment, compute)");
+}
+
 struct GlOptions {
+    GlPipeline pipeline = GlPipeline::fragment;
+    // Compute pipeline: entries the tile lists start with (0: what the
+    // renderer last needed, at least 4 per triangle). A frame whose lists need
+    // more is detected on the GPU and binned again with room for all (counter
+    // tile_list_retries); a tiny value forces that path (the tests do).
+    std::size_t tile_list_capacity = 0;
+    // Compute pipeline: hierarchical occlusion per tile (an entry whose
+    // kernel depth floor is behind every sample its tile holds is skipped).
+    // The same image; fewer samples tested, and fewer counted in
+    // samples_hit, as the cpu backend's CpuOptions::occlusion.
+    bool occlusion = true;
+    // Compute pipeline: a moving or defocused triangle's samples tested only
+    // inside the screen box of their shutter slice (BC_GL_TIME_STRATA of
+    // them, the kernel's stratum_screen_box). The same image, fewer samples
+    // tested.
+    bool time_strata = true;
     // Every triangle through the moving path (per-sample kernel test), even
     // static in-focus ones: to measure what the static path saves.
     bool force_full_path = false;
@@ -57,7 +91,8 @@ public:
     GlRenderer& operator=(GlRenderer&&) noexcept;
     ~GlRenderer();
 
-    // settings.method stochastic renders as described above; interleave,
+    // settings.method stochastic renders as described above (options.pipeline
+    // compute: the compute pipeline, which refuses other methods); interleave,
     // interval and accum as the CPU renderers of render/cpu/methods.hpp
     // (gl_sampling_methods.hpp; their sample_ids are in that layout, spp per pixel).
     // Throws std::invalid_argument for bad settings, SceneError for a bad

@@ -76,7 +76,12 @@
     X(PFNGLUNIFORM2FPROC, Uniform2f)                               \
     X(PFNGLCOLORMASKPROC, ColorMask)                               \
     X(PFNGLDEPTHMASKPROC, DepthMask)                               \
-    X(PFNGLCLEARBUFFERDATAPROC, ClearBufferData)
+    X(PFNGLCLEARBUFFERDATAPROC, ClearBufferData)                   \
+    X(PFNGLGENQUERIESPROC, GenQueries)                             \
+    X(PFNGLDELETEQUERIESPROC, DeleteQueries)                       \
+    X(PFNGLBEGINQUERYPROC, BeginQuery)                             \
+    X(PFNGLENDQUERYPROC, EndQuery)                                 \
+    X(PFNGLGETQUERYOBJECTUI64VPROC, GetQueryObjectui64v)
 
 namespace blurcull::gl {
 

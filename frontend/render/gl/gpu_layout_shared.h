@@ -18,11 +18,13 @@
 #include <glm/glm.hpp>
 
 #include <cstddef>
+#include <cstdint>
 #include <initializer_list>
 
 namespace blurcull::frontend::gpu {
 using vec4 = glm::vec4;
 using ivec4 = glm::ivec4;
+using uint = std::uint32_t;
 #endif
 
 // A moving triangle's pixel rectangle is split into at most 4 x 4 cells, each
@@ -63,6 +65,20 @@ using ivec4 = glm::ivec4;
 #define BC_GL_MASK_SLOTS_BINDING 16    // MaskSlots (render_mask.glsl, gl_alpha_mask.cpp)
 #define BC_GL_MASK_TRIANGLES_BINDING 17  // MaskTriangles
 #define BC_GL_MASK_TEXELS_BINDING 18   // MaskTexels
+// The compute pipeline (gl_compute_pipeline.cpp; shaders/render_compute_*,
+// render_setup.comp, render_resolve.comp): the triangles, infos, counters,
+// colours, sums, sample ids, classes and mask as above (it never runs with
+// the fragment passes' cells, pass samples or draw lists), and
+#define BC_GL_TILE_COUNTS_BINDING 6    // TileCounts: triangles listed per tile
+#define BC_GL_TILE_ENDS_BINDING 7      // TileEnds: each tile's list start, its end after the fill
+#define BC_GL_TILE_LIST_BINDING 8      // TileList: the tiles' triangle lists, one after another
+#define BC_GL_TILE_STATE_BINDING 10    // TileState: TileBinState
+#define BC_GL_SAMPLE_KEYS_BINDING 11   // SampleKeys: per sample the depth key of its winner so far
+#define BC_GL_STRATUM_BOXES_BINDING 12 // StratumBoxes: per triangle BC_GL_TIME_STRATA screen boxes
+// The compute pipeline's shutter slices: a moving triangle's samples of
+// slice s (time in [s, s + 1] / BC_GL_TIME_STRATA) are tested only inside
+// the kernel's stratum_screen_box of that slice.
+#define BC_GL_TIME_STRATA 4
 // render_resolve.comp's sampler of the pass's triangle ids: a texture unit.
 #define BC_GL_PASS_IDS_UNIT 0
 // The interleave / interval / accum passes (gl_sampling_methods.cpp;
@@ -114,6 +130,27 @@ struct CellBounds {
     vec4 time_lines_u_b;  // SampleBounds.u_time_b
     vec4 time_lines_v_a;  // SampleBounds.v_time_a
     vec4 time_lines_v_b;  // SampleBounds.v_time_b
+};
+
+// The compute pipeline's screen tiles: BC_GL_TILE_SIZE x BC_GL_TILE_SIZE
+// pixels, one work group of the raster pass each (one invocation per pixel).
+#define BC_GL_TILE_SIZE 8
+
+// The compute pipeline's binning state. render_compute_scan.comp writes the
+// entries all tile lists need (a 64-bit count in two words), the longest
+// list, and overflow = 1 when the entries exceed the capacity the host
+// allocated; the host reads it before the fill and, on overflow, grows the
+// list buffer first. The fill sets overflow = 2 if it ever finds no room
+// (the host then fails the frame): no triangle is dropped silently.
+struct TileBinState {
+    uint entries;       // low word of the entries needed
+    uint entries_high;  // high word (0 unless more than 2^32 - 1)
+    uint capacity;      // entries the TileList buffer holds
+    uint overflow;      // 1: entries > capacity (found by the scan), 2: the fill found no room
+    uint max_count;     // the longest tile list
+    uint occluded;      // (tile, entry, chunk of samples) the raster's occlusion test skipped
+    uint padding1;
+    uint padding2;
 };
 
 // One (pass, triangle) box of the interleave, interval and accum methods
@@ -211,6 +248,17 @@ static_assert(distinct_bindings({BC_GL_TRIANGLES_BINDING, BC_GL_INFOS_BINDING, B
                                  BC_GL_GROUP_DEPTHS_BINDING, BC_GL_MASK_SLOTS_BINDING,
                                  BC_GL_MASK_TRIANGLES_BINDING, BC_GL_MASK_TEXELS_BINDING}),
               "the stochastic passes' bindings");
+static_assert(distinct_bindings({BC_GL_TRIANGLES_BINDING, BC_GL_INFOS_BINDING, BC_GL_COUNTERS_BINDING,
+                                 BC_GL_COLOURS_BINDING, BC_GL_SUMS_BINDING, BC_GL_SAMPLE_IDS_BINDING,
+                                 BC_GL_CLASSES_BINDING, BC_GL_TILE_COUNTS_BINDING, BC_GL_TILE_ENDS_BINDING,
+                                 BC_GL_TILE_LIST_BINDING, BC_GL_TILE_STATE_BINDING, BC_GL_SAMPLE_KEYS_BINDING,
+                                 BC_GL_STRATUM_BOXES_BINDING,
+                                 BC_GL_MASK_SLOTS_BINDING,
+                                 BC_GL_MASK_TRIANGLES_BINDING, BC_GL_MASK_TEXELS_BINDING}),
+              "the compute pipeline's bindings");
+static_assert(sizeof(TileBinState) == 32 && offsetof(TileBinState, overflow) == 12 &&
+                  offsetof(TileBinState, max_count) == 16,
+              "std430 TileBinState");
 static_assert(distinct_bindings({BC_GL_TRIANGLES_BINDING, BC_GL_COUNTERS_BINDING, BC_GL_PASS_SAMPLES_BINDING,
                                  BC_GL_PASS_TIMES_BINDING, BC_GL_METHOD_BOXES_BINDING,
                                  BC_GL_METHOD_TUPLE_CELLS_BINDING, BC_GL_MASK_SLOTS_BINDING,

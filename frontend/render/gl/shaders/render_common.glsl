@@ -17,6 +17,41 @@ vec2 sample_ndc(uint px, uint py, vec2 offset) {
     return bc_pixel_sample_ndc(ivec2(px, py), offset, image_size);
 }
 
+// Pixel `pixel`'s sample j of the pattern (setup: bc_sampler_setup of the
+// pixel, in the settings' sampler): NDC and lens in ndc_lens, its time. The
+// fragment pipeline's render_samples.comp and the compute pipeline's
+// render_compute_raster.comp draw the same samples through it.
+void pattern_sample(SamplerSetup setup, uvec2 pixel, uint j, out vec4 ndc_lens, out float time) {
+    PixelSample s = bc_sampler_sample(setup, j);
+    ndc_lens = vec4(sample_ndc(pixel.x, pixel.y, s.offset), s.lens);
+    time = s.time;
+}
+
+// The sample bounds a cell (CellBounds, render_bounds.comp) or a compute
+// tile carries: lens ranges and time lines; no edge planes (those cull whole
+// cells and tiles only, when bc_sample_bounds finds them empty).
+SampleBounds carried_sample_bounds(vec4 lens, vec4 u_time_a, vec4 u_time_b, vec4 v_time_a, vec4 v_time_b) {
+    SampleBounds sb;
+    sb.empty = false;
+    sb.u_range = lens.xy;
+    sb.v_range = lens.zw;
+    sb.u_time_a = u_time_a;
+    sb.u_time_b = u_time_b;
+    sb.v_time_a = v_time_a;
+    sb.v_time_b = v_time_b;
+    sb.edges = bc_no_edge_bounds();
+    sb.centre = vec2(0.0);
+    return sb;
+}
+
+// The compute pipeline's tile lists (render_compute_bin.comp fills them,
+// render_compute_scan.comp sizes them, render_compute_raster.comp reads them).
+#define TILE_BUFFERS \
+    layout(std430, binding = BC_GL_TILE_COUNTS_BINDING) buffer TileCounts { uint tile_counts[]; }; \
+    layout(std430, binding = BC_GL_TILE_ENDS_BINDING) buffer TileEnds { uint tile_ends[]; }; \
+    layout(std430, binding = BC_GL_TILE_LIST_BINDING) buffer TileList { uint tile_list[]; }; \
+    layout(std430, binding = BC_GL_TILE_STATE_BINDING) buffer TileState { TileBinState bin_state; };
+
 // The cell (row 0 at the top) of a fragment at window position frag_coord
 // (gl_FragCoord.xy) in a framebuffer of `size` cells: GL's window rows grow upwards.
 uvec2 fragment_cell(vec2 frag_coord, vec2 size) {

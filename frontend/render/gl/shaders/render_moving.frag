@@ -24,16 +24,8 @@ void main() {
     s.offset = vec2(0.0);
     s.lens = ndc_lens.zw;
     s.time = pass_time[slot];
-    SampleBounds sb;
-    sb.empty = false;
-    sb.u_range = g_lens.xy;
-    sb.v_range = g_lens.zw;
-    sb.u_time_a = g_time_lines_u_a;
-    sb.u_time_b = g_time_lines_u_b;
-    sb.v_time_a = g_time_lines_v_a;
-    sb.v_time_b = g_time_lines_v_b;
-    sb.edges = bc_no_edge_bounds();  // the per-cell bounds do not carry the edge planes
-    sb.centre = vec2(0.0);
+    SampleBounds sb =
+        carried_sample_bounds(g_lens, g_time_lines_u_a, g_time_lines_u_b, g_time_lines_v_a, g_time_lines_v_b);
     vec2 ndc = ndc_lens.xy;
     ScreenBound b;
     b.empty = false;

@@ -18,8 +18,10 @@ void main() {
     for (uint k = 0u; k < stride; ++k) {
         uint j = pass_base + k;
         if (j >= spp) break;
-        PixelSample s = bc_sampler_sample(setup, j);
-        pass_ndc_lens[slot + k] = vec4(sample_ndc(pixel.x, pixel.y, s.offset), s.lens);
-        pass_time[slot + k] = s.time;
+        vec4 ndc_lens;
+        float time;
+        pattern_sample(setup, pixel, j, ndc_lens, time);
+        pass_ndc_lens[slot + k] = ndc_lens;
+        pass_time[slot + k] = time;
     }
 }

@@ -1,0 +1,125 @@
+#!/usr/bin/env bash
+# Issue 23's bench: every built-in scene through the gl backend's compute and
+# fragment pipelines, the cpu backend and embree, in one run, on whatever GL
+# the machine has, with the compute pipeline's phases (GL timer queries:
+# gpu_setup, gpu_binning, gpu_raster, gpu_resolve; and the host's clock over
+# each, wall_*). docs/gl-backend.md, "The compute pipeline".
+#
+# Build and pack here, then run from the bundle on the device:
+#   cmake --build build
+#   bash ../shared/gpu/bundle.sh build blurcull
+#   bash .gpu/env.sh bash bench/gpu/run.sh            (carry [".gpu"])
+# It also runs here (llvmpipe, build/frontend/blurcull): there it is a smoke
+# run, labelled software, at 128x96, 4 spp, one run each unless BENCH_SIZE,
+# BENCH_SPP, BENCH_RUNS say otherwise. On a hardware GPU: 1024x768, 16 spp,
+# 3 runs each (medians). BENCH_SCENES (default: hand car dragonfly forest)
+# and BENCH_BACKENDS (default: compute compute-noocc fragment cpu embree)
+# pick a subset; compute-noocc is the compute pipeline with --occlusion off,
+# whose samples_hit counts every covered sample as the fragment pipeline's.
+# Writes bench.csv (one line per render) and summary.txt (medians) under
+# $OUT (or ./gpu-bench when unset); exits non-zero if a render failed or, on
+# llvmpipe, compute-noocc and fragment disagree on a scene's samples_hit.
+set -u
+blurcull=$(command -v blurcull || true)
+[ -n "$blurcull" ] || blurcull=build/frontend/blurcull
+[ -x "$blurcull" ] || { echo "run.sh: no blurcull on PATH or in build/frontend" >&2; exit 2; }
+dest=${OUT:-$PWD/gpu-bench}
+mkdir -p "$dest"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+summary=$dest/summary.txt
+csv=$dest/bench.csv
+: >"$summary"
+say() { echo "$*" | tee -a "$summary"; }
+
+# What GL is this? A 1x1 compute render names it (render --json's gl_renderer).
+probe=$("$blurcull" render --backend gl --gl-pipeline compute --scene hand --size 8x8 --spp 4 --json -q \
+        -o "$work/probe.png" 2>"$work/probe.err")
+renderer=$(printf '%s' "$probe" | python3 -c 'import json, sys; print(json.load(sys.stdin).get("gl_renderer", "?"))' \
+           2>/dev/null || echo "none ($(head -c 200 "$work/probe.err"))")
+case "$renderer" in
+  *llvmpipe*|*softpipe*|*swrast*) kind=software; def_size=128x96; def_spp=4; def_runs=1 ;;
+  *) kind=hardware; def_size=1024x768; def_spp=16; def_runs=3 ;;
+esac
+size=${BENCH_SIZE:-$def_size}
+spp=${BENCH_SPP:-$def_spp}
+runs=${BENCH_RUNS:-$def_runs}
+scenes=${BENCH_SCENES:-"hand car dragonfly forest"}
+backends=${BENCH_BACKENDS:-"compute compute-noocc fragment cpu embree"}
+say "date: $(date -u +%FT%TZ)"
+command -v nvidia-smi >/dev/null && say "gpu: $(nvidia-smi --query-gpu=name,driver_version --format=csv,noheader 2>&1)"
+say "gl: $renderer ($kind)"
+say "cpus: $(nproc); size $size, spp $spp, runs $runs, cull bbox, seed 1, sampler sobol"
+[ "$kind" = software ] && say "SOFTWARE GL (llvmpipe on the CPU): a smoke run, not GPU figures"
+
+echo "scene,backend,run,frame_ms,compile_ms,samples_hit,samples_tested,gpu_setup,gpu_binning,gpu_raster,gpu_resolve,wall_setup,wall_binning,wall_raster,wall_resolve,tile_list_entries,tile_list_longest" >"$csv"
+failed=0
+for scene in $scenes; do
+  for backend in $backends; do
+    case "$backend" in
+      compute) args="--backend gl --gl-pipeline compute" ;;
+      compute-noocc) args="--backend gl --gl-pipeline compute --occlusion off" ;;
+      fragment) args="--backend gl --gl-pipeline fragment" ;;
+      *) args="--backend $backend" ;;
+    esac
+    for run in $(seq 1 "$runs"); do
+      # shellcheck disable=SC2086
+      if ! "$blurcull" render $args --scene "$scene" --size "$size" --spp "$spp" --json -q \
+           -o "$work/$scene-$backend.png" >"$work/out.json" 2>"$work/err.txt"; then
+        say "$scene $backend: FAILED: $(head -c 300 "$work/err.txt")"
+        failed=$((failed + 1))
+        break
+      fi
+      python3 - "$scene" "$backend" "$run" "$work/out.json" >>"$csv" <<'PY'
+import json, sys
+scene, backend, run, path = sys.argv[1:5]
+d = json.load(open(path))
+p = d.get("ms_per_phase", {})
+c = d.get("counters", {})
+compile_ms = p.get("compile", 0.0)
+row = [scene, backend, run, "%.1f" % (d["ms_total"] - compile_ms), "%.1f" % compile_ms,
+       str(d["samples_hit"]), str(d["samples_tested"])]
+row += ["%.2f" % p[k] if k in p else "" for k in
+        ("gpu_setup", "gpu_binning", "gpu_raster", "gpu_resolve", "wall_setup", "wall_binning", "wall_raster",
+         "wall_resolve")]
+row += ["%d" % c[k] if k in c else "" for k in ("tile_list_entries", "tile_list_longest")]
+print(",".join(row))
+PY
+    done
+  done
+done
+
+# Medians per scene and backend; the compute and fragment pipelines must
+# count the same hits (the same samples decided the same way).
+python3 - "$csv" "$kind" >"$work/table.txt" <<'PY' || failed=$((failed + 1))
+import csv, statistics, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+kind = sys.argv[2]
+def med(values):
+    values = [float(v) for v in values if v != ""]
+    return statistics.median(values) if values else float("nan")
+print("\nframe ms (render minus shader compile), median; compute phases in ms (gpu: timer queries, wall: host clock)"
+      + (" -- SOFTWARE GL" if kind == "software" else ""))
+print("%-10s %-14s %10s %10s  %s" % ("scene", "backend", "frame_ms", "hits", "compute phases gpu setup/binning/raster/resolve | wall"))
+bad = 0
+for scene in dict.fromkeys(r["scene"] for r in rows):
+    hits = {}
+    for backend in dict.fromkeys(r["backend"] for r in rows if r["scene"] == scene):
+        rs = [r for r in rows if r["scene"] == scene and r["backend"] == backend]
+        hits[backend] = rs[0]["samples_hit"]
+        phases = ""
+        if backend.startswith("compute"):
+            phases = "/".join("%.1f" % med(r[k] for r in rs) for k in ("gpu_setup", "gpu_binning", "gpu_raster", "gpu_resolve"))
+            phases += " | " + "/".join("%.1f" % med(r[k] for r in rs) for k in ("wall_setup", "wall_binning", "wall_raster", "wall_resolve"))
+        print("%-10s %-14s %10.1f %10s  %s" % (scene, backend, med(r["frame_ms"] for r in rs), hits[backend], phases))
+    if "compute-noocc" in hits and "fragment" in hits and hits["compute-noocc"] != hits["fragment"]:
+        # llvmpipe is IEEE-exact, so there they must agree; a GPU may
+        # compile the same GLSL differently in two shaders (../shared/gpu/README.md).
+        print("  %s: compute (occlusion off) and fragment hits differ (%s, %s)%s" % (scene, hits["compute-noocc"], hits["fragment"],
+              "" if kind == "software" else ": reported, not a failure off llvmpipe"))
+        bad += kind == "software"
+sys.exit(1 if bad else 0)
+PY
+tee -a "$summary" <"$work/table.txt"
+say "failed: $failed"
+[ "$failed" -eq 0 ]

@@ -1,0 +1,401 @@
+#include "render/gl/gl_compute_pipeline.hpp"
+
+#include "render/common/camera_model.hpp"
+#include "render/common/cull_method.hpp"
+#include "render/common/progress.hpp"
+#include "render/common/render_method.hpp"
+#include "render/common/surface_shading.hpp"
+#include "render/gl/gl_alpha_mask.hpp"
+#include "render/gl/gl_backend.hpp"
+#include "render/gl/gl_frame_common.hpp"
+#include "render/gl/gl_render_targets.hpp"
+#include "render/gl/gpu_layout_shared.h"
+#include "render/gl/shader_stages.hpp"
+#include "scene/scene_checks.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace blurcull::frontend {
+
+using gl::shader_stage;
+
+struct GlComputePrograms {
+    gl::Program setup;
+    gl::Program strata;
+    gl::Program bin;
+    gl::Program scan;
+    gl::Program raster;
+    gl::Program resolve;
+    // The entries the last frame's tile lists needed (0 before the first):
+    // the next frame's starting capacity, a quarter more.
+    std::size_t needed_entries = 0;
+
+    explicit GlComputePrograms(const gl::Functions& gl)
+        : setup(gl, {shader_stage(GL_COMPUTE_SHADER, "render_setup.comp")}),
+          strata(gl, {shader_stage(GL_COMPUTE_SHADER, "render_compute_strata.comp")}),
+          bin(gl, {shader_stage(GL_COMPUTE_SHADER, "render_compute_bin.comp")}),
+          scan(gl, {shader_stage(GL_COMPUTE_SHADER, "render_compute_scan.comp")}),
+          raster(gl, {shader_stage(GL_COMPUTE_SHADER, "render_compute_raster.comp", gl::Prelude::render_masked)}),
+          resolve(gl, {shader_stage(GL_COMPUTE_SHADER, "render_resolve.comp")}) {}
+};
+
+namespace {
+
+using gpu::TileBinState;
+using gpu::TriangleInfo;
+constexpr int tile_size = BC_GL_TILE_SIZE;
+// render_compute_raster.comp's CHUNK: samples per pixel a raster dispatch tests.
+constexpr std::uint32_t raster_chunk = 8;
+// List entries a raster dispatch takes per tile on a software renderer:
+// llvmpipe ends a shader invocation's loops after 65535 iterations in all
+// (gallivm's loop limiter), silently: 64 entries (one batch) of 8 samples
+// stay below it (at most ~300 iterations an entry: a 24-edge hull, 8 samples).
+constexpr std::uint32_t software_slice_entries = 64;
+
+bool software_renderer(const std::string& renderer) {
+    for (const char* name : {"llvmpipe", "softpipe", "swrast"}) {
+        if (renderer.find(name) != std::string::npos) return true;
+    }
+    return false;
+}
+
+// GL_TIME_ELAPSED queries, one per phase, summed over the times a phase ran.
+class PhaseTimers {
+public:
+    enum Phase { setup, binning, raster, resolve, phase_count };
+    explicit PhaseTimers(const gl::Functions& gl) : gl_(&gl) { gl.GenQueries(phase_count, ids_.data()); }
+    PhaseTimers(const PhaseTimers&) = delete;
+    PhaseTimers& operator=(const PhaseTimers&) = delete;
+    ~PhaseTimers() { gl_->DeleteQueries(phase_count, ids_.data()); }
+
+    void begin(Phase phase) {
+        started_ = RenderClock::now();
+        gl_->BeginQuery(GL_TIME_ELAPSED, ids_[phase]);
+    }
+    // Ends the phase's query and adds its time, waiting for the result (so
+    // the phases do not overlap); also the host's clock from begin to then.
+    void end(Phase phase) {
+        gl_->EndQuery(GL_TIME_ELAPSED);
+        GLuint64 ns = 0;
+        gl_->GetQueryObjectui64v(ids_[phase], GL_QUERY_RESULT, &ns);
+        gpu_ms_[phase] += static_cast<double>(ns) * 1e-6;
+        wall_ms_[phase] += ms_since(started_);
+    }
+    // gpu_*: GL_TIME_ELAPSED (the GPU's own clock; llvmpipe's timer queries
+    // do not time compute dispatches and read ~0); wall_*: the host's clock
+    // over the phase's calls and its wait.
+    void add_to(RenderStats& stats) const {
+        static constexpr const char* names[phase_count] = {"setup", "binning", "raster", "resolve"};
+        for (std::size_t k = 0; k < phase_count; ++k) stats.ms_per_phase.emplace_back(std::string("gpu_") + names[k], gpu_ms_[k]);
+        for (std::size_t k = 0; k < phase_count; ++k) stats.ms_per_phase.emplace_back(std::string("wall_") + names[k], wall_ms_[k]);
+    }
+
+private:
+    const gl::Functions* gl_;
+    std::array<GLuint, phase_count> ids_{};
+    std::array<double, phase_count> gpu_ms_{};
+    std::array<double, phase_count> wall_ms_{};
+    RenderClock::time_point started_ = RenderClock::now();
+};
+
+void check_compute_request(const Scene& scene, const RenderSettings& settings) {
+    validate_settings(settings);
+    require_valid_scene(scene);
+    if (settings.method != RenderMethod::stochastic) {
+        throw std::invalid_argument(std::string("gl: the compute pipeline renders the stochastic method only (method ") +
+                                    to_string(settings.method) + ")");
+    }
+    // One invocation per triangle, 64 per work group, at most 65535 groups.
+    constexpr std::size_t triangle_limit = std::size_t{65535} * 64;
+    if (scene.triangles.size() > triangle_limit) {
+        throw gl::GlError("gl: " + std::to_string(scene.triangles.size()) +
+                          " triangles exceed the compute pipeline's limit of " + std::to_string(triangle_limit));
+    }
+}
+
+// A storage buffer of `bytes`, refused in one line when it exceeds the GL's
+// largest shader storage block.
+gl::Buffer bounded_buffer(const gl::Functions& gl, std::size_t bytes, const char* what) {
+    const auto limit = static_cast<std::size_t>(static_cast<unsigned>(get_integer(gl, GL_MAX_SHADER_STORAGE_BLOCK_SIZE)));
+    if (bytes > limit) {
+        throw gl::GlError("gl: the compute pipeline's " + std::string(what) + " need " + std::to_string(bytes >> 20) +
+                          " MiB, more than the GL's largest storage block (" + std::to_string(limit >> 20) + " MiB)");
+    }
+    return storage_buffer(gl, std::max<std::size_t>(bytes, 4));
+}
+
+class ComputeFrame {
+public:
+    ComputeFrame(const gl::Functions& gl, GlComputePrograms& programs, const Scene& scene,
+                 const RenderSettings& settings)
+        : gl_(gl),
+          programs_(programs),
+          settings_(settings),
+          model_(scene.camera, settings.width, settings.height),
+          count_(scene.triangles.size()),
+          pixels_(static_cast<std::size_t>(settings.width) * static_cast<std::size_t>(settings.height)),
+          tiles_x_(static_cast<std::uint32_t>((settings.width + tile_size - 1) / tile_size)),
+          tiles_y_(static_cast<std::uint32_t>((settings.height + tile_size - 1) / tile_size)),
+          tiles_(static_cast<std::size_t>(tiles_x_) * tiles_y_),
+          triangles_(frame_triangles(scene, model_, false)),
+          triangle_buffer_(storage_buffer(gl_, triangles_.gpu)),
+          info_buffer_(bounded_buffer(gl_, std::max<std::size_t>(count_, 1) * sizeof(TriangleInfo), "triangle infos")),
+          class_buffer_(storage_buffer(gl_, triangles_.classes)),
+          counters_(gl_),
+          colour_buffer_(storage_buffer(gl_, frame_colours(scene))),
+          sum_buffer_(bounded_buffer(gl_, pixels_ * sizeof(glm::vec4), "pixel sums")),
+          id_buffer_(bounded_buffer(gl_, pixels_ * static_cast<std::size_t>(settings.spp) * sizeof(std::uint32_t),
+                                    "sample ids")),
+          key_buffer_(bounded_buffer(gl_, pixels_ * static_cast<std::size_t>(settings.spp) * sizeof(float),
+                                     "sample depth keys")),
+          stratum_buffer_(bounded_buffer(gl_, std::max<std::size_t>(count_, 1) * BC_GL_TIME_STRATA * sizeof(glm::vec4),
+                                         "stratum boxes")),
+          tile_count_buffer_(storage_buffer(gl_, tiles_ * sizeof(std::uint32_t))),
+          tile_end_buffer_(storage_buffer(gl_, tiles_ * sizeof(std::uint32_t))),
+          state_buffer_(storage_buffer(gl_, sizeof(TileBinState))),
+          mask_(gl_, scene) {}
+
+    // render_setup.comp: each triangle's screen bound, pixel rectangle, path;
+    // render_compute_strata.comp: its shutter slices' screen boxes.
+    void run_setup(bool time_strata, PhaseTimers& timers) {
+        bind_common();
+        timers.begin(PhaseTimers::setup);
+        if (count_ > 0) {
+            set_common(gl_, programs_.setup, model_, settings_, 0);
+            set_int(gl_, programs_.setup, "triangle_count", static_cast<int>(count_));
+            set_int(gl_, programs_.setup, "method", kernel_cull_method(settings_.cull));
+            set_int(gl_, programs_.setup, "force_full", 0);
+            gl_.DispatchCompute(groups(count_, 64), 1, 1);
+            gl_.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+            set_common(gl_, programs_.strata, model_, settings_, 0);
+            set_int(gl_, programs_.strata, "triangle_count", static_cast<int>(count_));
+            set_int(gl_, programs_.strata, "time_strata", time_strata ? 1 : 0);
+            gl_.DispatchCompute(groups(count_, 64), 1, 1);
+            gl_.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        }
+        timers.end(PhaseTimers::setup);
+    }
+
+    // Binning: count, prefix sum, then (the lists grown first when the scan
+    // found them longer than `capacity`: counted in `retries`) the fill.
+    TileBinState run_binning(std::size_t& capacity, int& retries, PhaseTimers& timers) {
+        list_buffer_.emplace(bounded_buffer(gl_, capacity * sizeof(std::uint32_t), "tile lists"));
+        bind_common();
+        timers.begin(PhaseTimers::binning);
+        gl_.BindBuffer(GL_SHADER_STORAGE_BUFFER, tile_count_buffer_.id());
+        gl_.ClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+        write_state(capacity);
+        if (count_ > 0) dispatch_bin(0);
+        set_common(gl_, programs_.scan, model_, settings_, 0);
+        set_uint(gl_, programs_.scan, "tile_count", static_cast<std::uint32_t>(tiles_));
+        gl_.DispatchCompute(1, 1, 1);
+        gl_.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+        timers.end(PhaseTimers::binning);
+        TileBinState state{};
+        state_buffer_.read(&state, sizeof state);
+        if (state.entries_high != 0) {
+            throw gl::GlError("gl: the compute pipeline's tile lists need more than 2^32 entries");
+        }
+        if (state.overflow != 0) {
+            // Found before anything was written: the lists get room for all.
+            capacity = state.entries;
+            ++retries;
+            list_buffer_.emplace(bounded_buffer(gl_, capacity * sizeof(std::uint32_t), "tile lists"));
+            list_buffer_->bind_base(BC_GL_TILE_LIST_BINDING);
+            state.capacity = static_cast<std::uint32_t>(capacity);
+            state.overflow = 0;
+            gl_.BindBuffer(GL_SHADER_STORAGE_BUFFER, state_buffer_.id());
+            gl_.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof state, &state);
+            gl_.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        }
+        timers.begin(PhaseTimers::binning);
+        if (count_ > 0) dispatch_bin(1);
+        timers.end(PhaseTimers::binning);
+        gl::check_gl(gl_, "gl: compute binning");
+        return state;
+    }
+
+    // The raster pass: a dispatch per chunk of samples and slice of the
+    // lists (slice_entries of them; the lists are at most max_count long).
+    void run_raster(std::uint32_t max_count, std::uint32_t slice_entries, bool occlusion, PhaseTimers& timers) {
+        timers.begin(PhaseTimers::raster);
+        set_common(gl_, programs_.raster, model_, settings_, 0);
+        set_int(gl_, programs_.raster, "method", kernel_cull_method(settings_.cull));
+        set_int(gl_, programs_.raster, "tile_bounds", cull_method_info(settings_.cull).bounds_samples ? 1 : 0);
+        set_uint(gl_, programs_.raster, "tiles_x", tiles_x_);
+        set_uint(gl_, programs_.raster, "slice_entries", slice_entries);
+        set_int(gl_, programs_.raster, "occlusion", occlusion ? 1 : 0);
+        const auto spp = static_cast<std::uint32_t>(settings_.spp);
+        for (std::uint32_t chunk = 0; chunk < spp; chunk += raster_chunk) {
+            set_uint(gl_, programs_.raster, "chunk_base", chunk);
+            // At least one slice: the first starts every sample at the background.
+            for (std::uint32_t first = 0; first == 0 || first < max_count; first += slice_entries) {
+                set_uint(gl_, programs_.raster, "slice_first", first);
+                gl_.DispatchCompute(tiles_x_, tiles_y_, 1);
+                gl_.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+            }
+        }
+        gl_.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+        timers.end(PhaseTimers::raster);
+        gl::check_gl(gl_, "gl: compute raster");
+    }
+
+    // The bin state after the frame: overflow 2 if the fill found no room.
+    TileBinState final_state() const {
+        TileBinState state{};
+        state_buffer_.read(&state, sizeof state);
+        return state;
+    }
+
+    // render_resolve.comp over every sample's id, in sample order.
+    void run_resolve(PhaseTimers& timers, RenderStats& stats) {
+        timers.begin(PhaseTimers::resolve);
+        set_common(gl_, programs_.resolve, model_, settings_, 0);
+        set_uint(gl_, programs_.resolve, "background", static_cast<std::uint32_t>(count_));
+        set_int(gl_, programs_.resolve, "keep_ids", 0);
+        set_int(gl_, programs_.resolve, "ids_in_buffer", 1);
+        set_int(gl_, programs_.resolve, "pass_ids", BC_GL_PASS_IDS_UNIT);
+        gl_.DispatchCompute(groups(static_cast<std::size_t>(settings_.width), 8),
+                            groups(static_cast<std::size_t>(settings_.height), 8), 1);
+        gl_.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+        timers.end(PhaseTimers::resolve);
+        counters_.add_to(stats);
+        gl::check_gl(gl_, "gl: compute resolve");
+    }
+
+    Image read_back(std::vector<std::uint32_t>* sample_ids) const {
+        Image image = image_from_sums(sum_buffer_, settings_);
+        if (sample_ids != nullptr) {
+            sample_ids->assign(pixels_ * static_cast<std::size_t>(settings_.spp), no_triangle);
+            id_buffer_.read(sample_ids->data(), sample_ids->size() * sizeof(std::uint32_t));
+        }
+        gl::check_gl(gl_, "gl: compute readback");
+        return image;
+    }
+
+    // A first capacity: at least 4 entries per triangle and one per tile.
+    std::size_t default_capacity() const { return std::max<std::size_t>(4 * count_, tiles_); }
+
+private:
+    void write_state(std::size_t capacity) const {
+        TileBinState start{};
+        start.capacity = static_cast<std::uint32_t>(capacity);
+        gl_.BindBuffer(GL_SHADER_STORAGE_BUFFER, state_buffer_.id());
+        gl_.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof start, &start);
+        gl_.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    }
+    void dispatch_bin(int fill) const {
+        set_common(gl_, programs_.bin, model_, settings_, 0);
+        set_int(gl_, programs_.bin, "triangle_count", static_cast<int>(count_));
+        set_int(gl_, programs_.bin, "fill", fill);
+        set_uint(gl_, programs_.bin, "tiles_x", tiles_x_);
+        gl_.DispatchCompute(groups(count_, 64), 1, 1);
+        gl_.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+
+    static GLuint groups(std::size_t items, std::size_t per_group) {
+        return static_cast<GLuint>((items + per_group - 1) / per_group);
+    }
+
+    // Binding points are context state, and the fragment passes use the
+    // same numbers for other buffers: bound before each run.
+    void bind_common() const {
+        mask_.bind();
+        triangle_buffer_.bind_base(BC_GL_TRIANGLES_BINDING);
+        info_buffer_.bind_base(BC_GL_INFOS_BINDING);
+        counters_.bind_base(BC_GL_COUNTERS_BINDING);
+        colour_buffer_.bind_base(BC_GL_COLOURS_BINDING);
+        sum_buffer_.bind_base(BC_GL_SUMS_BINDING);
+        id_buffer_.bind_base(BC_GL_SAMPLE_IDS_BINDING);
+        key_buffer_.bind_base(BC_GL_SAMPLE_KEYS_BINDING);
+        stratum_buffer_.bind_base(BC_GL_STRATUM_BOXES_BINDING);
+        class_buffer_.bind_base(BC_GL_CLASSES_BINDING);
+        tile_count_buffer_.bind_base(BC_GL_TILE_COUNTS_BINDING);
+        tile_end_buffer_.bind_base(BC_GL_TILE_ENDS_BINDING);
+        state_buffer_.bind_base(BC_GL_TILE_STATE_BINDING);
+        if (list_buffer_) list_buffer_->bind_base(BC_GL_TILE_LIST_BINDING);
+    }
+
+    const gl::Functions& gl_;
+    GlComputePrograms& programs_;
+    const RenderSettings& settings_;
+    CameraModel model_;
+    std::size_t count_, pixels_;
+    std::uint32_t tiles_x_, tiles_y_;
+    std::size_t tiles_;
+    FrameTriangles triangles_;
+    gl::Buffer triangle_buffer_, info_buffer_, class_buffer_;
+    SampleCounters counters_;
+    gl::Buffer colour_buffer_, sum_buffer_, id_buffer_, key_buffer_, stratum_buffer_;
+    gl::Buffer tile_count_buffer_, tile_end_buffer_, state_buffer_;
+    GlAlphaMask mask_;
+    std::optional<gl::Buffer> list_buffer_;
+};
+
+}  // namespace
+
+RenderResult render_gl_compute(const gl::HeadlessContext& context, std::shared_ptr<GlComputePrograms>& programs,
+                               const Scene& scene, const RenderSettings& settings, const GlOptions& options,
+                               std::vector<std::uint32_t>* sample_ids) {
+    const RenderClock::time_point start = RenderClock::now();
+    check_compute_request(scene, settings);
+    const gl::Functions& gl = context.gl();
+    if (!programs) programs = std::make_shared<GlComputePrograms>(gl);
+
+    RenderResult result;
+    RenderStats& stats = result.stats;
+    stats.triangles = scene.triangles.size();
+    RenderClock::time_point phase = RenderClock::now();
+    // Per-hit shading (textures, vertex colours, normals) on the host from the
+    // winners, as the fragment pipeline does (GlRenderer::render).
+    const CameraModel model(scene.camera, settings.width, settings.height);
+    const SurfaceShader shader(scene, model);
+    std::vector<std::uint32_t> winners;
+    const bool keep_ids = (options.keep_sample_ids && sample_ids != nullptr) || shader.any_per_hit();
+    std::vector<std::uint32_t>* kept_ids = options.keep_sample_ids && sample_ids != nullptr ? sample_ids : &winners;
+    PhaseTimers timers(gl);
+    ComputeFrame frame(gl, *programs, scene, settings);
+    frame.run_setup(options.time_strata, timers);
+    stats.ms_per_phase.emplace_back("setup", ms_since(phase));
+
+    phase = RenderClock::now();
+    std::size_t capacity = options.tile_list_capacity > 0
+                               ? options.tile_list_capacity
+                               : std::max(frame.default_capacity(),
+                                          programs->needed_entries + programs->needed_entries / 4);
+    int retries = 0;
+    const TileBinState state = frame.run_binning(capacity, retries, timers);
+    if (options.tile_list_capacity == 0) programs->needed_entries = state.entries;
+    const std::uint32_t slice =
+        software_renderer(context.renderer()) ? software_slice_entries : std::max<std::uint32_t>(state.max_count, 1);
+    frame.run_raster(state.max_count, slice, options.occlusion, timers);
+    frame.run_resolve(timers, stats);
+    stats.ms_per_phase.emplace_back("raster+resolve", ms_since(phase));
+
+    const TileBinState final_state = frame.final_state();
+    if (final_state.overflow != 0) {
+        throw gl::GlError("gl: the compute pipeline's tile lists overflowed after they were sized");
+    }
+    phase = RenderClock::now();
+    result.image = frame.read_back(keep_ids ? kept_ids : nullptr);
+    if (shader.any_per_hit()) result.image = resolve_sample_ids(shader, model, settings, *kept_ids);
+    stats.ms_per_phase.emplace_back("readback", ms_since(phase));
+    timers.add_to(stats);
+    stats.counters.emplace_back("tile_list_entries", static_cast<double>(state.entries));
+    stats.counters.emplace_back("tile_list_capacity", static_cast<double>(capacity));
+    stats.counters.emplace_back("tile_list_retries", static_cast<double>(retries));
+    stats.counters.emplace_back("tile_list_longest", static_cast<double>(state.max_count));
+    stats.counters.emplace_back("raster_slice_entries", static_cast<double>(slice));
+    stats.counters.emplace_back("occluded_entries", static_cast<double>(final_state.occluded));
+    stats.ms_total = ms_since(start);
+    return result;
+}
+
+}  // namespace blurcull::frontend

@@ -1,0 +1,315 @@
+// The GL backend's compute pipeline (frontend/render/gl/gl_compute_pipeline.hpp,
+// GlOptions::pipeline = compute): the same samples decided the same way as
+// the cpu backend's float path and the fragment pipeline (hits, sample ids,
+// pixels), every cull method, a forced tile-list overflow, and the command
+// line (--gl-pipeline, the JSON). No GL context: SKIPPED, or a failure when
+// CI=true.
+#include "frontend_test_helpers.hpp"
+#include "render/common/cull_method.hpp"
+#include "render/cpu/cpu_backend.hpp"
+#include "render/gl/gl_backend.hpp"
+#include "scene/builtin_scenes.hpp"
+#include "scene/gltf/gltf_loader.hpp"
+
+#include <doctest/doctest.h>
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <vector>
+
+using namespace blurcull::frontend;
+using namespace blurcull::frontend::test;
+
+namespace {
+
+RenderSettings settings_for(int width, int height, int spp) {
+    RenderSettings settings = quiet_settings(width, height, spp);
+    settings.seed = 3;
+    return settings;
+}
+
+// Occlusion off: samples_hit then counts every covered sample, as the
+// fragment pipeline's and the cpu's with occlusion off do.
+GlOptions compute_options(bool occlusion = false) {
+    GlOptions options;
+    options.pipeline = GlPipeline::compute;
+    options.keep_sample_ids = true;
+    options.occlusion = occlusion;
+    return options;
+}
+
+double counter(const RenderStats& stats, const std::string& name) {
+    for (const auto& [key, value] : stats.counters)
+        if (key == name) return value;
+    FAIL("no counter " << name);
+    return -1.0;
+}
+
+bool has_phase(const RenderStats& stats, const std::string& name) {
+    for (const auto& entry : stats.ms_per_phase)
+        if (entry.first == name) return entry.second >= 0.0;
+    return false;
+}
+
+}  // namespace
+
+TEST_CASE("gl compute pipeline: every built-in scene gives the cpu float path's hits and pixels") {
+    GlRenderer* gl = renderer_or_skip();
+    if (gl == nullptr) return;
+    // 128x96, 4 spp, against the cpu float path: the same arithmetic
+    // (kernel<float> and its GLSL twin are bit-identical on llvmpipe).
+    for (const std::string& name : builtin_scene_names()) {
+        const Scene scene = small_scene(name, 128, 96);
+        const RenderSettings settings = settings_for(128, 96, 4);
+        CpuOptions cpu_options;
+        cpu_options.occlusion = false;  // samples_hit counts every covered sample, as GL's does
+        cpu_options.precision = KernelPrecision::float32;
+        const RenderResult cpu = render_cpu(scene, settings, cpu_options);
+        const RenderResult compute = gl->render(scene, settings, compute_options());
+        std::printf("%-10s 128x96 4 spp: hits compute %llu cpu float %llu, rmse %.6f, tested %llu, %.0f ms\n",
+                    name.c_str(), static_cast<unsigned long long>(compute.stats.samples_hit),
+                    static_cast<unsigned long long>(cpu.stats.samples_hit), rmse(compute.image, cpu.image),
+                    static_cast<unsigned long long>(compute.stats.samples_tested), compute.stats.ms_total);
+        INFO(name);
+        CHECK(compute.stats.samples_hit == cpu.stats.samples_hit);
+        CHECK(same_pixels(compute.image, cpu.image));
+        CHECK(compute.stats.samples_tested >= compute.stats.samples_hit);
+        CHECK(compute.stats.triangles == scene.triangles.size());
+        CHECK(counter(compute.stats, "tile_list_retries") == 0.0);
+        for (const char* phase : {"gpu_setup", "gpu_binning", "gpu_raster", "gpu_resolve", "wall_raster"}) {
+            CHECK(has_phase(compute.stats, phase));
+        }
+    }
+}
+
+TEST_CASE("gl compute pipeline: the fragment pipeline's samples") {
+    GlRenderer* gl = renderer_or_skip();
+    if (gl == nullptr) return;
+    // The hand (defocus) and the car (motion, static parts): the fragment
+    // pipeline's cost on llvmpipe is per primitive, the forest takes minutes.
+    for (const std::string name : {"hand", "car"}) {
+        const Scene scene = small_scene(name, 96, 72);
+        const RenderSettings settings = settings_for(96, 72, 4);
+        std::vector<std::uint32_t> ids, fragment_ids;
+        const RenderResult compute = gl->render(scene, settings, compute_options(), &ids);
+        GlOptions fragment_options;
+        fragment_options.keep_sample_ids = true;
+        const RenderResult fragment = gl->render(scene, settings, fragment_options, &fragment_ids);
+        INFO(name);
+        CHECK(compute.stats.samples_hit == fragment.stats.samples_hit);
+        // The fragment pipeline gives a depth tie between a static and a
+        // moving triangle to the static one (drawn first); the compute
+        // pipeline, as the cpu, to the lower index.
+        CHECK(fraction_equal(ids, fragment_ids) >= 0.9999);
+        CHECK(rmse(compute.image, fragment.image) < 0.001);
+    }
+}
+
+TEST_CASE("gl compute pipeline: every cull method and sampler, the same decisions") {
+    GlRenderer* gl = renderer_or_skip();
+    if (gl == nullptr) return;
+    const Scene scene = small_scene("car", 64, 48);
+    RenderSettings settings = settings_for(64, 48, 8);
+    std::vector<std::uint32_t> reference_ids;
+    const RenderResult reference = gl->render(scene, settings, compute_options(), &reference_ids);
+    for (const CullMethodInfo& method : cull_methods()) {
+        settings.cull = method.method;
+        std::vector<std::uint32_t> ids;
+        const RenderResult result = gl->render(scene, settings, compute_options(), &ids);
+        INFO(method.name, ": tested ", result.stats.samples_tested, " of ", reference.stats.samples_tested);
+        CHECK(ids == reference_ids);
+        CHECK(result.stats.samples_hit == reference.stats.samples_hit);
+        CHECK(same_pixels(result.image, reference.image));
+        if (method.bounds_samples) CHECK(result.stats.samples_tested <= reference.stats.samples_tested);
+    }
+    // Every sampler draws the cpu's samples (cpu float path, same image).
+    settings.cull = CullMethod::two_stage;
+    CpuOptions cpu_options;
+    cpu_options.occlusion = false;
+    cpu_options.precision = KernelPrecision::float32;
+    for (int sampler : {BC_PATTERN_HASHED, BC_PATTERN_RANDOM}) {
+        settings.sampler = sampler;
+        const RenderResult cpu = render_cpu(scene, settings, cpu_options);
+        const RenderResult compute = gl->render(scene, settings, compute_options());
+        INFO("sampler ", sampler);
+        CHECK(compute.stats.samples_hit == cpu.stats.samples_hit);
+        CHECK(same_pixels(compute.image, cpu.image));
+    }
+}
+
+TEST_CASE("gl compute pipeline: shutter slices' screen boxes skip samples, never a hit") {
+    GlRenderer* gl = renderer_or_skip();
+    if (gl == nullptr) return;
+    // Motion (car, dragonfly: bbox, twostage) and defocus only (hand).
+    for (const std::string name : {"car", "dragonfly", "hand"}) {
+        const Scene scene = small_scene(name, 96, 72);
+        RenderSettings settings = settings_for(96, 72, 4);
+        settings.cull = name == "dragonfly" ? CullMethod::two_stage : CullMethod::bbox;
+        GlOptions whole = compute_options();
+        whole.time_strata = false;
+        std::vector<std::uint32_t> ids, sliced_ids;
+        const RenderResult all = gl->render(scene, settings, whole, &ids);
+        const RenderResult sliced = gl->render(scene, settings, compute_options(), &sliced_ids);
+        std::printf("%-9s 96x72 4 spp %s: tested %llu -> %llu with shutter slices, hits %llu\n", name.c_str(),
+                    to_string(settings.cull), static_cast<unsigned long long>(all.stats.samples_tested),
+                    static_cast<unsigned long long>(sliced.stats.samples_tested),
+                    static_cast<unsigned long long>(sliced.stats.samples_hit));
+        INFO(name);
+        CHECK(sliced_ids == ids);
+        CHECK(sliced.stats.samples_hit == all.stats.samples_hit);
+        CHECK(same_pixels(sliced.image, all.image));
+        // The hand only defocuses: slices of the shutter do not narrow it.
+        if (name == "hand") {
+            CHECK(sliced.stats.samples_tested == all.stats.samples_tested);
+        } else {
+            CHECK(sliced.stats.samples_tested * 2 < all.stats.samples_tested);
+        }
+    }
+}
+
+TEST_CASE("gl compute pipeline: occlusion per tile skips work, never a winner") {
+    GlRenderer* gl = renderer_or_skip();
+    if (gl == nullptr) return;
+    // The forest (deep, many layers) and the car, at 96x72, 8 spp: two
+    // chunks of samples, so the held keys carry over between dispatches.
+    for (const std::string name : {"forest", "car"}) {
+        const Scene scene = small_scene(name, 96, 72);
+        const RenderSettings settings = settings_for(96, 72, 8);
+        std::vector<std::uint32_t> ids, occluded_ids;
+        const RenderResult all = gl->render(scene, settings, compute_options(false), &ids);
+        const RenderResult occluded = gl->render(scene, settings, compute_options(true), &occluded_ids);
+        std::printf("%-6s 96x72 8 spp: tested %llu -> %llu, hits %llu -> %llu, entries occluded %.0f\n", name.c_str(),
+                    static_cast<unsigned long long>(all.stats.samples_tested),
+                    static_cast<unsigned long long>(occluded.stats.samples_tested),
+                    static_cast<unsigned long long>(all.stats.samples_hit),
+                    static_cast<unsigned long long>(occluded.stats.samples_hit),
+                    counter(occluded.stats, "occluded_entries"));
+        INFO(name);
+        CHECK(occluded_ids == ids);
+        CHECK(same_pixels(occluded.image, all.image));
+        CHECK(counter(all.stats, "occluded_entries") == 0.0);
+        CHECK(counter(occluded.stats, "occluded_entries") > 0.0);
+        CHECK(occluded.stats.samples_tested < all.stats.samples_tested);
+        CHECK(occluded.stats.samples_hit < all.stats.samples_hit);
+    }
+}
+
+TEST_CASE("gl compute pipeline: alpha masks and per-hit shading as the cpu float path") {
+    GlRenderer* gl = renderer_or_skip();
+    if (gl == nullptr) return;
+    // tests/data/shading: COLOR_0 and texture alpha masks (MASK), vertex
+    // colours and textures resolved per hit on the host from the ids.
+    const std::string data = std::string(BLURCULL_SOURCE_DIR) + "/tests/data/shading/";
+    for (const char* file : {"attributes.gltf", "mask_texture.gltf"}) {
+        Scene scene = load_gltf_scene(data + file, GltfOptions{}, [](const std::string&) {});
+        for (int variant = 0; variant < 2; ++variant) {
+            if (variant == 1) {  // defocus: the lens and time bounds and the hull
+                scene.camera.lens_radius = 0.08f;
+                scene.camera.focus_distance = 4.0f;
+            }
+            RenderSettings settings = settings_for(96, 72, 8);
+            settings.cull = variant == 1 ? CullMethod::two_stage : CullMethod::bbox;
+            CpuOptions cpu_options;
+            cpu_options.occlusion = false;
+            cpu_options.precision = KernelPrecision::float32;
+            const RenderResult cpu = render_cpu(scene, settings, cpu_options);
+            const RenderResult compute = gl->render(scene, settings, compute_options());
+            INFO(file, ", variant ", variant, ": hits compute ", compute.stats.samples_hit, " cpu ",
+                 cpu.stats.samples_hit, ", rmse ", rmse(compute.image, cpu.image));
+            CHECK(compute.stats.samples_hit == cpu.stats.samples_hit);
+            CHECK(same_pixels(compute.image, cpu.image));
+        }
+    }
+}
+
+TEST_CASE("gl compute pipeline: an overflowing tile list is binned again, the same image") {
+    GlRenderer* gl = renderer_or_skip();
+    if (gl == nullptr) return;
+    const Scene scene = small_scene("dragonfly", 96, 72);
+    const RenderSettings settings = settings_for(96, 72, 4);
+    std::vector<std::uint32_t> ids, tiny_ids;
+    const RenderResult normal = gl->render(scene, settings, compute_options(), &ids);
+    GlOptions tiny = compute_options();
+    tiny.tile_list_capacity = 1;  // far below what the lists need
+    const RenderResult forced = gl->render(scene, settings, tiny, &tiny_ids);
+    CHECK(counter(normal.stats, "tile_list_retries") == 0.0);
+    CHECK(counter(forced.stats, "tile_list_retries") == 1.0);
+    CHECK(counter(forced.stats, "tile_list_entries") == counter(normal.stats, "tile_list_entries"));
+    CHECK(counter(forced.stats, "tile_list_capacity") == counter(forced.stats, "tile_list_entries"));
+    CHECK(counter(normal.stats, "tile_list_entries") > 1000.0);
+    CHECK(tiny_ids == ids);
+    CHECK(forced.stats.samples_hit == normal.stats.samples_hit);
+    CHECK(forced.stats.samples_tested == normal.stats.samples_tested);
+    CHECK(same_pixels(forced.image, normal.image));
+}
+
+namespace {
+
+struct Run {
+    int status = -1;
+    std::string out, err;
+};
+
+Run run_cli(const std::string& arguments) {
+    namespace fs = std::filesystem;
+    const fs::path folder = fs::temp_directory_path() / ("blurcull_gl_compute_test_" + std::to_string(::getpid()));
+    fs::create_directories(folder);
+    const fs::path err_file = folder / "stderr.txt";
+    const std::string command = "cd '" + folder.string() + "' && '" + BLURCULL_CLI + "' " + arguments + " 2>'" +
+                                err_file.string() + "'";
+    Run run;
+    FILE* pipe = popen(command.c_str(), "r");
+    REQUIRE(pipe != nullptr);
+    std::array<char, 4096> buffer{};
+    while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) run.out.append(buffer.data(), n);
+    const int raw = pclose(pipe);
+    run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    if (FILE* f = std::fopen(err_file.string().c_str(), "r")) {
+        while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), f)) run.err.append(buffer.data(), n);
+        std::fclose(f);
+    }
+    return run;
+}
+
+}  // namespace
+
+TEST_CASE("gl compute pipeline: --gl-pipeline on the command line, the JSON, the refusals") {
+    if (renderer_or_skip() == nullptr) return;
+    const Run run = run_cli("render --backend gl --gl-pipeline compute --occlusion off --scene hand --size 32x24 "
+                            "--spp 4 --json -q -o hand_compute.png");
+    INFO(run.err);
+    REQUIRE(run.status == 0);
+    const nlohmann::json summary = nlohmann::json::parse(run.out);
+    CHECK(summary["backend"] == "gl");
+    CHECK(summary["gl_pipeline"] == "compute");
+    CHECK(summary["gl_renderer"].get<std::string>().find(", ") != std::string::npos);
+    for (const char* phase : {"gpu_setup", "gpu_binning", "gpu_raster", "gpu_resolve"}) {
+        CHECK(summary["ms_per_phase"].contains(phase));
+    }
+    CHECK(summary["counters"]["tile_list_retries"] == 0);
+    const Run fragment = run_cli("render --backend gl --scene hand --size 32x24 --spp 4 --json -q -o hand_fragment.png");
+    REQUIRE(fragment.status == 0);
+    const nlohmann::json fragment_summary = nlohmann::json::parse(fragment.out);
+    CHECK(fragment_summary["gl_pipeline"] == "fragment");
+    CHECK(fragment_summary["samples_hit"] == summary["samples_hit"]);
+    // One line each, naming the flag.
+    for (const char* refused : {"render --backend gl --gl-pipeline compute --method interleave --size 32x24 -q",
+                                "render --backend gl --gl-pipeline compute --gl-cell 4 --size 32x24 -q",
+                                "render --backend gl --occlusion on --size 32x24 -q",
+                                "render --backend cpu --gl-pipeline compute --size 32x24 -q",
+                                "render --backend gl --gl-pipeline tiles --size 32x24 -q"}) {
+        const Run bad = run_cli(refused);
+        INFO(refused, ": ", bad.err);
+        CHECK(bad.status != 0);
+        const bool names_flag = bad.err.find("--gl-pipeline") != std::string::npos ||
+                                bad.err.find("--gl-cell") != std::string::npos ||
+                                bad.err.find("--occlusion") != std::string::npos;
+        CHECK(names_flag);
+    }
+}
