@@ -1,6 +1,7 @@
 // The `blurcull` command as a user runs it: renders with a JSON summary and a
 // PNG, and refuses bad input with one line naming the problem and a non-zero
 // exit. BLURCULL_CLI is the path of the built executable.
+#include "cli_runner.hpp"
 #include "render/common/image.hpp"
 #include "test_data_dirs.hpp"
 
@@ -21,11 +22,7 @@
 
 namespace {
 
-struct Run {
-    int status = -1;
-    std::string out;
-    std::string err;
-};
+using Run = blurcull::frontend::test::CliRun;
 
 // The scratch folder of this test process: its own, so two runs at once
 // (several sessions on one machine) do not overwrite each other's files.
@@ -37,24 +34,7 @@ std::filesystem::path scratch_folder() {
 
 // Runs the command with the given arguments in a scratch folder.
 Run run_cli(const std::string& arguments, const std::string& environment = "") {
-    namespace fs = std::filesystem;
-    const fs::path folder = scratch_folder();
-    fs::create_directories(folder);
-    const fs::path err_file = folder / "stderr.txt";
-    std::string command = "cd '" + folder.string() + "' && " + environment + " '" + BLURCULL_CLI + "' " + arguments + " 2>'" +
-                          err_file.string() + "'";
-    Run run;
-    FILE* pipe = popen(command.c_str(), "r");
-    REQUIRE(pipe != nullptr);
-    std::array<char, 4096> buffer{};
-    while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) run.out.append(buffer.data(), n);
-    int raw = pclose(pipe);
-    run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    if (FILE* f = std::fopen(err_file.string().c_str(), "r")) {
-        while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), f)) run.err.append(buffer.data(), n);
-        std::fclose(f);
-    }
-    return run;
+    return blurcull::frontend::test::run_cli_in(scratch_folder(), arguments, environment);
 }
 
 std::size_t lines(const std::string& text) {

@@ -4,6 +4,7 @@
 // pixels), every cull method, a forced tile-list overflow, and the command
 // line (--gl-pipeline, the JSON). No GL context: SKIPPED, or a failure when
 // CI=true.
+#include "cli_runner.hpp"
 #include "frontend_test_helpers.hpp"
 #include "render/common/cull_method.hpp"
 #include "render/cpu/cpu_backend.hpp"
@@ -251,37 +252,17 @@ TEST_CASE("gl compute pipeline: an overflowing tile list is binned again, the sa
 
 namespace {
 
-struct Run {
-    int status = -1;
-    std::string out, err;
-};
-
-Run run_cli(const std::string& arguments) {
-    namespace fs = std::filesystem;
-    const fs::path folder = fs::temp_directory_path() / ("blurcull_gl_compute_test_" + std::to_string(::getpid()));
-    fs::create_directories(folder);
-    const fs::path err_file = folder / "stderr.txt";
-    const std::string command = "cd '" + folder.string() + "' && '" + BLURCULL_CLI + "' " + arguments + " 2>'" +
-                                err_file.string() + "'";
-    Run run;
-    FILE* pipe = popen(command.c_str(), "r");
-    REQUIRE(pipe != nullptr);
-    std::array<char, 4096> buffer{};
-    while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) run.out.append(buffer.data(), n);
-    const int raw = pclose(pipe);
-    run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    if (FILE* f = std::fopen(err_file.string().c_str(), "r")) {
-        while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), f)) run.err.append(buffer.data(), n);
-        std::fclose(f);
-    }
-    return run;
+// The command in this process's own scratch folder.
+CliRun run_cli(const std::string& arguments) {
+    return run_cli_in(std::filesystem::temp_directory_path() / ("blurcull_gl_compute_test_" + std::to_string(::getpid())),
+                      arguments);
 }
 
 }  // namespace
 
 TEST_CASE("gl compute pipeline: --gl-pipeline on the command line, the JSON, the refusals") {
     if (renderer_or_skip() == nullptr) return;
-    const Run run = run_cli("render --backend gl --gl-pipeline compute --occlusion off --scene hand --size 32x24 "
+    const CliRun run = run_cli("render --backend gl --gl-pipeline compute --occlusion off --scene hand --size 32x24 "
                             "--spp 4 --json -q -o hand_compute.png");
     INFO(run.err);
     REQUIRE(run.status == 0);
@@ -293,7 +274,7 @@ TEST_CASE("gl compute pipeline: --gl-pipeline on the command line, the JSON, the
         CHECK(summary["ms_per_phase"].contains(phase));
     }
     CHECK(summary["counters"]["tile_list_retries"] == 0);
-    const Run fragment = run_cli("render --backend gl --scene hand --size 32x24 --spp 4 --json -q -o hand_fragment.png");
+    const CliRun fragment = run_cli("render --backend gl --scene hand --size 32x24 --spp 4 --json -q -o hand_fragment.png");
     REQUIRE(fragment.status == 0);
     const nlohmann::json fragment_summary = nlohmann::json::parse(fragment.out);
     CHECK(fragment_summary["gl_pipeline"] == "fragment");
@@ -304,7 +285,7 @@ TEST_CASE("gl compute pipeline: --gl-pipeline on the command line, the JSON, the
                                 "render --backend gl --occlusion on --size 32x24 -q",
                                 "render --backend cpu --gl-pipeline compute --size 32x24 -q",
                                 "render --backend gl --gl-pipeline tiles --size 32x24 -q"}) {
-        const Run bad = run_cli(refused);
+        const CliRun bad = run_cli(refused);
         INFO(refused, ": ", bad.err);
         CHECK(bad.status != 0);
         const bool names_flag = bad.err.find("--gl-pipeline") != std::string::npos ||

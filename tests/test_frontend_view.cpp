@@ -3,6 +3,7 @@
 // refusal when there is no display. BLURCULL_CLI is the path of the built
 // executable. Without Xvfb the window tests are skipped, unless CI=true (then
 // they fail).
+#include "cli_runner.hpp"
 #include "frontend_test_helpers.hpp"
 #include "render/common/image.hpp"
 
@@ -30,11 +31,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Run {
-    int status = -1;
-    std::string out;
-    std::string err;
-};
+using Run = blurcull::frontend::test::CliRun;
 
 // One folder per run (runs of this test from other builds may share the
 // machine), removed when the test exits.
@@ -56,21 +53,7 @@ const fs::path& scratch() {
 
 // Runs `prefix BLURCULL_CLI arguments` in the scratch folder.
 Run run_cli(const std::string& arguments, const std::string& prefix = "") {
-    const fs::path err_file = scratch() / "stderr.txt";
-    const std::string command = "cd '" + scratch().string() + "' && " + prefix + " '" + BLURCULL_CLI + "' " +
-                                arguments + " 2>'" + err_file.string() + "'";
-    Run run;
-    FILE* pipe = popen(command.c_str(), "r");
-    REQUIRE(pipe != nullptr);
-    std::array<char, 4096> buffer{};
-    while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) run.out.append(buffer.data(), n);
-    const int raw = pclose(pipe);
-    run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    if (FILE* f = std::fopen(err_file.string().c_str(), "r")) {
-        while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), f)) run.err.append(buffer.data(), n);
-        std::fclose(f);
-    }
-    return run;
+    return blurcull::frontend::test::run_cli_in(scratch(), arguments, prefix);
 }
 
 // One Xvfb for the whole test process, started on first use and stopped at
