@@ -168,12 +168,14 @@ inline SampleIdComparison compare_sample_ids(const Scene& scene, const SampleRef
             continue;
         }
         const auto& s = ref.samples[k];
+        // Each triangle's condition at this sample, once (no_triangle: none).
         auto condition = [&](std::uint32_t id) {
-            return covers_condition(ref.triangles[id], s.ndc, s.lens, s.time, ref.near);
+            return id == no_triangle ? CoversCondition{1e300, 0.0}
+                                     : covers_condition(ref.triangles[id], s.ndc, s.lens, s.time, ref.near);
         };
+        const CoversCondition cond_a = condition(a), cond_b = condition(b);
         bool explained = false;
-        if ((a != no_triangle && condition(a).margin <= kEdgeTolerance) ||
-            (b != no_triangle && condition(b).margin <= kEdgeTolerance)) {
+        if (cond_a.margin <= kEdgeTolerance || cond_b.margin <= kEdgeTolerance) {
             ++out.near_edge;
             explained = true;
         } else if (a != no_triangle && b != no_triangle) {
@@ -182,7 +184,7 @@ inline SampleIdComparison compare_sample_ids(const Scene& scene, const SampleRef
                 const double za = ref.depth[k];
                 const double z = std::max(za, double(zb));
                 const double allowed =
-                    kEdgeTolerance * std::max(condition(a).depth_condition, condition(b).depth_condition) * z +
+                    kEdgeTolerance * std::max(cond_a.depth_condition, cond_b.depth_condition) * z +
                     double(kDivisionUlps) * std::ldexp(1.0, std::ilogb(std::max(z, 0x1p-126)) - 23);
                 if (std::abs(za - double(zb)) <= allowed) {
                     ++out.depth_tie;
