@@ -22,6 +22,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <type_traits>
 
 using namespace blurcull;
 using namespace blurcull::testing;
@@ -235,10 +236,18 @@ void check_stress(const char* precision) {
         }
         // Each family must exercise what it is for.
         if (stress == Stress::nonfinite) CHECK(c.invalid == c.configs);
-        if (stress == Stress::range_ends || stress == Stress::lens_zero || stress == Stress::lens_huge ||
-            stress == Stress::focus_at_near || stress == Stress::flt_max || stress == Stress::tiny_w ||
-            stress == Stress::tiny_w_sweep || stress == Stress::tiny_w_lens || stress == Stress::lens_sweep)
+        if (stress == Stress::range_ends || stress == Stress::lens_zero || stress == Stress::focus_at_near ||
+            stress == Stress::flt_max || stress == Stress::tiny_w || stress == Stress::tiny_w_sweep ||
+            stress == Stress::tiny_w_lens || stress == Stress::lens_sweep)
             CHECK(c.covered > 0);
+        // A lens of 1e20..1e30 stretches each triangle into a sliver about one
+        // unit wide and 1e30 long. Its width is below double's rounding of
+        // positions at 1e30 (1e14) as much as float's, but double's oracle,
+        // relative to v0, then sees it edge-on and declines nearly every
+        // sample (15 covered of 192,000 at scale 1, none at 0.05), while
+        // float's coarser rounding leaves thousands covered. So only float
+        // must cover here; double's run still checks no false cull.
+        if (stress == Stress::lens_huge && std::is_same_v<Real, float>) CHECK(c.covered > 0);
         // The sweeps must reach both sides of the fallback's threshold.
         if (stress == Stress::tiny_w_sweep || stress == Stress::lens_sweep) {
             CHECK(c.swamped > 0);
