@@ -29,6 +29,10 @@
 //    fragments; measured: identical images), which changes that ray's hit; a 48 x 36 image at 8 spp has
 //    13824 samples, so a handful of changed rays, each 1/8 of its pixel.
 //
+// 4. The GPU-resident bounce (clipping, traces and surfaces on the GPU)
+//    against the host's on the same GL layers: the same hits per ray (the
+//    test case below says how exactly).
+//
 // No GL context (no Mesa): fails when CI=true, else skips with a message.
 #include "gl_parity_helpers.hpp"
 
@@ -41,6 +45,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <memory>
 
 using namespace blurcull::frontend;
 using namespace blurcull::frontend::test;
@@ -196,6 +201,21 @@ TEST_CASE("dof-secondary: the GL build with host layers gives the CPU build's im
     }
 }
 
+namespace {
+
+// The scenes and options the per-cluster comparisons run: the mirror sphere
+// and the plane mirror with the defaults, and the sphere with one layer
+// (full lists, so the cascade drops fragments).
+std::vector<std::pair<Scene, SecondaryOptions>> layer_cases() {
+    SecondaryOptions one_layer = small_options();
+    one_layer.layers = 1;
+    return {{mirror_sphere_scene(), small_options()},
+            {plane_mirror_scene(0.1f), small_options()},
+            {mirror_sphere_scene(), one_layer}};
+}
+
+}  // namespace
+
 TEST_CASE("dof-secondary: GL layers and pyramid against the host's, every cluster") {
     std::optional<blurcull::gl::HeadlessContext> context = context_or_skip();
     if (!context) return;
@@ -203,13 +223,7 @@ TEST_CASE("dof-secondary: GL layers and pyramid against the host's, every cluste
     const GlDofSecondary passes(rasterizer, *context);
     const LayerBuilder gl_builder = passes.layer_builder();
     const RenderSettings settings = quiet_settings(48, 36, 8);
-    // One layer on the sphere: full lists, so the cascade drops fragments.
-    SecondaryOptions one_layer = small_options();
-    one_layer.layers = 1;
-    const std::pair<Scene, SecondaryOptions> cases[] = {{mirror_sphere_scene(), small_options()},
-                                                        {plane_mirror_scene(0.1f), small_options()},
-                                                        {mirror_sphere_scene(), one_layer}};
-    for (const auto& [scene, options] : cases) {
+    for (const auto& [scene, options] : layer_cases()) {
         CAPTURE(scene.name);
         CAPTURE(options.layers);
         LayerAgreement agreement;
@@ -281,5 +295,80 @@ TEST_CASE("dof-secondary: the GL build with GL layers against the CPU build") {
         CHECK(gl_stats.rays_image_space > 0);
         CHECK(gl_stats.layers.culled_normal == cpu_stats.layers.culled_normal);
         CHECK(gl_stats.layers.culled_near == cpu_stats.layers.culled_near);
+    }
+}
+
+namespace {
+
+// The GPU-resident bounce (GlDofSecondary::cluster_bouncer) beside the
+// host's bounce_in_layers on the same cluster's GL layers read back:
+// per ray, the same hit, trace steps and surface.
+struct ResidentAgainstHost final : ClusterBouncer {
+    ClusterBouncer& resident;
+    const LayerBuilder& read_back;
+    std::uint64_t rays = 0, hits = 0, hit_differs = 0, steps_differ = 0, surface_differs = 0;
+    ResidentAgainstHost(ClusterBouncer& r, const LayerBuilder& b) : resident(r), read_back(b) {}
+    void begin(const WorldTriangles& triangles) override { resident.begin(triangles); }
+    std::vector<LayerBounceHit> bounce(const WorldTriangles& triangles, const kernelf::LayerView& view, int layers,
+                                       float thickness, const ClusterCulls& culls, const ClusterRays& cluster_rays,
+                                       LayerStats& stats) override {
+        LayerStats host_stats;
+        const ClusterLayers built = read_back(triangles, view, layers, culls, host_stats);
+        const std::vector<LayerBounceHit> host = bounce_in_layers(view, built, thickness, cluster_rays);
+        const std::uint64_t fragments_before = stats.fragments;
+        std::vector<LayerBounceHit> got =
+            resident.bounce(triangles, view, layers, thickness, culls, cluster_rays, stats);
+        REQUIRE(got.size() == host.size());
+        for (std::size_t i = 0; i < got.size(); ++i) {
+            ++rays;
+            hits += host[i].hit ? 1 : 0;
+            hit_differs += got[i].hit != host[i].hit ? 1 : 0;
+            steps_differ += got[i].steps != host[i].steps ? 1 : 0;
+            surface_differs += got[i].hit && host[i].hit && got[i].triangle != host[i].triangle ? 1 : 0;
+        }
+        CHECK(stats.fragments - fragments_before == host_stats.fragments);  // the same layers
+        return got;
+    }
+};
+
+}  // namespace
+
+// 4. The GPU-resident bounce: the groups' interval clipping, the traces and
+//    the hits' surfaces on the GPU (render_secondary_clip.comp and the trace
+//    pass, on the layers where GlLayerBuilder left them) against the host's
+//    clipping, trace and surface choice on the same GL layers read back.
+//    Both run the kernel's and bounce_shared.h's text: on an IEEE-exact GL
+//    (llvmpipe) every ray's hit, steps and surface are equal (asserted 0
+//    differences). On a GPU outside that model a segment end may round
+//    differently and move a step; asserted there: at most 1 in 1000 rays
+//    differ in anything.
+TEST_CASE("dof-secondary: the GPU-resident bounce gives the host's hits on the same layers") {
+    std::optional<blurcull::gl::HeadlessContext> context = context_or_skip();
+    if (!context) return;
+    const ArithmeticProbe probe = probe_arithmetic(*context);
+    MESSAGE("GL arithmetic: " << probe.describe());
+    GlRenderer rasterizer;
+    const GlDofSecondary passes(rasterizer, *context);
+    const LayerBuilder read_back = passes.layer_builder();
+    const RenderSettings settings = quiet_settings(48, 36, 8);
+    for (const auto& [scene, options] : layer_cases()) {
+        CAPTURE(scene.name);
+        CAPTURE(options.layers);
+        const std::unique_ptr<ClusterBouncer> resident = passes.cluster_bouncer();
+        ResidentAgainstHost both(*resident, read_back);
+        const PrimaryPass primary = passes.primary_pass(scene, {});
+        SecondaryStats stats;
+        render_dof_secondary(scene, settings, options, &stats, nullptr, &primary, nullptr, &both);
+        MESSAGE(scene.name << ", " << options.layers << " layers: " << both.rays << " rays, " << both.hits
+                           << " hits; differ: hit " << both.hit_differs << ", steps " << both.steps_differ
+                           << ", surface " << both.surface_differs);
+        CHECK(both.rays == stats.rays_image_space);
+        CHECK(both.rays > 1000);
+        CHECK(both.hits > 100);
+        const std::uint64_t differ = both.hit_differs + both.steps_differ + both.surface_differs;
+        if (probe.tolerant())
+            CHECK(double(differ) <= 1e-3 * double(both.rays));
+        else
+            CHECK(differ == 0);
     }
 }

@@ -1,6 +1,7 @@
 #include "app/gl_dof_secondary.hpp"
 
 #include <cstdint>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -12,6 +13,43 @@ const gl::HeadlessContext& made_current(const gl::HeadlessContext& context) {
     context.make_current();
     return context;
 }
+
+// ClusterBouncer on the GL passes: the layers built and left on the GPU,
+// then clipped, traced and the surfaces picked there.
+class GlClusterBouncer final : public ClusterBouncer {
+public:
+    GlClusterBouncer(const gl::HeadlessContext& context, const GlLayerBuilder& builder, const GlLayerTracer& tracer)
+        : context_(&context), builder_(&builder), tracer_(&tracer) {}
+
+    void begin(const WorldTriangles& triangles) override {
+        context_->make_current();
+        builder_->upload_triangles(triangles.vertices, triangles.normals);
+    }
+
+    std::vector<LayerBounceHit> bounce(const WorldTriangles& triangles, const kernelf::LayerView& view, int layers,
+                                       float thickness, const ClusterCulls& culls, const ClusterRays& rays,
+                                       LayerStats& stats) override {
+        context_->make_current();
+        const GlLayerInput input{&triangles.vertices, &triangles.normals, &culls.own, &culls.origins,
+                                 culls.normal_threshold};
+        const GlLayerCounts counts = builder_->build_resident(view, layers, input);
+        stats.fragments += counts.fragments;
+        stats.culled_near += counts.culled_near;
+        stats.culled_in_front += counts.culled_in_front;
+        stats.culled_normal += counts.culled_normal;
+        stats.dropped += counts.dropped;
+        const std::vector<GlBounceHit> found =
+            tracer_->bounce(view, layers, thickness, *builder_, rays.starts, rays.directions, rays.group_ends);
+        std::vector<LayerBounceHit> hits(found.size());
+        for (std::size_t i = 0; i < found.size(); ++i) hits[i] = LayerBounceHit{found[i].hit, found[i].triangle, found[i].steps};
+        return hits;
+    }
+
+private:
+    const gl::HeadlessContext* context_;
+    const GlLayerBuilder* builder_;
+    const GlLayerTracer* tracer_;
+};
 
 }  // namespace
 
@@ -61,14 +99,22 @@ LayerBuilder GlDofSecondary::layer_builder() const {
     };
 }
 
+std::unique_ptr<ClusterBouncer> GlDofSecondary::cluster_bouncer() const {
+    return std::make_unique<GlClusterBouncer>(*trace_context_, builder_, tracer_);
+}
+
 RenderResult GlDofSecondary::render(const Scene& scene, const RenderSettings& settings, const GlOptions& gl_options,
                                     const SecondaryOptions& options, SecondaryStats* stats,
                                     LayerImagesOn layers_on) const {
     const PrimaryPass primary = primary_pass(scene, gl_options);
+    if (layers_on == LayerImagesOn::gl) {
+        const std::unique_ptr<ClusterBouncer> bouncer = cluster_bouncer();
+        return render_dof_secondary(scene, settings, options, stats, nullptr, &primary, nullptr, bouncer.get());
+    }
     const LayerTracer tracer = layer_tracer();
     const LayerBuilder builder = layer_builder();
     return render_dof_secondary(scene, settings, options, stats, &tracer, &primary,
-                                layers_on == LayerImagesOn::gl ? &builder : nullptr);
+                                layers_on == LayerImagesOn::gl_readback ? &builder : nullptr);
 }
 
 }  // namespace blurcull::frontend

@@ -1,10 +1,12 @@
 // --method dof-secondary on the gl backend: the GL rasterizer's per-sample
-// winners as the primary pass, the clusters' layered images and pyramids
-// peeled by the GL rasterizer (GlLayerBuilder) and the image-space traces in
-// a compute pass (GlLayerTracer), handed to render_dof_secondary (clustering,
-// views, interval clipping and shading on the host). `blurcull render
-// --backend gl` and `blurcull view` both render through it
-// (docs/secondary-rays.md, "What the gl backend runs").
+// winners as the primary pass, then per cluster the layered images and
+// pyramid peeled by the GL rasterizer (GlLayerBuilder), the groups' interval
+// clipping, the image-space traces and the hits' surfaces in compute passes
+// (GlLayerTracer::bounce) on the layers where they were built: only each
+// ray's surface comes back. Handed to render_dof_secondary (clustering,
+// views and shading on the host). `blurcull render --backend gl` and
+// `blurcull view` both render through it (docs/secondary-rays.md, "What the
+// gl backend runs").
 #pragma once
 
 #include "render/common/render_types.hpp"
@@ -15,6 +17,8 @@
 #include "render/secondary/dof_secondary.hpp"
 #include "render/secondary/secondary_options.hpp"
 #include "scene/scene.hpp"
+
+#include <memory>
 
 namespace blurcull::frontend {
 
@@ -37,10 +41,15 @@ public:
                         const SecondaryOptions& options, SecondaryStats* stats = nullptr,
                         LayerImagesOn layers_on = LayerImagesOn::gl) const;
 
-    // The passes as render_dof_secondary takes them (for tests that wrap them).
+    // The passes as render_dof_secondary takes them (for tests that wrap
+    // them): render() uses the primary pass and, with the layers on gl, the
+    // cluster bouncer (the GPU-resident bounce); with them on the host, the
+    // host's layers, clipping and surfaces and the GL trace pass.
+    // layer_builder reads each cluster's GL layers back for the host's bounce.
     PrimaryPass primary_pass(const Scene& scene, const GlOptions& gl_options) const;
     LayerTracer layer_tracer() const;
     LayerBuilder layer_builder() const;
+    std::unique_ptr<ClusterBouncer> cluster_bouncer() const;
 
 private:
     GlRenderer* rasterizer_;

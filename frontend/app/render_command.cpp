@@ -375,7 +375,9 @@ RenderJob set_up(const RenderCommand& command) {
     job.embree.secondary = parse_embree_secondary(command.secondary);
 #endif
     job.secondary = command.secondary_options();
-    job.layer_images = command.layer_images == "host" ? LayerImagesOn::host : LayerImagesOn::gl;
+    job.layer_images = command.layer_images == "host"          ? LayerImagesOn::host
+                       : command.layer_images == "gl-readback" ? LayerImagesOn::gl_readback
+                                                               : LayerImagesOn::gl;
     try {
         validate_secondary_options(job.secondary);
     } catch (const std::invalid_argument& error) {
@@ -706,9 +708,10 @@ void RenderCommand::add_options(CLI::App& app) {
     SecondaryFlags::add_options(app);
     layer_images_option = app.add_option("--layer-images", layer_images,
                                          "dof-secondary on gl: build the clusters' layered images and depth "
-                                         "pyramids with the GL rasterizer and a compute pass (gl), or on the host "
-                                         "with the cpu backend's code (host)")
-                              ->check(CLI::IsMember({"gl", "host"}))
+                                         "pyramids with the GL rasterizer and compute passes and bounce the rays "
+                                         "there (gl); the same layers read back for the host's clipping (gl-readback); "
+                                         "or build them on the host with the cpu backend's code (host)")
+                              ->check(CLI::IsMember({"gl", "gl-readback", "host"}))
                               ->capture_default_str();
     dof_secondary_options.push_back(layer_images_option);  // refused with the other methods
     app.add_flag("-q,--quiet", quiet, "no progress on stderr");

@@ -96,33 +96,50 @@ struct GlLayerBuilder::Passes {
     const gl::Buffer& at(Binding binding) const { return *buffers[binding]; }
 
     void upload(const gl::Functions& f, const kernelf::LayerView& view, int layers, const GlLayerInput& input,
-                std::size_t pyramid_floats);
+                std::size_t pyramid_floats, bool with_triangles);
+    void upload_triangles(const gl::Functions& f, const std::vector<std::array<glm::vec3, 3>>& vertices,
+                          const std::vector<glm::vec3>& normals);
+    GlLayerCounts counts(const gl::Functions& f) const;
     std::uint32_t make_fans(const gl::Functions& f, std::size_t triangles, std::size_t origins);
     void draw_fans(const gl::Functions& f, int size, std::uint32_t fans);
     void make_pyramid(const gl::Functions& f, int size);
     GlClusterLayers read_back(const gl::Functions& f, int size, int layers, std::size_t pyramid_floats) const;
 };
 
-// The scene's triangles, the cluster's culls and view into their buffers;
-// the k-buffer, triangle ids, cluster depth and texel counts cleared.
+// The scene's triangles (world space) and unit normals into their buffer.
+void GlLayerBuilder::Passes::upload_triangles(const gl::Functions& f,
+                                              const std::vector<std::array<glm::vec3, 3>>& vertices,
+                                              const std::vector<glm::vec3>& normals) {
+    std::vector<gpu::LayerTriangle> packed(vertices.size());
+    for (std::size_t t = 0; t < vertices.size(); ++t)
+        packed[t] = gpu::LayerTriangle{glm::vec4(vertices[t][0], 0.0f), glm::vec4(vertices[t][1], 0.0f),
+                                       glm::vec4(vertices[t][2], 0.0f), glm::vec4(normals[t], 0.0f)};
+    buffer(f, triangles_binding, packed.size() * sizeof(gpu::LayerTriangle), packed.data());
+}
+
+// The cluster's culls and view into their buffers (and the scene's
+// triangles `with_triangles`, else kept from upload_triangles); the
+// k-buffer, triangle ids, cluster depth and texel counts cleared.
 void GlLayerBuilder::Passes::upload(const gl::Functions& f, const kernelf::LayerView& view, int layers,
-                                    const GlLayerInput& input, std::size_t pyramid_floats) {
-    const std::vector<std::array<glm::vec3, 3>>& vertices = *input.vertices;
-    const std::size_t triangles = vertices.size();
+                                    const GlLayerInput& input, std::size_t pyramid_floats, bool with_triangles) {
+    const std::size_t triangles = input.vertices->size();
     const std::size_t origins = input.origins != nullptr ? input.origins->size() : 0;
     const std::size_t plane = static_cast<std::size_t>(view.size) * static_cast<std::size_t>(view.size);
-    std::vector<gpu::LayerTriangle> packed(triangles);
     std::vector<std::uint32_t> own_bits((triangles + 31) / 32, 0u);
-    for (std::size_t t = 0; t < triangles; ++t) {
-        packed[t] = gpu::LayerTriangle{glm::vec4(vertices[t][0], 0.0f), glm::vec4(vertices[t][1], 0.0f),
-                                       glm::vec4(vertices[t][2], 0.0f), glm::vec4((*input.normals)[t], 0.0f)};
+    for (std::size_t t = 0; t < triangles; ++t)
         if ((*input.own)[t] != 0) own_bits[t / 32] |= 1u << (t % 32);
-    }
     std::vector<glm::vec4> origin_points(origins);
     for (std::size_t i = 0; i < origins; ++i) origin_points[i] = glm::vec4((*input.origins)[i], 0.0f);
     const gpu::LayerPass pass = pass_of(view, layers, triangles, origins, input.normal_threshold);
     const std::uint32_t zero_counts[BC_LAYER_COUNTS] = {};
-    buffer(f, triangles_binding, packed.size() * sizeof(gpu::LayerTriangle), packed.data());
+    if (with_triangles) {
+        upload_triangles(f, *input.vertices, *input.normals);
+    } else {
+        if (!buffers[triangles_binding] || buffers[triangles_binding]->size() < triangles * sizeof(gpu::LayerTriangle))
+            throw gl::GlError("gl: build_resident before upload_triangles of the scene's " + std::to_string(triangles) +
+                              " triangles");
+        at(triangles_binding).bind_base(triangles_binding);
+    }
     buffer(f, pass_binding, sizeof pass, &pass);
     buffer(f, own_binding, own_bits.size() * sizeof(std::uint32_t), own_bits.data());
     buffer(f, fans_binding, 2 * triangles * sizeof(gpu::LayerFan));
@@ -210,12 +227,17 @@ GlClusterLayers GlLayerBuilder::Passes::read_back(const gl::Functions& f, int si
         if (id == 0xFFFFFFFFu) id = 0;  // no surface: the host's default
     out.pyramid.resize(pyramid_floats);
     at(pyramid_binding).read(out.pyramid.data(), pyramid_floats * sizeof(float));
-    std::uint32_t counts[BC_LAYER_COUNTS];
-    at(counts_binding).read(counts, sizeof counts);
-    out.counts = GlLayerCounts{counts[BC_LAYER_COUNT_FRAGMENTS], counts[BC_LAYER_COUNT_CULLED_NEAR],
-                               counts[BC_LAYER_COUNT_CULLED_IN_FRONT], counts[BC_LAYER_COUNT_CULLED_NORMAL],
-                               counts[BC_LAYER_COUNT_DROPPED]};
+    out.counts = counts(f);
     return out;
+}
+
+GlLayerCounts GlLayerBuilder::Passes::counts(const gl::Functions& f) const {
+    gl::check_gl(f, "dof-secondary: the layer passes");
+    std::uint32_t words[BC_LAYER_COUNTS];
+    at(counts_binding).read(words, sizeof words);
+    return GlLayerCounts{words[BC_LAYER_COUNT_FRAGMENTS], words[BC_LAYER_COUNT_CULLED_NEAR],
+                         words[BC_LAYER_COUNT_CULLED_IN_FRONT], words[BC_LAYER_COUNT_CULLED_NORMAL],
+                         words[BC_LAYER_COUNT_DROPPED]};
 }
 
 GlLayerBuilder::GlLayerBuilder(const gl::HeadlessContext& context)
@@ -232,23 +254,55 @@ GlLayerBuilder::GlLayerBuilder(const gl::HeadlessContext& context)
 // The passes' glDelete* act on the current context: this one's, with several alive.
 GlLayerBuilder::~GlLayerBuilder() { context_->make_current_for_release(); }
 
-GlClusterLayers GlLayerBuilder::build(const kernelf::LayerView& view, int layers, const GlLayerInput& input) const {
-    const gl::Functions& f = *gl_;
-    const int size = view.size;
+namespace {
+
+// The pyramid's floats for a base of `size` texels per side.
+std::size_t pyramid_floats_of(int size) {
+    std::size_t floats = 0;
+    for (int s : level_sizes(size)) floats += 2 * static_cast<std::size_t>(s) * static_cast<std::size_t>(s);
+    return floats;
+}
+
+void check_layer_limits(const gl::Functions& f, int size, int layers) {
     GLint max_texture = 0, max_viewport[2] = {0, 0};
     f.GetIntegerv(GL_MAX_TEXTURE_SIZE, &max_texture);
     f.GetIntegerv(GL_MAX_VIEWPORT_DIMS, max_viewport);
     if (size < 2 || size > std::min({max_texture, max_viewport[0], max_viewport[1]}))
         throw gl::GlError("gl: layer size " + std::to_string(size) + " is below 2 or exceeds the context's limits");
     if (layers < 1 || layers > BC_LAYERS_MAX) throw gl::GlError("gl: " + std::to_string(layers) + " layers, not 1 to 8");
-    std::size_t pyramid_floats = 0;
-    for (int s : level_sizes(size)) pyramid_floats += 2 * static_cast<std::size_t>(s) * static_cast<std::size_t>(s);
-    passes_->upload(f, view, layers, input, pyramid_floats);
+}
+
+}  // namespace
+
+void GlLayerBuilder::make_layers(const kernelf::LayerView& view, int layers, const GlLayerInput& input,
+                                 bool with_triangles) const {
+    const gl::Functions& f = *gl_;
+    check_layer_limits(f, view.size, layers);
+    passes_->upload(f, view, layers, input, pyramid_floats_of(view.size), with_triangles);
     const std::uint32_t fans =
         passes_->make_fans(f, input.vertices->size(), input.origins != nullptr ? input.origins->size() : 0);
-    passes_->draw_fans(f, size, fans);
-    passes_->make_pyramid(f, size);
-    return passes_->read_back(f, size, layers, pyramid_floats);
+    passes_->draw_fans(f, view.size, fans);
+    passes_->make_pyramid(f, view.size);
 }
+
+GlClusterLayers GlLayerBuilder::build(const kernelf::LayerView& view, int layers, const GlLayerInput& input) const {
+    make_layers(view, layers, input, true);
+    return passes_->read_back(*gl_, view.size, layers, pyramid_floats_of(view.size));
+}
+
+void GlLayerBuilder::upload_triangles(const std::vector<std::array<glm::vec3, 3>>& vertices,
+                                      const std::vector<glm::vec3>& normals) const {
+    passes_->upload_triangles(*gl_, vertices, normals);
+}
+
+GlLayerCounts GlLayerBuilder::build_resident(const kernelf::LayerView& view, int layers,
+                                             const GlLayerInput& input) const {
+    make_layers(view, layers, input, false);
+    return passes_->counts(*gl_);
+}
+
+const gl::Buffer& GlLayerBuilder::depth_buffer() const { return passes_->at(layer_depth_binding); }
+const gl::Buffer& GlLayerBuilder::triangle_buffer() const { return passes_->at(layer_triangle_binding); }
+const gl::Buffer& GlLayerBuilder::pyramid_buffer() const { return passes_->at(pyramid_binding); }
 
 }  // namespace blurcull::frontend

@@ -61,9 +61,26 @@ public:
     // reports an error or the image exceeds the context's limits.
     GlClusterLayers build(const kernelf::LayerView& view, int layers, const GlLayerInput& input) const;
 
+    // The GPU-resident build (GlClusterBouncer): the scene's triangles
+    // uploaded once per render, then per cluster build_resident, which is
+    // build() with input.vertices and input.normals taken from the last
+    // upload_triangles (only their count is read from input.vertices) and
+    // nothing read back but the counts: the layers' depths, triangles
+    // (~0 for none) and pyramid stay in the buffers below until the next
+    // build. Same throws as build().
+    void upload_triangles(const std::vector<std::array<glm::vec3, 3>>& vertices,
+                          const std::vector<glm::vec3>& normals) const;
+    GlLayerCounts build_resident(const kernelf::LayerView& view, int layers, const GlLayerInput& input) const;
+    const gl::Buffer& depth_buffer() const;     // [layer][y][x] float bits, +infinity for none
+    const gl::Buffer& triangle_buffer() const;  // [layer][y][x] scene triangle, ~0 for none
+    const gl::Buffer& pyramid_buffer() const;   // GlClusterLayers::pyramid's layout
+
     struct Passes;
 
 private:
+    // The passes up to the pyramid (build's and build_resident's).
+    void make_layers(const kernelf::LayerView& view, int layers, const GlLayerInput& input, bool with_triangles) const;
+
     const gl::HeadlessContext* context_;
     const gl::Functions* gl_;
     std::unique_ptr<Passes> passes_;

@@ -1,17 +1,29 @@
 // The GL build of dof-secondary's image-space tracing step: a compute pass
 // (shaders/render_secondary_trace.comp) that runs the kernel's emitted
 // layer_trace_begin / layer_trace_step over a cluster's layered depth images,
-// one invocation per ray (docs/secondary-rays.md, "The renderer").
+// one invocation per ray (docs/secondary-rays.md, "The renderer"); and the
+// GPU-resident bounce of a cluster: the groups' interval clipping
+// (shaders/render_secondary_clip.comp), the traces and the hits' surfaces on
+// the layers where GlLayerBuilder::build_resident left them.
 #pragma once
 
 #include "render/gl/gl_context.hpp"
+#include "render/gl/gl_layer_images.hpp"
 
 #include <blurcull/kernel.hpp>
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
 namespace blurcull::frontend {
+
+// What a bounced ray found in a cluster's GPU-resident layers.
+struct GlBounceHit {
+    bool hit = false;
+    std::uint32_t triangle = 0;  // the scene triangle of the surface hit
+    int steps = 0;               // texels the trace visited
+};
 
 class GlLayerTracer {
 public:
@@ -30,10 +42,22 @@ public:
     std::vector<kernelf::LayerHit> trace(const kernelf::LayerView& view, const std::vector<float>& depth, int layers,
                                          float thickness, const std::vector<kernelf::LayerSegment>& segments) const;
 
+    // The rays' bounce in the layers `built` made by its last
+    // build_resident for `view` (`layers` per texel): ray i starts at
+    // starts[i] along directions[i]; group g, rays [g ? group_ends[g - 1] :
+    // 0, group_ends[g]), is clipped together by the pyramid (the host's
+    // clip_group), then each ray is traced and its hit's surface picked
+    // (the host's hit_triangle); only the hits are read back.
+    std::vector<GlBounceHit> bounce(const kernelf::LayerView& view, int layers, float thickness,
+                                    const GlLayerBuilder& built, const std::vector<glm::vec3>& starts,
+                                    const std::vector<glm::vec3>& directions,
+                                    const std::vector<std::uint32_t>& group_ends) const;
+
 private:
     const gl::HeadlessContext* context_;
     const gl::Functions* gl_;
     std::unique_ptr<gl::Program> program_;
+    std::unique_ptr<gl::Program> clip_program_;
 };
 
 }  // namespace blurcull::frontend

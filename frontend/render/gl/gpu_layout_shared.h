@@ -104,6 +104,11 @@ using uint = std::uint32_t;
 #define BC_GL_TRACE_SEGMENTS_BINDING 1  // Segments: 10 floats per ray
 #define BC_GL_TRACE_VIEW_BINDING 2      // View: the cluster's view
 #define BC_GL_TRACE_HITS_BINDING 3      // Hits: 8 words per ray
+// ... and the GPU-resident bounce's (gl_cluster_bounce.cpp; render_secondary_clip.comp and the trace pass):
+#define BC_GL_TRACE_TRIANGLE_IDS_BINDING 4  // TriangleIds: the layers' triangles (GlLayerBuilder's)
+#define BC_GL_TRACE_PYRAMID_BINDING 5       // Pyramid: the layers' min/max levels (GlLayerBuilder's)
+#define BC_GL_TRACE_RAYS_BINDING 6          // Rays: per ray its start and direction (vec4 each)
+#define BC_GL_TRACE_GROUPS_BINDING 7        // Groups: per group of rays clipped together its end
 
 // What render_setup.comp finds out about triangle i, once per frame.
 struct TriangleInfo {
@@ -277,7 +282,8 @@ static_assert(distinct_bindings({BC_GL_LAYER_TRIANGLES_BINDING, BC_GL_LAYER_PASS
                                  BC_GL_LAYER_BINDINGS),
               "the layer passes' bindings: distinct, each an index of GlLayerBuilder's buffers");
 static_assert(distinct_bindings({BC_GL_TRACE_DEPTHS_BINDING, BC_GL_TRACE_SEGMENTS_BINDING, BC_GL_TRACE_VIEW_BINDING,
-                                 BC_GL_TRACE_HITS_BINDING}),
+                                 BC_GL_TRACE_HITS_BINDING, BC_GL_TRACE_TRIANGLE_IDS_BINDING,
+                                 BC_GL_TRACE_PYRAMID_BINDING, BC_GL_TRACE_RAYS_BINDING, BC_GL_TRACE_GROUPS_BINDING}),
               "the trace pass's bindings");
 static_assert(sizeof(TriangleInfo) % 16 == 0 && sizeof(CellBounds) % 16 == 0 && sizeof(MethodBox) % 16 == 0 &&
                   sizeof(MaskTriangle) % 16 == 0 &&

@@ -32,6 +32,11 @@ ShaderStage shader_stage(GLenum type, std::string_view main_name, Prelude prelud
             add("layer_raster_shared.h");
             add("gl_layer_shared.h");
             break;
+        case Prelude::secondary:
+            add("gpu_layout_shared.h");
+            add("bounce_shared.h");
+            add("render_secondary_common.glsl");
+            break;
     }
     add(main_name);
     return stage;

@@ -19,8 +19,7 @@ std::string_view embedded_source(std::string_view name);
 // What a stage holds between the kernel's GLSL and its main.
 enum class Prelude {
     // gpu_layout_shared.h and render_common.glsl: the stochastic and method
-    // passes (gl_backend.cpp, gl_sampling_methods.cpp) and dof-secondary's
-    // trace pass (gl_layer_trace.cpp).
+    // passes (gl_backend.cpp, gl_sampling_methods.cpp).
     render,
     // render's, then surface_shared.h and render_mask.glsl: the fragment
     // stages whose main calls mask_keeps (the alpha mask, gl_alpha_mask.hpp).
@@ -28,6 +27,10 @@ enum class Prelude {
     // gpu_layout_shared.h (for its bindings), layer_raster_shared.h and
     // gl_layer_shared.h: dof-secondary's layer passes (gl_layer_images.cpp).
     layers,
+    // gpu_layout_shared.h, bounce_shared.h and render_secondary_common.glsl:
+    // dof-secondary's clip and trace passes (gl_layer_trace.cpp,
+    // gl_cluster_bounce.cpp).
+    secondary,
 };
 
 // A stage of `type` (GL_COMPUTE_SHADER, GL_VERTEX_SHADER, ...): the kernel's

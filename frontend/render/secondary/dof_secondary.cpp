@@ -1,5 +1,6 @@
 #include "render/secondary/dof_secondary.hpp"
 
+#include "render/common/bounce_shared.h"
 #include "render/common/camera_model.hpp"
 #include "render/common/progress.hpp"
 #include "render/common/shading.hpp"
@@ -24,8 +25,7 @@ namespace {
 
 using K = kernelf;
 using Clock = std::chrono::steady_clock;
-constexpr float huge_depth = std::numeric_limits<float>::max();
-constexpr int interval_rounds = 3;  // Lee et al.: clip, re-read the pyramid, clip again
+constexpr float huge_depth = float(BC_BOUNCE_HUGE_DEPTH);  // FLT_MAX
 
 // What every cluster's work shares.
 struct BounceContext {
@@ -41,6 +41,7 @@ struct BounceContext {
     int spp;
     const LayerTracer* tracer;  // null: the host loop
     const LayerBuilder* layer_builder;  // null: build_cluster_layers_on_host
+    ClusterBouncer* bouncer;            // not null: the whole image-space bounce there
 };
 
 // What one ray sees when traced against every triangle.
@@ -93,14 +94,14 @@ ClusterCulls cluster_culls(const BounceContext& c, const K::LayerView& view, con
 // The triangle stored nearest the hit: the layer's texel under the hit, or
 // the neighbour whose depth there is closest to the hit's.
 std::uint32_t hit_triangle(const LayerImages& images, const K::LayerHit& hit) {
-    const int hx = std::clamp(static_cast<int>(std::floor(hit.image.x)), 0, images.size - 1);
-    const int hy = std::clamp(static_cast<int>(std::floor(hit.image.y)), 0, images.size - 1);
+    const int hx = bounce::bc_hit_texel(hit.image.x, images.size);
+    const int hy = bounce::bc_hit_texel(hit.image.y, images.size);
     float best = std::numeric_limits<float>::infinity();
     std::uint32_t triangle = images.triangle[images.index(hit.layer, hx, hy)];
     for (int y = std::max(0, hy - 1); y <= std::min(images.size - 1, hy + 1); ++y) {
         for (int x = std::max(0, hx - 1); x <= std::min(images.size - 1, hx + 1); ++x) {
             const float gap = std::abs(images.depth[images.index(hit.layer, x, y)] - hit.depth);
-            if (gap < best || (x == hx && y == hy && gap <= best)) {
+            if (bounce::bc_hit_surface_closer(gap, best, x == hx && y == hy)) {
                 best = gap;
                 triangle = images.triangle[images.index(hit.layer, x, y)];
             }
@@ -110,39 +111,50 @@ std::uint32_t hit_triangle(const LayerImages& images, const K::LayerHit& hit) {
 }
 
 // Clips one group of rays (one pixel's samples in one lens part) for the
-// cluster's layers: their segments clipped together, interval_rounds times,
-// by the pyramid's min/max depth over the union of their footprints.
-void clip_group(const BounceContext& c, const K::LayerView& view, const DepthPyramid& pyramid,
-                const std::uint32_t* group, std::size_t count, K::LayerSegment* segments) {
-    std::vector<glm::vec3> origins(count);
-    for (std::size_t i = 0; i < count; ++i) {
-        const SecondaryRay& ray = c.rays[group[i]];
-        origins[i] = ray.origin + c.offset * ray.direction;
-        segments[i] = K::layer_segment(view, origins[i], ray.direction, huge_depth, glm::vec2(0.0f, huge_depth));
-    }
-    for (int round = 0; round < interval_rounds; ++round) {
-        glm::vec4 box(float(view.size), float(view.size), -1.0f, -1.0f);
-        for (std::size_t i = 0; i < count; ++i) {
-            const glm::vec4 f = K::layer_footprint(view, segments[i]);
-            if (f.x > f.z) continue;
-            box = glm::vec4(glm::min(glm::vec2(box), glm::vec2(f)), glm::max(glm::vec2(box.z, box.w), glm::vec2(f.z, f.w)));
-        }
+// cluster's layers: their segments clipped together, BC_BOUNCE_CLIP_ROUNDS
+// times, by the pyramid's min/max depth over the union of their footprints.
+void clip_group(const K::LayerView& view, const DepthPyramid& pyramid, float thickness, const ClusterRays& rays,
+                std::size_t first, std::size_t last, K::LayerSegment* segments) {
+    for (std::size_t i = first; i < last; ++i)
+        segments[i] = K::layer_segment(view, rays.starts[i], rays.directions[i], huge_depth, glm::vec2(0.0f, huge_depth));
+    for (int round = 0; round < BC_BOUNCE_CLIP_ROUNDS; ++round) {
+        glm::vec4 box = bounce::bc_footprint_none(view.size);
+        for (std::size_t i = first; i < last; ++i) box = bounce::bc_footprint_union(box, K::layer_footprint(view, segments[i]));
         if (box.x > box.z) break;  // every segment empty: all leave the layers
         const glm::vec2 range = pyramid.interval(int(box.x), int(box.y), int(box.z), int(box.w));
-        const glm::vec2 clip = range.x > range.y ? glm::vec2(huge_depth, 0.0f) : glm::vec2(range.x, range.y + c.thickness);
-        for (std::size_t i = 0; i < count; ++i) {
+        const glm::vec2 clip = bounce::bc_bounce_clip(range, thickness, huge_depth);
+        for (std::size_t i = first; i < last; ++i) {
             if (segments[i].empty) continue;
-            segments[i] = K::layer_segment(view, origins[i], c.rays[group[i]].direction, huge_depth, clip);
+            segments[i] = K::layer_segment(view, rays.starts[i], rays.directions[i], huge_depth, clip);
         }
     }
 }
 
-// The rays' radiance from their hits in the layers (the environment on a miss).
-void shade_hits(const BounceContext& c, const LayerImages& images, const std::vector<std::uint32_t>& members,
-                const std::vector<K::LayerHit>& hits, std::vector<glm::vec3>& radiance, SecondaryStats& stats) {
+// The cluster's members sorted into groups (one pixel's samples in one lens
+// part), as the bounce takes them.
+ClusterRays cluster_rays(const BounceContext& c, std::vector<std::uint32_t>& members) {
+    const auto spp = static_cast<std::uint32_t>(c.spp);
+    auto key = [&](std::uint32_t r) { return std::make_pair(c.rays[r].sample / spp, c.rays[r].lens_part); };
+    std::stable_sort(members.begin(), members.end(), [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
+    ClusterRays rays;
+    rays.starts.reserve(members.size());
+    rays.directions.reserve(members.size());
     for (std::size_t i = 0; i < members.size(); ++i) {
         const SecondaryRay& ray = c.rays[members[i]];
-        const K::LayerHit& hit = hits[i];
+        rays.starts.push_back(ray.origin + c.offset * ray.direction);
+        rays.directions.push_back(ray.direction);
+        if (i + 1 == members.size() || key(members[i + 1]) != key(members[i]))
+            rays.group_ends.push_back(static_cast<std::uint32_t>(i + 1));
+    }
+    return rays;
+}
+
+// The rays' radiance from their hits in the layers (the environment on a miss).
+void shade_hits(const BounceContext& c, const std::vector<std::uint32_t>& members,
+                const std::vector<LayerBounceHit>& hits, std::vector<glm::vec3>& radiance, SecondaryStats& stats) {
+    for (std::size_t i = 0; i < members.size(); ++i) {
+        const SecondaryRay& ray = c.rays[members[i]];
+        const LayerBounceHit& hit = hits[i];
         ++stats.rays_image_space;
         stats.trace_steps += static_cast<std::uint64_t>(std::max(hit.steps, 0));
         if (!hit.hit) {
@@ -150,9 +162,8 @@ void shade_hits(const BounceContext& c, const LayerImages& images, const std::ve
             continue;
         }
         ++stats.rays_hit;
-        const std::uint32_t triangle = hit_triangle(images, hit);
         radiance[members[i]] =
-            bounce_hit_radiance(c.scene, c.colours, triangle, ray.direction, c.world.normals[triangle]);
+            bounce_hit_radiance(c.scene, c.colours, hit.triangle, ray.direction, c.world.normals[hit.triangle]);
     }
 }
 
@@ -191,28 +202,20 @@ void bounce_cluster(const BounceContext& c, const Cluster<float>& cluster, std::
         if (members.empty()) return;
     }
     const ClusterCulls culls = cluster_culls(c, view, members);
+    const ClusterRays rays = cluster_rays(c, members);
+    std::vector<LayerBounceHit> hits;
     const Clock::time_point build_start = Clock::now();
-    const ClusterLayers built =
-        c.layer_builder != nullptr ? (*c.layer_builder)(c.world, view, c.options.layers, culls, stats.layers)
-                                   : build_cluster_layers_on_host(c.world, view, c.options.layers, culls, stats.layers);
-    stats.layer_build_ms += ms_since(build_start);
-    const LayerImages& images = built.images;
-    const DepthPyramid& pyramid = built.pyramid;
-    // Groups: the rays of one pixel and one lens part.
-    const auto spp = static_cast<std::uint32_t>(c.spp);
-    auto key = [&](std::uint32_t r) { return std::make_pair(c.rays[r].sample / spp, c.rays[r].lens_part); };
-    std::stable_sort(members.begin(), members.end(), [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
-    std::vector<K::LayerSegment> segments(members.size());
-    for (std::size_t first = 0; first < members.size();) {
-        std::size_t last = first + 1;
-        while (last < members.size() && key(members[last]) == key(members[first])) ++last;
-        clip_group(c, view, pyramid, &members[first], last - first, &segments[first]);
-        first = last;
+    if (c.bouncer != nullptr) {
+        hits = c.bouncer->bounce(c.world, view, c.options.layers, c.thickness, culls, rays, stats.layers);
+        stats.layer_build_ms += ms_since(build_start);  // with the clipping and traces that run with the layers
+    } else {
+        const ClusterLayers built =
+            c.layer_builder != nullptr ? (*c.layer_builder)(c.world, view, c.options.layers, culls, stats.layers)
+                                       : build_cluster_layers_on_host(c.world, view, c.options.layers, culls, stats.layers);
+        stats.layer_build_ms += ms_since(build_start);
+        hits = bounce_in_layers(view, built, c.thickness, rays, c.tracer);
     }
-    const std::vector<K::LayerHit> hits =
-        c.tracer != nullptr ? (*c.tracer)(view, images.depth, images.layers, c.thickness, segments)
-                            : trace_layers_on_host(view, images.depth, images.layers, c.thickness, segments);
-    shade_hits(c, images, members, hits, radiance, stats);
+    shade_hits(c, members, hits, radiance, stats);
 }
 
 void add_stats(SecondaryStats& into, const SecondaryStats& from) {
@@ -279,6 +282,27 @@ std::vector<glm::vec3> bounce_all(const BounceContext& c, int threads, Secondary
 
 }  // namespace
 
+std::vector<LayerBounceHit> bounce_in_layers(const kernelf::LayerView& view, const ClusterLayers& layers,
+                                             float thickness, const ClusterRays& rays, const LayerTracer* tracer) {
+    std::vector<K::LayerSegment> segments(rays.starts.size());
+    std::size_t first = 0;
+    for (std::uint32_t end : rays.group_ends) {
+        clip_group(view, layers.pyramid, thickness, rays, first, end, segments.data());
+        first = end;
+    }
+    const LayerImages& images = layers.images;
+    const std::vector<K::LayerHit> traced =
+        tracer != nullptr ? (*tracer)(view, images.depth, images.layers, thickness, segments)
+                          : trace_layers_on_host(view, images.depth, images.layers, thickness, segments);
+    std::vector<LayerBounceHit> hits(traced.size());
+    for (std::size_t i = 0; i < traced.size(); ++i) {
+        hits[i].hit = traced[i].hit;
+        hits[i].steps = traced[i].steps;
+        if (traced[i].hit) hits[i].triangle = hit_triangle(images, traced[i]);
+    }
+    return hits;
+}
+
 std::vector<kernelf::LayerHit> trace_layers_on_host(const kernelf::LayerView& view, const std::vector<float>& depth,
                                                     int layers, float thickness,
                                                     const std::vector<kernelf::LayerSegment>& segments) {
@@ -294,7 +318,7 @@ std::vector<kernelf::LayerHit> trace_layers_on_host(const kernelf::LayerView& vi
 
 RenderResult render_dof_secondary(const Scene& scene, const RenderSettings& settings, const SecondaryOptions& options,
                                   SecondaryStats* stats_out, const LayerTracer* tracer, const PrimaryPass* primary_pass,
-                                  const LayerBuilder* layer_builder) {
+                                  const LayerBuilder* layer_builder, ClusterBouncer* bouncer) {
     validate_secondary_options(options);
     // The bounce resolves a hit with vertices linear over the shutter.
     if (!scene.position_at.empty())
@@ -320,11 +344,13 @@ RenderResult render_dof_secondary(const Scene& scene, const RenderSettings& sett
     const BounceContext context{scene, options, primary.rays, world, colours,
                                 std::tan(0.5f * options.fov_degrees * 3.14159265358979f / 180.0f),
                                 1e-3f * diagonal, options.thickness_fraction * diagonal, 1e-4f * diagonal,
-                                settings.spp, tracer, layer_builder};
+                                settings.spp, tracer, layer_builder, bouncer};
+    if (bouncer != nullptr && options.bounces == SecondaryBounces::image_space) bouncer->begin(world);
     SecondaryStats stats;
     stats.reflector_samples = primary.reflector_samples;
     stats.rays = primary.rays.size();
-    const int threads = tracer != nullptr || layer_builder != nullptr ? 1 : cpu_methods::render_threads(settings);
+    const int threads =
+        tracer != nullptr || layer_builder != nullptr || bouncer != nullptr ? 1 : cpu_methods::render_threads(settings);
     const std::vector<glm::vec3> radiance = bounce_all(context, threads, stats);
     for (std::size_t r = 0; r < primary.rays.size(); ++r)
         primary.sample_colour[primary.rays[r].sample] += primary.rays[r].weight * radiance[r];

@@ -32,7 +32,8 @@ struct SecondaryStats {
     int clusters_split = 0;                // still some ray outside (FOV < 74.76 deg): those rays traced exactly
     int clusters_unusable = 0;             // empty or non-finite fit: every ray traced exactly
     LayerStats layers;                     // summed over the clusters
-    double layer_build_ms = 0.0;           // building the layers and pyramids, summed over the clusters
+    double layer_build_ms = 0.0;           // building the layers and pyramids (with a ClusterBouncer: and the clipping,
+                                           // traces and surfaces run with them), summed over the clusters
 };
 
 // Traces clipped segments through a cluster's layered depth images (depth
@@ -57,6 +58,46 @@ using LayerBuilder = std::function<ClusterLayers(const WorldTriangles& triangles
 // agree sample for sample).
 using PrimaryPass = std::function<RenderResult(const RenderSettings& settings, std::vector<std::uint32_t>& ids)>;
 
+// A cluster's rays as its image-space bounce takes them, sorted into the
+// groups that are clipped together (one pixel's samples in one lens part):
+// group g holds rays [g ? group_ends[g - 1] : 0, group_ends[g]).
+struct ClusterRays {
+    std::vector<glm::vec3> starts;      // the ray origins moved off their own surface
+    std::vector<glm::vec3> directions;  // unit
+    std::vector<std::uint32_t> group_ends;
+};
+
+// What a bounced ray found in its cluster's layers.
+struct LayerBounceHit {
+    bool hit = false;
+    std::uint32_t triangle = 0;  // the scene triangle of the surface hit
+    int steps = 0;               // texels the trace visited
+};
+
+// A cluster's whole image-space bounce in one place: its layers with the
+// culls, their pyramid, each group's interval clipping, the traces and the
+// surface of each hit (render/gl's GlClusterBouncer: all on the GPU, only
+// the hits come back). begin() is called once per render with the scene's
+// triangles, bounce() once per cluster.
+class ClusterBouncer {
+public:
+    virtual ~ClusterBouncer() = default;
+    virtual void begin(const WorldTriangles& triangles) = 0;
+    virtual std::vector<LayerBounceHit> bounce(const WorldTriangles& triangles, const kernelf::LayerView& view,
+                                               int layers, float thickness, const ClusterCulls& culls,
+                                               const ClusterRays& rays, LayerStats& stats) = 0;
+};
+
+// The bounce of `rays` in layers already built: each group's segments
+// clipped by the pyramid (BC_BOUNCE_CLIP_ROUNDS rounds), traced (by
+// `tracer`, else on the host) and each hit's surface picked from the
+// layers (render/common/bounce_shared.h). What ClusterBouncer does in one
+// place, here in three; the reference the GL-resident bounce is tested
+// against.
+std::vector<LayerBounceHit> bounce_in_layers(const kernelf::LayerView& view, const ClusterLayers& layers,
+                                             float thickness, const ClusterRays& rays,
+                                             const LayerTracer* tracer = nullptr);
+
 // The host loop: trace_layers per segment.
 std::vector<kernelf::LayerHit> trace_layers_on_host(const kernelf::LayerView& view, const std::vector<float>& depth,
                                                     int layers, float thickness,
@@ -71,11 +112,13 @@ std::vector<kernelf::LayerHit> trace_layers_on_host(const kernelf::LayerView& vi
 // from there, else from render_cpu; with `tracer` the image-space traces
 // run there, and with `layer_builder` the layered images are built there
 // (either makes the clusters run one at a time, on the calling thread: a GL
-// context is current on one thread), else on the host. Throws
+// context is current on one thread), else on the host; with `bouncer` each
+// cluster's layers, clipping, traces and hit surfaces run there instead
+// (`tracer` and `layer_builder` unused; one at a time as well). Throws
 // std::invalid_argument for bad settings or options, SceneError for a bad scene.
 RenderResult render_dof_secondary(const Scene& scene, const RenderSettings& settings,
                                   const SecondaryOptions& options = {}, SecondaryStats* stats = nullptr,
                                   const LayerTracer* tracer = nullptr, const PrimaryPass* primary = nullptr,
-                                  const LayerBuilder* layer_builder = nullptr);
+                                  const LayerBuilder* layer_builder = nullptr, ClusterBouncer* bouncer = nullptr);
 
 }  // namespace blurcull::frontend

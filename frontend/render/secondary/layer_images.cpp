@@ -1,5 +1,7 @@
 #include "render/secondary/layer_images.hpp"
 
+#include "render/common/bounce_shared.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -132,10 +134,8 @@ ClusterLayers build_cluster_layers_on_host(const WorldTriangles& triangles, cons
 }
 
 glm::vec2 DepthPyramid::interval(int x0, int y0, int x1, int y1) const {
-    std::size_t level = 0;
-    while (level + 1 < levels_.size() && ((x1 >> level) - (x0 >> level) > 1 || (y1 >> level) - (y0 >> level) > 1))
-        ++level;
-    const Level& l = levels_[level];
+    const int level = bounce::bc_pyramid_level(x0, y0, x1, y1, static_cast<int>(levels_.size()));
+    const Level& l = levels_[static_cast<std::size_t>(level)];
     glm::vec2 range(no_surface, -no_surface);
     for (int y = y0 >> level; y <= (y1 >> level); ++y) {
         for (int x = x0 >> level; x <= (x1 >> level); ++x) {

@@ -15,9 +15,13 @@ enum class SecondaryBounces {
 };
 
 // Where the gl backend builds the clusters' layered images and pyramids: the
-// GL passes (the product, app/gl_dof_secondary.hpp) or the CPU build's code
-// (build_cluster_layers_on_host, the reference; `--layer-images host`).
-enum class LayerImagesOn { gl, host };
+// GL passes, which also clip, trace and pick the hits' surfaces where the
+// layers are (the product, app/gl_dof_secondary.hpp); the GL passes read
+// back, then the host's clipping and surfaces around the GL trace pass (the
+// previous build, kept to measure against: `--layer-images gl-readback`); or
+// the CPU build's code (build_cluster_layers_on_host, the reference;
+// `--layer-images host`).
+enum class LayerImagesOn { gl, gl_readback, host };
 
 struct SecondaryOptions {
     int layers = 8;              // depth-peeled layers per cluster view, 1 .. 8 (BC_LAYERS_MAX)

@@ -1,41 +1,53 @@
 // dof-secondary's image-space tracing step on the GPU (docs/secondary-rays.md,
 // "The renderer"): one invocation per bounced ray, its segment already
-// clipped on the host (frustum, min/max pyramid, lens part), stepped through
-// the cluster's layered depth images with the kernel's layer_trace_begin /
-// layer_trace_step: the loop of include/blurcull/layer_trace.hpp, reading
-// this shader's buffer. Same emitted text as the host, so the same hits.
+// clipped (frustum, min/max pyramid, lens part: on the host, or by
+// render_secondary_clip.comp), stepped through the cluster's layered depth
+// images with the kernel's layer_trace_begin / layer_trace_step: the loop of
+// include/blurcull/layer_trace.hpp, reading this shader's buffer. Same
+// emitted text as the host, so the same hits. With pick_surface, the hit's
+// surface is picked from the layers' triangles as the host's hit_triangle
+// does (bounce_shared.h), so only it need come back.
 layout(local_size_x = 64) in;
-layout(std430, binding = BC_GL_TRACE_DEPTHS_BINDING) readonly buffer Depths { float depth_in[]; };      // layer, y, x
-layout(std430, binding = BC_GL_TRACE_SEGMENTS_BINDING) readonly buffer Segments { float segment_in[]; };  // 10 floats per ray
-layout(std430, binding = BC_GL_TRACE_VIEW_BINDING) readonly buffer View { float view_in[]; };         // eye, forward, right, up, tan, near, far, size, layers, thickness
-layout(std430, binding = BC_GL_TRACE_HITS_BINDING) writeonly buffer Hits { uint hit_out[]; };         // 8 per ray
+layout(std430, binding = BC_GL_TRACE_DEPTHS_BINDING) readonly buffer Depths { float depth_in[]; };  // layer, y, x
+layout(std430, binding = BC_GL_TRACE_HITS_BINDING) writeonly buffer Hits { uint hit_out[]; };     // 8 per ray
+layout(std430, binding = BC_GL_TRACE_TRIANGLE_IDS_BINDING) readonly buffer TriangleIds { uint triangle_in[]; };  // layer, y, x
 uniform uint count;
+uniform int pick_surface;  // 1: word 7 of a hit is its surface's triangle (TriangleIds bound)
+
+// The triangle stored at (layer, x, y); none (the k-buffer's ~0) reads as 0, the host's default.
+uint stored_triangle(int plane, int size, int layer, int x, int y) {
+    uint id = triangle_in[layer * plane + y * size + x];
+    return id == 0xFFFFFFFFu ? 0u : id;
+}
+
+// The host's hit_triangle (dof_secondary.cpp): the nearest in depth of the
+// 3 x 3 texels of the hit's layer around it, its own texel on ties.
+uint hit_surface(LayerView v, LayerHit h) {
+    int plane = v.size * v.size;
+    int hx = bc_hit_texel(h.image.x, v.size);
+    int hy = bc_hit_texel(h.image.y, v.size);
+    float best = uintBitsToFloat(0x7F800000u);
+    uint triangle = stored_triangle(plane, v.size, h.layer, hx, hy);
+    for (int y = max(0, hy - 1); y <= min(v.size - 1, hy + 1); ++y) {
+        for (int x = max(0, hx - 1); x <= min(v.size - 1, hx + 1); ++x) {
+            precise float gap = abs(depth_in[h.layer * plane + y * v.size + x] - h.depth);
+            if (bc_hit_surface_closer(gap, best, x == hx && y == hy)) {
+                best = gap;
+                triangle = stored_triangle(plane, v.size, h.layer, x, y);
+            }
+        }
+    }
+    return triangle;
+}
 
 void main() {
     uint r = gl_GlobalInvocationID.x;
     if (r >= count) return;
-    LayerView v;
-    v.eye = vec3(view_in[0], view_in[1], view_in[2]);
-    v.forward = vec3(view_in[3], view_in[4], view_in[5]);
-    v.right = vec3(view_in[6], view_in[7], view_in[8]);
-    v.up = vec3(view_in[9], view_in[10], view_in[11]);
-    v.tan_half_fov = view_in[12];
-    v.near = view_in[13];
-    v.far = view_in[14];
-    v.size = int(view_in[15]);
-    int layers = int(view_in[16]);
-    float thickness = view_in[17];
-    uint at = 10u * r;
-    LayerSegment seg;
-    seg.empty = segment_in[at] != 0.0;
-    seg.s0 = segment_in[at + 1u];
-    seg.s1 = segment_in[at + 2u];
-    seg.z0 = segment_in[at + 3u];
-    seg.z1 = segment_in[at + 4u];
-    seg.p0 = vec2(segment_in[at + 5u], segment_in[at + 6u]);
-    seg.p1 = vec2(segment_in[at + 7u], segment_in[at + 8u]);
+    LayerView v = trace_view();
+    int layers = trace_layer_count();
+    LayerSegment seg = load_segment(r);
     int plane = v.size * v.size;
-    LayerTrace t = bc_layer_trace_begin(v, seg, layers, thickness);
+    LayerTrace t = bc_layer_trace_begin(v, seg, layers, trace_thickness());
     for (int k = 0; k < t.steps; ++k) {
         if (t.done) break;
         float depths[BC_LAYERS_MAX];
@@ -52,5 +64,5 @@ void main() {
     hit_out[out_at + 4u] = floatBitsToUint(h.depth);
     hit_out[out_at + 5u] = floatBitsToUint(h.image.x);
     hit_out[out_at + 6u] = floatBitsToUint(h.image.y);
-    hit_out[out_at + 7u] = 0u;
+    hit_out[out_at + 7u] = pick_surface != 0 && h.hit ? hit_surface(v, h) : 0u;
 }
