@@ -1,0 +1,108 @@
+#!/usr/bin/env bash
+# Issue 24's bench: dof-secondary on the gl backend with the GPU-resident
+# bounce (--layer-images gl: layers, clipping, traces and surfaces on the
+# GPU), with the same GL layers read back for the host's clipping
+# (--layer-images gl-readback, the previous build), and embree's exact bounce
+# with every thread, on the built-in secondary-ray scenes, in one run; then
+# the JCST configuration (water, 800x600, 100 spp) beside the paper's 196 ms
+# on a GTX 285. Prints per render the whole time, the primary pass and the
+# bounce phase (host clock: wall time, GL work included), and the PSNR
+# against embree. docs/secondary-rays.md, "What the gl backend runs".
+#
+# Build and pack here, then run from the bundle on the device:
+#   cmake --build build
+#   bash ../shared/gpu/bundle.sh build blurcull
+#   bash .gpu/env.sh bash bench/gpu/secondary.sh      (carry [".gpu"])
+# Here (llvmpipe) it is a smoke run, labelled software: 100x75, 4 spp, no
+# JCST line, unless BENCH_SIZE, BENCH_SPP, BENCH_RUNS say otherwise. On a
+# hardware GPU: 1024x768, 16 spp, 3 runs each (medians). Writes
+# secondary.csv and secondary-summary.txt under $OUT (or ./gpu-bench);
+# exits non-zero if a render failed.
+set -u
+blurcull=$(command -v blurcull || true)
+[ -n "$blurcull" ] || blurcull=build/frontend/blurcull
+[ -x "$blurcull" ] || { echo "secondary.sh: no blurcull on PATH or in build/frontend" >&2; exit 2; }
+here=$(cd "$(dirname "$0")/.." && pwd)
+dest=${OUT:-$PWD/gpu-bench}
+mkdir -p "$dest"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+summary=$dest/secondary-summary.txt
+csv=$dest/secondary.csv
+: >"$summary"
+say() { echo "$*" | tee -a "$summary"; }
+
+probe=$("$blurcull" render --backend gl --scene mirror-sphere --size 8x8 --spp 4 --json -q -o "$work/probe.png" 2>"$work/probe.err")
+renderer=$(printf '%s' "$probe" | python3 -c 'import json, sys; print(json.load(sys.stdin).get("gl_renderer", "?"))' \
+           2>/dev/null || echo "none ($(head -c 200 "$work/probe.err"))")
+case "$renderer" in
+  *llvmpipe*|*softpipe*|*swrast*) kind=software; def_size=100x75; def_spp=4; def_runs=1 ;;
+  *) kind=hardware; def_size=1024x768; def_spp=16; def_runs=3 ;;
+esac
+size=${BENCH_SIZE:-$def_size}
+spp=${BENCH_SPP:-$def_spp}
+runs=${BENCH_RUNS:-$def_runs}
+say "date: $(date -u +%FT%TZ)"
+command -v nvidia-smi >/dev/null && say "gpu: $(nvidia-smi --query-gpu=name,driver_version --format=csv,noheader 2>&1)"
+say "gl: $renderer ($kind)"
+say "cpus: $(nproc); size $size, spp $spp, runs $runs, seed 1, sampler sobol"
+[ "$kind" = software ] && say "SOFTWARE GL (llvmpipe on the CPU): a smoke run, not GPU figures"
+
+echo "scene,variant,size,spp,run,ms_total,ms_primary,ms_bounce,psnr_db" >"$csv"
+failed=0
+# One render: scene variant size spp run args...; appends a csv line.
+render() {
+  local scene=$1 variant=$2 sz=$3 n=$4 run=$5
+  shift 5
+  if ! "$blurcull" render --scene "$scene" --size "$sz" --spp "$n" --json -q -o "$work/$scene-$sz-$variant.png" "$@" \
+       >"$work/out.json" 2>"$work/err.txt"; then
+    say "$scene $variant $sz: FAILED: $(head -c 300 "$work/err.txt")"
+    failed=$((failed + 1))
+    return
+  fi
+  local psnr=-
+  [ "$variant" = embree ] || psnr=$(python3 "$here/png_metrics.py" "$work/$scene-$sz-embree.png" \
+                                     "$work/$scene-$sz-$variant.png" | sed -n 's/.*psnr=\([0-9.a-z]*\)dB.*/\1/p')
+  python3 - "$scene" "$variant" "$sz" "$n" "$run" "$psnr" "$work/out.json" >>"$csv" <<'PY'
+import json, sys
+scene, variant, size, spp, run, psnr, path = sys.argv[1:8]
+d = json.load(open(path))
+p = d.get("ms_per_phase", {})
+primary = sum(v for k, v in p.items() if k not in ("resolve", "bounce", "compile"))
+print(",".join([scene, variant, size, spp, run, "%.1f" % d["ms_total"], "%.1f" % primary,
+                "%.1f" % p.get("bounce", 0.0), psnr]))
+PY
+}
+# Every variant of one scene and size, embree first (the reference image).
+scene_runs() {
+  local scene=$1 sz=$2 n=$3
+  for run in $(seq 1 "$runs"); do
+    render "$scene" embree "$sz" "$n" "$run" --backend embree
+    render "$scene" gl "$sz" "$n" "$run" --backend gl --method dof-secondary --layer-images gl
+    render "$scene" gl-readback "$sz" "$n" "$run" --backend gl --method dof-secondary --layer-images gl-readback
+  done
+}
+for scene in mirror-sphere water curved-mirror; do scene_runs "$scene" "$size" "$spp"; done
+[ "$kind" = hardware ] && scene_runs water 800x600 100
+
+python3 - "$csv" <<'PY' | tee -a "$summary"
+import csv, statistics, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+keys = sorted({(r["scene"], r["size"], r["spp"]) for r in rows}, key=lambda k: (k[1], k[0]))
+print("scene size spp | variant: median ms total / primary / bounce, PSNR against embree | bounce gl-readback / gl")
+for key in keys:
+    line, bounce = [], {}
+    for variant in ("embree", "gl", "gl-readback"):
+        rs = [r for r in rows if (r["scene"], r["size"], r["spp"]) == key and r["variant"] == variant]
+        if not rs:
+            continue
+        med = lambda f: statistics.median(float(r[f]) for r in rs)
+        bounce[variant] = med("ms_bounce")
+        psnr = rs[-1]["psnr_db"]
+        line.append(("%s %.0f / %.0f / %.0f %s" % (variant, med("ms_total"), med("ms_primary"), med("ms_bounce"),
+                                                   psnr + " dB" if psnr not in ("", "-") else "")).strip())
+    ratio = "%.2fx" % (bounce["gl-readback"] / bounce["gl"]) if bounce.get("gl") else "-"
+    print("%s %s %s | %s | %s" % (key[0], key[1], key[2], "; ".join(line), ratio))
+PY
+[ "$kind" = hardware ] && say "JCST (water, 800x600, 100 spp): the paper's 196 ms on a GTX 285 (Xie et al. 2013)"
+exit $((failed > 0))
