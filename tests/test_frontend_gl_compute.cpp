@@ -279,6 +279,15 @@ TEST_CASE("gl compute pipeline: --gl-pipeline on the command line, the JSON, the
     const nlohmann::json fragment_summary = nlohmann::json::parse(fragment.out);
     CHECK(fragment_summary["gl_pipeline"] == "fragment");
     CHECK(fragment_summary["samples_hit"] == summary["samples_hit"]);
+    // dof-secondary's primary pass takes the compute pipeline too.
+    const CliRun secondary = run_cli("render --backend gl --gl-pipeline compute --method dof-secondary "
+                                     "--scene mirror-sphere --size 32x24 --spp 4 --layer-size 64 --json -q "
+                                     "-o sphere_compute.png");
+    INFO(secondary.err);
+    REQUIRE(secondary.status == 0);
+    const nlohmann::json secondary_summary = nlohmann::json::parse(secondary.out);
+    CHECK(secondary_summary["gl_pipeline"] == "compute");
+    CHECK(secondary_summary["secondary_rays"].get<double>() > 0);
     // One line each, naming the flag.
     for (const char* refused : {"render --backend gl --gl-pipeline compute --method interleave --size 32x24 -q",
                                 "render --backend gl --gl-pipeline compute --gl-cell 4 --size 32x24 -q",

@@ -32,6 +32,7 @@
 // 4. The GPU-resident bounce (clipping, traces and surfaces on the GPU)
 //    against the host's on the same GL layers: the same hits per ray (the
 //    test case below says how exactly).
+// 5. The primary pass on the compute pipeline: the fragment pipeline's image.
 //
 // No GL context (no Mesa): fails when CI=true, else skips with a message.
 #include "gl_parity_helpers.hpp"
@@ -370,5 +371,40 @@ TEST_CASE("dof-secondary: the GPU-resident bounce gives the host's hits on the s
             CHECK(double(differ) <= 1e-3 * double(both.rays));
         else
             CHECK(differ == 0);
+    }
+}
+
+// 5. The primary pass on the compute pipeline (GlOptions::pipeline compute,
+//    `--gl-pipeline compute`, what --backend auto picks on a hardware GPU):
+//    the compute pipeline keeps the fragment pipeline's winner per sample
+//    (tests/test_frontend_gl_compute.cpp), so the bounced rays, and the
+//    image, are the same: on an IEEE-exact GL bit for bit (asserted max 0);
+//    elsewhere within test 3's tolerance.
+TEST_CASE("dof-secondary: the primary pass on the compute pipeline gives the fragment pipeline's image") {
+    std::optional<blurcull::gl::HeadlessContext> context = context_or_skip();
+    if (!context) return;
+    const ArithmeticProbe probe = probe_arithmetic(*context);
+    GlRenderer rasterizer;
+    const GlDofSecondary passes(rasterizer, *context);
+    const RenderSettings settings = quiet_settings(48, 36, 8);
+    GlOptions compute;
+    compute.pipeline = GlPipeline::compute;
+    for (const Scene& scene : {mirror_sphere_scene(), plane_mirror_scene(0.1f)}) {
+        CAPTURE(scene.name);
+        SecondaryStats fragment_stats, compute_stats;
+        const RenderResult fragment = passes.render(scene, settings, {}, small_options(), &fragment_stats);
+        const RenderResult on_compute = passes.render(scene, settings, compute, small_options(), &compute_stats);
+        const ImageError e = compare(fragment.image, on_compute.image);
+        MESSAGE(scene.name << ": compute against fragment primary pass: RMSE " << e.rmse << ", max " << e.max_abs
+                           << "; rays " << compute_stats.rays << " vs " << fragment_stats.rays);
+        CHECK(compute_stats.rays > 0);
+        if (probe.tolerant()) {
+            CHECK(e.rmse < 0.002);
+            CHECK(e.pixels_off <= static_cast<int>(0.005 * 48 * 36));
+        } else {
+            CHECK(compute_stats.rays == fragment_stats.rays);
+            CHECK(compute_stats.trace_steps == fragment_stats.trace_steps);
+            CHECK(e.max_abs == 0.0);
+        }
     }
 }

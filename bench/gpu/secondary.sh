@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Issue 24's bench: dof-secondary on the gl backend with the GPU-resident
 # bounce (--layer-images gl: layers, clipping, traces and surfaces on the
-# GPU), with the same GL layers read back for the host's clipping
+# GPU), the same with the primary pass on the compute pipeline
+# (gl-compute), with the same GL layers read back for the host's clipping
 # (--layer-images gl-readback, the previous build), and embree's exact bounce
 # with every thread, on the built-in secondary-ray scenes, in one run; then
 # the JCST configuration (water, 800x600, 100 spp) beside the paper's 196 ms
@@ -79,6 +80,7 @@ scene_runs() {
   for run in $(seq 1 "$runs"); do
     render "$scene" embree "$sz" "$n" "$run" --backend embree
     render "$scene" gl "$sz" "$n" "$run" --backend gl --method dof-secondary --layer-images gl
+    render "$scene" gl-compute "$sz" "$n" "$run" --backend gl --gl-pipeline compute --method dof-secondary
     render "$scene" gl-readback "$sz" "$n" "$run" --backend gl --method dof-secondary --layer-images gl-readback
   done
 }
@@ -92,7 +94,7 @@ keys = sorted({(r["scene"], r["size"], r["spp"]) for r in rows}, key=lambda k: (
 print("scene size spp | variant: median ms total / primary / bounce, PSNR against embree | bounce gl-readback / gl")
 for key in keys:
     line, bounce = [], {}
-    for variant in ("embree", "gl", "gl-readback"):
+    for variant in ("embree", "gl", "gl-compute", "gl-readback"):
         rs = [r for r in rows if (r["scene"], r["size"], r["spp"]) == key and r["variant"] == variant]
         if not rs:
             continue

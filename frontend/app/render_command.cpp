@@ -263,10 +263,15 @@ void refuse_unhonoured_options(const RenderCommand& command, Backend backend) {
         throw std::invalid_argument(std::string("--sampler: method ") + method.name +
                                     " draws its own samples (only stochastic and dof-secondary take it)");
     }
-    // The compute pipeline: the stochastic method, no cells (docs/gl-backend.md, "The compute pipeline").
+    // The compute pipeline: the stochastic method, and dof-secondary's
+    // primary pass, which is that method; no cells (docs/gl-backend.md, "The
+    // compute pipeline").
+    const bool stochastic_samples =
+        method.method == RenderMethod::stochastic || method.method == RenderMethod::dof_secondary;
     if (command.gl_pipeline == "compute" && backend == Backend::gl) {
-        if (method.method != RenderMethod::stochastic) {
-            throw std::invalid_argument(std::string("--gl-pipeline compute: only the stochastic method takes it (method ") +
+        if (!stochastic_samples) {
+            throw std::invalid_argument(std::string("--gl-pipeline compute: only the stochastic and dof-secondary "
+                                                    "methods take it (method ") +
                                         method.name + ")");
         }
         if (command.gl_cell_option != nullptr && command.gl_cell_option->count() > 0) {
@@ -277,7 +282,7 @@ void refuse_unhonoured_options(const RenderCommand& command, Backend backend) {
     // On gl, --occlusion is the compute pipeline's (given or chosen by auto below).
     const auto given = [](const CLI::Option* option) { return option != nullptr && option->count() > 0; };
     const bool compute_pipeline =
-        method.method == RenderMethod::stochastic &&
+        stochastic_samples &&
         (command.gl_pipeline == "compute" ||
          (command.backend == "auto" && !given(command.gl_pipeline_option) && !given(command.gl_cell_option)));
     if (backend == Backend::gl && !compute_pipeline && command.occlusion_option != nullptr &&
@@ -362,12 +367,14 @@ RenderJob set_up(const RenderCommand& command) {
     job.gl.cell_pixels = command.gl_cell;
     job.gl.pipeline = parse_gl_pipeline(command.gl_pipeline);
     job.gl.occlusion = command.occlusion == "on";
-    // --backend auto chose gl, so a hardware GPU: the stochastic method on
-    // the compute pipeline, which uses all of a compute GPU's
-    // multiprocessors (docs/gl-backend.md), unless --gl-pipeline or
-    // --gl-cell (the fragment pipeline's) says otherwise.
+    // --backend auto chose gl, so a hardware GPU: the stochastic method (and
+    // dof-secondary's primary pass) on the compute pipeline, which uses all
+    // of a compute GPU's multiprocessors (docs/gl-backend.md), unless
+    // --gl-pipeline or --gl-cell (the fragment pipeline's) says otherwise.
     const auto given = [](const CLI::Option* option) { return option != nullptr && option->count() > 0; };
-    if (command.backend == "auto" && job.backend == Backend::gl && job.settings.method == RenderMethod::stochastic &&
+    const bool stochastic_samples =
+        job.settings.method == RenderMethod::stochastic || job.settings.method == RenderMethod::dof_secondary;
+    if (command.backend == "auto" && job.backend == Backend::gl && stochastic_samples &&
         !given(command.gl_pipeline_option) && !given(command.gl_cell_option)) {
         job.gl.pipeline = GlPipeline::compute;
     }
@@ -520,7 +527,8 @@ void print_json_summary(const RenderCommand& command, const RenderJob& job, cons
     summary["method"] = to_string(job.settings.method);
     summary["cull"] = culled(job) ? to_string(job.settings.cull) : "none";
     if (job.backend == Backend::gl) {
-        if (job.settings.method == RenderMethod::stochastic) summary["gl_pipeline"] = to_string(job.gl.pipeline);
+        if (job.settings.method == RenderMethod::stochastic || job.settings.method == RenderMethod::dof_secondary)
+            summary["gl_pipeline"] = to_string(job.gl.pipeline);  // dof-secondary: its primary pass's
 #if BLURCULL_HAVE_GL
         if (job.gl_renderer) summary["gl_renderer"] = job.gl_renderer->description();
 #endif
