@@ -193,6 +193,17 @@ bool view_draws_with_cpu(const std::string& backend, const std::string& gl_rende
     return backend == "cpu" || (backend == "auto" && is_software(gl_renderer) && method == RenderMethod::stochastic);
 }
 
+// The GL options of a frame: on a hardware GPU the stochastic method, and
+// dof-secondary's primary pass, on the compute pipeline (what render
+// --backend auto picks there: docs/gl-backend.md, "The compute pipeline");
+// on software GL, and for the other methods, the fragment pipeline.
+GlOptions view_gl_options(const std::string& gl_renderer, RenderMethod method) {
+    GlOptions options;
+    if (!is_software(gl_renderer) && (method == RenderMethod::stochastic || method == RenderMethod::dof_secondary))
+        options.pipeline = GlPipeline::compute;
+    return options;
+}
+
 // The window's image: the render plus the overlay, as an RGBA8 texture in an
 // FBO that is blitted (flipped: row 0 of the image is its top) to the window.
 class Presenter {
@@ -478,12 +489,13 @@ private:
     // and render_dof_secondary's own.
     RenderResult render_with_method(const Scene& scene, RenderSettings settings, RenderMethod method) {
         settings.method = method;
+        const GlOptions options = view_gl_options(window_context_.renderer(), method);
         if (method != RenderMethod::dof_secondary) {
             refuse_motion_segments(scene, "gl");
-            return renderer_->render(scene, settings);
+            return renderer_->render(scene, settings, options);
         }
         if (!dof_secondary_) dof_secondary_.emplace(*renderer_, window_context_);
-        return dof_secondary_->render(scene, settings, GlOptions{}, secondary_);
+        return dof_secondary_->render(scene, settings, options, secondary_);
     }
 
     // --frames: between frames a turn of the orbit and the next cull method,
