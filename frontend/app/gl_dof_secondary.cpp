@@ -38,11 +38,7 @@ public:
         stats.culled_in_front += counts.culled_in_front;
         stats.culled_normal += counts.culled_normal;
         stats.dropped += counts.dropped;
-        const std::vector<GlBounceHit> found =
-            tracer_->bounce(view, layers, thickness, *builder_, rays.starts, rays.directions, rays.group_ends);
-        std::vector<LayerBounceHit> hits(found.size());
-        for (std::size_t i = 0; i < found.size(); ++i) hits[i] = LayerBounceHit{found[i].hit, found[i].triangle, found[i].steps};
-        return hits;
+        return tracer_->bounce(view, layers, thickness, *builder_, rays.starts, rays.directions, rays.group_ends);
     }
 
 private:

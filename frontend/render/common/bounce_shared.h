@@ -14,6 +14,8 @@
 #ifdef __cplusplus
 #include <glm/glm.hpp>
 
+#include <cstdint>
+
 namespace blurcull::frontend::bounce {
 using glm::vec2;
 using glm::vec4;
@@ -78,6 +80,19 @@ BC_BOUNCE_FN bool bc_hit_surface_closer(float gap, float best, bool own_texel) {
 
 #ifdef __cplusplus
 }  // namespace blurcull::frontend::bounce
+
+namespace blurcull::frontend {
+
+// What a bounced ray found in its cluster's layers: the bounce's result,
+// from the host (render/secondary) or the GPU (render/gl's
+// GlLayerTracer::bounce).
+struct LayerBounceHit {
+    bool hit = false;
+    std::uint32_t triangle = 0;  // the scene triangle of the surface hit
+    int steps = 0;               // texels the trace visited
+};
+
+}  // namespace blurcull::frontend
 #endif
 
 #endif  // BLURCULL_BOUNCE_SHARED_H

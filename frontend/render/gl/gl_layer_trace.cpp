@@ -82,11 +82,11 @@ std::vector<kernelf::LayerHit> GlLayerTracer::trace(const kernelf::LayerView& vi
     return hits;
 }
 
-std::vector<GlBounceHit> GlLayerTracer::bounce(const kernelf::LayerView& view, int layers, float thickness,
+std::vector<LayerBounceHit> GlLayerTracer::bounce(const kernelf::LayerView& view, int layers, float thickness,
                                                 const GlLayerBuilder& built, const std::vector<glm::vec3>& starts,
                                                 const std::vector<glm::vec3>& directions,
                                                 const std::vector<std::uint32_t>& group_ends) const {
-    std::vector<GlBounceHit> hits(starts.size());
+    std::vector<LayerBounceHit> hits(starts.size());
     if (starts.empty() || group_ends.empty()) return hits;
     const gl::Functions& f = *gl_;
     std::vector<glm::vec4> rays(2 * starts.size());

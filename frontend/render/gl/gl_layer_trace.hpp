@@ -7,6 +7,7 @@
 // the layers where GlLayerBuilder::build_resident left them.
 #pragma once
 
+#include "render/common/bounce_shared.h"
 #include "render/gl/gl_context.hpp"
 #include "render/gl/gl_layer_images.hpp"
 
@@ -17,13 +18,6 @@
 #include <vector>
 
 namespace blurcull::frontend {
-
-// What a bounced ray found in a cluster's GPU-resident layers.
-struct GlBounceHit {
-    bool hit = false;
-    std::uint32_t triangle = 0;  // the scene triangle of the surface hit
-    int steps = 0;               // texels the trace visited
-};
 
 class GlLayerTracer {
 public:
@@ -48,7 +42,7 @@ public:
     // 0, group_ends[g]), is clipped together by the pyramid (the host's
     // clip_group), then each ray is traced and its hit's surface picked
     // (the host's hit_triangle); only the hits are read back.
-    std::vector<GlBounceHit> bounce(const kernelf::LayerView& view, int layers, float thickness,
+    std::vector<LayerBounceHit> bounce(const kernelf::LayerView& view, int layers, float thickness,
                                     const GlLayerBuilder& built, const std::vector<glm::vec3>& starts,
                                     const std::vector<glm::vec3>& directions,
                                     const std::vector<std::uint32_t>& group_ends) const;

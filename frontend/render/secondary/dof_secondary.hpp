@@ -8,6 +8,7 @@
 // layered image, and the rays are traced through it in image space.
 #pragma once
 
+#include "render/common/bounce_shared.h"
 #include "render/common/render_types.hpp"
 #include "render/secondary/layer_images.hpp"
 #include "render/secondary/secondary_options.hpp"
@@ -65,13 +66,6 @@ struct ClusterRays {
     std::vector<glm::vec3> starts;      // the ray origins moved off their own surface
     std::vector<glm::vec3> directions;  // unit
     std::vector<std::uint32_t> group_ends;
-};
-
-// What a bounced ray found in its cluster's layers.
-struct LayerBounceHit {
-    bool hit = false;
-    std::uint32_t triangle = 0;  // the scene triangle of the surface hit
-    int steps = 0;               // texels the trace visited
 };
 
 // A cluster's whole image-space bounce in one place: its layers with the
