@@ -47,6 +47,7 @@
 #include <cmath>
 #include <cstring>
 #include <memory>
+#include <string>
 
 using namespace blurcull::frontend;
 using namespace blurcull::frontend::test;
@@ -285,7 +286,18 @@ TEST_CASE("dof-secondary: the GL build with GL layers against the CPU build") {
         CAPTURE(scene.name);
         SecondaryStats cpu_stats, gl_stats;
         const Image cpu = render_dof_secondary(scene, settings, small_options(), &cpu_stats).image;
-        const Image gpu = passes.render(scene, settings, {}, small_options(), &gl_stats, LayerImagesOn::gl).image;
+        const RenderResult rendered = passes.render(scene, settings, {}, small_options(), &gl_stats, LayerImagesOn::gl);
+        const Image& gpu = rendered.image;
+        // The bouncer's phases: the host's clock always, the GPU's on hardware GL.
+        auto phase = [&](const std::string& name) {
+            for (const auto& [key, ms] : rendered.stats.ms_per_phase)
+                if (key == name) return ms;
+            return -1.0;
+        };
+        CHECK(phase("wall_bounce_layers") > 0.0);
+        CHECK(phase("wall_bounce_trace") > 0.0);
+        CHECK((phase("gpu_bounce_layers") >= 0.0) == !context->software());
+        CHECK((phase("gpu_bounce_trace") >= 0.0) == !context->software());
         const ImageError e = compare(cpu, gpu);
         MESSAGE("GL (GL layers) against CPU build: RMSE " << e.rmse << ", max " << e.max_abs << ", pixels off "
                                                           << e.pixels_off << "; trace steps " << gl_stats.trace_steps

@@ -1,7 +1,11 @@
 #include "app/gl_dof_secondary.hpp"
 
+#include "render/gl/gl_phase_timers.hpp"
+
 #include <cstdint>
 #include <memory>
+#include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -16,14 +20,33 @@ const gl::HeadlessContext& made_current(const gl::HeadlessContext& context) {
 
 // ClusterBouncer on the GL passes: the layers built and left on the GPU,
 // then clipped, traced and the surfaces picked there.
+// Its phases: gpu_bounce_layers and wall_bounce_layers (the layers and
+// pyramid), gpu_bounce_trace and wall_bounce_trace (clipping, traces and
+// surfaces, with the rays' upload and the hits' read-back in the wall time);
+// gpu_* on hardware GL only.
 class GlClusterBouncer final : public ClusterBouncer {
 public:
     GlClusterBouncer(const gl::HeadlessContext& context, const GlLayerBuilder& builder, const GlLayerTracer& tracer)
         : context_(&context), builder_(&builder), tracer_(&tracer) {}
+    GlClusterBouncer(const GlClusterBouncer&) = delete;
+    GlClusterBouncer& operator=(const GlClusterBouncer&) = delete;
+    // The timers' queries are deleted on the current context: this one's.
+    ~GlClusterBouncer() override {
+        if (!timers_) return;
+        context_->make_current_for_release();
+        timers_.reset();
+    }
 
     void begin(const WorldTriangles& triangles) override {
         context_->make_current();
         builder_->upload_triangles(triangles.vertices, triangles.normals);
+        if (!timers_)
+            timers_.emplace(context_->gl(), std::vector<std::string>{"bounce_layers", "bounce_trace"},
+                            !context_->software());
+    }
+
+    void add_phases(RenderStats& stats) const override {
+        if (timers_) timers_->add_to(stats);
     }
 
     std::vector<LayerBounceHit> bounce(const WorldTriangles& triangles, const kernelf::LayerView& view, int layers,
@@ -32,19 +55,27 @@ public:
         context_->make_current();
         const GlLayerInput input{&triangles.vertices, &triangles.normals, &culls.own, &culls.origins,
                                  culls.normal_threshold};
+        timers_->begin(layers_phase);
         const GlLayerCounts counts = builder_->build_resident(view, layers, input);
+        timers_->end(layers_phase);
         stats.fragments += counts.fragments;
         stats.culled_near += counts.culled_near;
         stats.culled_in_front += counts.culled_in_front;
         stats.culled_normal += counts.culled_normal;
         stats.dropped += counts.dropped;
-        return tracer_->bounce(view, layers, thickness, *builder_, rays.starts, rays.directions, rays.group_ends);
+        timers_->begin(trace_phase);
+        std::vector<LayerBounceHit> hits =
+            tracer_->bounce(view, layers, thickness, *builder_, rays.starts, rays.directions, rays.group_ends);
+        timers_->end(trace_phase);
+        return hits;
     }
 
 private:
+    enum Phase : std::size_t { layers_phase, trace_phase };
     const gl::HeadlessContext* context_;
     const GlLayerBuilder* builder_;
     const GlLayerTracer* tracer_;
+    std::optional<GlPhaseTimers> timers_;  // made by begin(), on the context
 };
 
 }  // namespace

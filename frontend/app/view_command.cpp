@@ -178,28 +178,21 @@ std::string format(const char* pattern, double a, double b = 0.0, double c = 0.0
     return text;
 }
 
-bool is_software(const std::string& renderer) {
-    for (const char* name : {"llvmpipe", "softpipe", "swrast"}) {
-        if (renderer.find(name) != std::string::npos) return true;
-    }
-    return false;
-}
-
 // --backend for the window: gl or cpu as named; auto draws with the cpu
 // backend when the window's GL is software (llvmpipe is far slower than the
 // cpu backend on the same cores) and the method is stochastic (the one the
 // cpu view refines progressively), else with gl.
-bool view_draws_with_cpu(const std::string& backend, const std::string& gl_renderer, RenderMethod method) {
-    return backend == "cpu" || (backend == "auto" && is_software(gl_renderer) && method == RenderMethod::stochastic);
+bool view_draws_with_cpu(const std::string& backend, bool software_gl, RenderMethod method) {
+    return backend == "cpu" || (backend == "auto" && software_gl && method == RenderMethod::stochastic);
 }
 
 // The GL options of a frame: on a hardware GPU the stochastic method, and
 // dof-secondary's primary pass, on the compute pipeline (what render
 // --backend auto picks there: docs/gl-backend.md, "The compute pipeline");
 // on software GL, and for the other methods, the fragment pipeline.
-GlOptions view_gl_options(const std::string& gl_renderer, RenderMethod method) {
+GlOptions view_gl_options(bool software_gl, RenderMethod method) {
     GlOptions options;
-    if (!is_software(gl_renderer) && (method == RenderMethod::stochastic || method == RenderMethod::dof_secondary))
+    if (!software_gl && (method == RenderMethod::stochastic || method == RenderMethod::dof_secondary))
         options.pipeline = GlPipeline::compute;
     return options;
 }
@@ -404,7 +397,7 @@ public:
           window_((glfw_.window = open_window(width, height))),
           // The renderer (gl) is made in the body, on a copy of this table.
           window_context_(gl::HeadlessContext::from_current(glfwGetProcAddress, "glfwGetProcAddress")),
-          timing_label_(is_software(window_context_.renderer()) ? "llvmpipe, software" : "GPU"),
+          timing_label_(window_context_.software() ? "llvmpipe, software" : "GPU"),
           presenter_(window_context_.gl(), width, height),
           scene_name_(stem(command.scene)),  // a glTF path without its folders
           centre_(scene_centre(base_)) {
@@ -414,11 +407,11 @@ public:
         glfwSetMouseButtonCallback(window_, on_mouse_button);
         glfwSetCursorPosCallback(window_, on_cursor);
         glfwSetScrollCallback(window_, on_scroll);
-        cpu_ = view_draws_with_cpu(command.backend, window_context_.renderer(), view_.method);
+        cpu_ = view_draws_with_cpu(command.backend, window_context_.software(), view_.method);
         if (cpu_) {
             // "llvmpipe (LLVM 15.0.6, 256 bits)": its first word is the name.
             const std::string gl = window_context_.renderer().substr(0, window_context_.renderer().find(' '));
-            timing_label_ = "cpu backend; GL " + gl + (is_software(window_context_.renderer()) ? ", software" : "");
+            timing_label_ = "cpu backend; GL " + gl + (window_context_.software() ? ", software" : "");
             progressive_ = std::make_unique<ProgressiveView>([] { glfwPostEmptyEvent(); });
         } else {
             renderer_.emplace(gl::HeadlessContext::from_current(glfwGetProcAddress, "glfwGetProcAddress"));
@@ -489,7 +482,7 @@ private:
     // and render_dof_secondary's own.
     RenderResult render_with_method(const Scene& scene, RenderSettings settings, RenderMethod method) {
         settings.method = method;
-        const GlOptions options = view_gl_options(window_context_.renderer(), method);
+        const GlOptions options = view_gl_options(window_context_.software(), method);
         if (method != RenderMethod::dof_secondary) {
             refuse_motion_segments(scene, "gl");
             return renderer_->render(scene, settings, options);

@@ -570,12 +570,10 @@ std::unique_ptr<gl::HeadlessContext> hardware_gl_context(std::string* reason) {
     }
     try {
         auto context = std::make_unique<gl::HeadlessContext>(gl::HeadlessContext::create());
-        const std::string renderer = context->renderer();
-        for (const char* software : {"llvmpipe", "softpipe", "swrast"}) {
-            if (renderer.find(software) != std::string::npos) {
-                if (reason != nullptr) *reason = "only a software renderer, " + renderer + ", slower than the cpu backend";
-                return nullptr;
-            }
+        if (context->software()) {
+            if (reason != nullptr)
+                *reason = "only a software renderer, " + context->renderer() + ", slower than the cpu backend";
+            return nullptr;
         }
         return context;
     } catch (const std::exception& e) {

@@ -8,6 +8,7 @@
 #include "render/gl/gl_alpha_mask.hpp"
 #include "render/gl/gl_backend.hpp"
 #include "render/gl/gl_frame_common.hpp"
+#include "render/gl/gl_phase_timers.hpp"
 #include "render/gl/gl_render_targets.hpp"
 #include "render/gl/gpu_layout_shared.h"
 #include "render/gl/shader_stages.hpp"
@@ -59,51 +60,9 @@ constexpr std::uint32_t raster_chunk = 8;
 // stay below it (at most ~300 iterations an entry: a 24-edge hull, 8 samples).
 constexpr std::uint32_t software_slice_entries = 64;
 
-bool software_renderer(const std::string& renderer) {
-    for (const char* name : {"llvmpipe", "softpipe", "swrast"}) {
-        if (renderer.find(name) != std::string::npos) return true;
-    }
-    return false;
-}
-
-// GL_TIME_ELAPSED queries, one per phase, summed over the times a phase ran.
-class PhaseTimers {
-public:
-    enum Phase { setup, binning, raster, resolve, phase_count };
-    explicit PhaseTimers(const gl::Functions& gl) : gl_(&gl) { gl.GenQueries(phase_count, ids_.data()); }
-    PhaseTimers(const PhaseTimers&) = delete;
-    PhaseTimers& operator=(const PhaseTimers&) = delete;
-    ~PhaseTimers() { gl_->DeleteQueries(phase_count, ids_.data()); }
-
-    void begin(Phase phase) {
-        started_ = RenderClock::now();
-        gl_->BeginQuery(GL_TIME_ELAPSED, ids_[phase]);
-    }
-    // Ends the phase's query and adds its time, waiting for the result (so
-    // the phases do not overlap); also the host's clock from begin to then.
-    void end(Phase phase) {
-        gl_->EndQuery(GL_TIME_ELAPSED);
-        GLuint64 ns = 0;
-        gl_->GetQueryObjectui64v(ids_[phase], GL_QUERY_RESULT, &ns);
-        gpu_ms_[phase] += static_cast<double>(ns) * 1e-6;
-        wall_ms_[phase] += ms_since(started_);
-    }
-    // gpu_*: GL_TIME_ELAPSED (the GPU's own clock; llvmpipe's timer queries
-    // do not time compute dispatches and read ~0); wall_*: the host's clock
-    // over the phase's calls and its wait.
-    void add_to(RenderStats& stats) const {
-        static constexpr const char* names[phase_count] = {"setup", "binning", "raster", "resolve"};
-        for (std::size_t k = 0; k < phase_count; ++k) stats.ms_per_phase.emplace_back(std::string("gpu_") + names[k], gpu_ms_[k]);
-        for (std::size_t k = 0; k < phase_count; ++k) stats.ms_per_phase.emplace_back(std::string("wall_") + names[k], wall_ms_[k]);
-    }
-
-private:
-    const gl::Functions* gl_;
-    std::array<GLuint, phase_count> ids_{};
-    std::array<double, phase_count> gpu_ms_{};
-    std::array<double, phase_count> wall_ms_{};
-    RenderClock::time_point started_ = RenderClock::now();
-};
+// The phases GlPhaseTimers times, in ms_per_phase's order.
+enum Phase : std::size_t { setup_phase, binning_phase, raster_phase, resolve_phase };
+std::vector<std::string> phase_names() { return {"setup", "binning", "raster", "resolve"}; }
 
 void check_compute_request(const Scene& scene, const RenderSettings& settings) {
     validate_settings(settings);
@@ -164,9 +123,9 @@ public:
 
     // render_setup.comp: each triangle's screen bound, pixel rectangle, path;
     // render_compute_strata.comp: its shutter slices' screen boxes.
-    void run_setup(bool time_strata, PhaseTimers& timers) {
+    void run_setup(bool time_strata, GlPhaseTimers& timers) {
         bind_common();
-        timers.begin(PhaseTimers::setup);
+        timers.begin(setup_phase);
         if (count_ > 0) {
             set_common(gl_, programs_.setup, model_, settings_, 0);
             set_int(gl_, programs_.setup, "triangle_count", static_cast<int>(count_));
@@ -180,15 +139,15 @@ public:
             gl_.DispatchCompute(groups(count_, 64), 1, 1);
             gl_.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         }
-        timers.end(PhaseTimers::setup);
+        timers.end(setup_phase);
     }
 
     // Binning: count, prefix sum, then (the lists grown first when the scan
     // found them longer than `capacity`: counted in `retries`) the fill.
-    TileBinState run_binning(std::size_t& capacity, int& retries, PhaseTimers& timers) {
+    TileBinState run_binning(std::size_t& capacity, int& retries, GlPhaseTimers& timers) {
         list_buffer_.emplace(bounded_buffer(gl_, capacity * sizeof(std::uint32_t), "tile lists"));
         bind_common();
-        timers.begin(PhaseTimers::binning);
+        timers.begin(binning_phase);
         gl_.BindBuffer(GL_SHADER_STORAGE_BUFFER, tile_count_buffer_.id());
         gl_.ClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
         write_state(capacity);
@@ -197,7 +156,7 @@ public:
         set_uint(gl_, programs_.scan, "tile_count", static_cast<std::uint32_t>(tiles_));
         gl_.DispatchCompute(1, 1, 1);
         gl_.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-        timers.end(PhaseTimers::binning);
+        timers.end(binning_phase);
         TileBinState state{};
         state_buffer_.read(&state, sizeof state);
         if (state.entries_high != 0) {
@@ -215,17 +174,17 @@ public:
             gl_.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof state, &state);
             gl_.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         }
-        timers.begin(PhaseTimers::binning);
+        timers.begin(binning_phase);
         if (count_ > 0) dispatch_bin(1);
-        timers.end(PhaseTimers::binning);
+        timers.end(binning_phase);
         gl::check_gl(gl_, "gl: compute binning");
         return state;
     }
 
     // The raster pass: a dispatch per chunk of samples and slice of the
     // lists (slice_entries of them; the lists are at most max_count long).
-    void run_raster(std::uint32_t max_count, std::uint32_t slice_entries, bool occlusion, PhaseTimers& timers) {
-        timers.begin(PhaseTimers::raster);
+    void run_raster(std::uint32_t max_count, std::uint32_t slice_entries, bool occlusion, GlPhaseTimers& timers) {
+        timers.begin(raster_phase);
         set_common(gl_, programs_.raster, model_, settings_, 0);
         set_int(gl_, programs_.raster, "method", kernel_cull_method(settings_.cull));
         set_int(gl_, programs_.raster, "tile_bounds", cull_method_info(settings_.cull).bounds_samples ? 1 : 0);
@@ -243,7 +202,7 @@ public:
             }
         }
         gl_.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-        timers.end(PhaseTimers::raster);
+        timers.end(raster_phase);
         gl::check_gl(gl_, "gl: compute raster");
     }
 
@@ -255,8 +214,8 @@ public:
     }
 
     // render_resolve.comp over every sample's id, in sample order.
-    void run_resolve(PhaseTimers& timers, RenderStats& stats) {
-        timers.begin(PhaseTimers::resolve);
+    void run_resolve(GlPhaseTimers& timers, RenderStats& stats) {
+        timers.begin(resolve_phase);
         set_common(gl_, programs_.resolve, model_, settings_, 0);
         set_uint(gl_, programs_.resolve, "background", static_cast<std::uint32_t>(count_));
         set_int(gl_, programs_.resolve, "keep_ids", 0);
@@ -265,7 +224,7 @@ public:
         gl_.DispatchCompute(groups(static_cast<std::size_t>(settings_.width), 8),
                             groups(static_cast<std::size_t>(settings_.height), 8), 1);
         gl_.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-        timers.end(PhaseTimers::resolve);
+        timers.end(resolve_phase);
         counters_.add_to(stats);
         gl::check_gl(gl_, "gl: compute resolve");
     }
@@ -360,7 +319,7 @@ RenderResult render_gl_compute(const gl::HeadlessContext& context, std::shared_p
     std::vector<std::uint32_t> winners;
     const bool keep_ids = (options.keep_sample_ids && sample_ids != nullptr) || shader.any_per_hit();
     std::vector<std::uint32_t>* kept_ids = options.keep_sample_ids && sample_ids != nullptr ? sample_ids : &winners;
-    PhaseTimers timers(gl);
+    GlPhaseTimers timers(gl, phase_names());
     ComputeFrame frame(gl, *programs, scene, settings);
     frame.run_setup(options.time_strata, timers);
     stats.ms_per_phase.emplace_back("setup", ms_since(phase));
@@ -374,7 +333,7 @@ RenderResult render_gl_compute(const gl::HeadlessContext& context, std::shared_p
     const TileBinState state = frame.run_binning(capacity, retries, timers);
     if (options.tile_list_capacity == 0) programs->needed_entries = state.entries;
     const std::uint32_t slice =
-        software_renderer(context.renderer()) ? software_slice_entries : std::max<std::uint32_t>(state.max_count, 1);
+        context.software() ? software_slice_entries : std::max<std::uint32_t>(state.max_count, 1);
     frame.run_raster(state.max_count, slice, options.occlusion, timers);
     frame.run_resolve(timers, stats);
     stats.ms_per_phase.emplace_back("raster+resolve", ms_since(phase));

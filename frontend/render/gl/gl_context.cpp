@@ -392,6 +392,14 @@ ContextKind HeadlessContext::kind() const { return state_->kind; }
 std::string HeadlessContext::renderer() const { return gl_string(state_->fns, GL_RENDERER); }
 std::string HeadlessContext::version() const { return gl_string(state_->fns, GL_VERSION); }
 
+bool HeadlessContext::software() const {
+    const std::string name = renderer();
+    for (const char* software : {"llvmpipe", "softpipe", "swrast"}) {
+        if (name.find(software) != std::string::npos) return true;
+    }
+    return false;
+}
+
 void HeadlessContext::make_current() const {
     const State& s = *state_;
     if (s.kind == ContextKind::current) return;  // the caller's to keep current

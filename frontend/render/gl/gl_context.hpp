@@ -76,6 +76,10 @@ public:
     const Functions& gl() const;
     ContextKind kind() const;
     std::string renderer() const;  // GL_RENDERER, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
+    // Whether renderer() names a software rasterizer (llvmpipe, softpipe,
+    // swrast): GL on the CPU, slower than the cpu backend, and with timer
+    // queries that do not time its work.
+    bool software() const;
     std::string version() const;   // GL_VERSION
     // Makes this context current on the calling thread (create() already did).
     void make_current() const;

@@ -355,6 +355,7 @@ RenderResult render_dof_secondary(const Scene& scene, const RenderSettings& sett
     for (std::size_t r = 0; r < primary.rays.size(); ++r)
         primary.sample_colour[primary.rays[r].sample] += primary.rays[r].weight * radiance[r];
     result.stats.ms_per_phase.emplace_back("bounce", ms_since(phase));
+    if (bouncer != nullptr && options.bounces == SecondaryBounces::image_space) bouncer->add_phases(result.stats);
     result.image = resolve_samples(primary.sample_colour, settings.width, settings.height, settings.spp);
     result.stats.ms_total = ms_since(start);
     if (stats.clusters_split + stats.clusters_unusable > 0) {

@@ -80,6 +80,9 @@ public:
     virtual std::vector<LayerBounceHit> bounce(const WorldTriangles& triangles, const kernelf::LayerView& view,
                                                int layers, float thickness, const ClusterCulls& culls,
                                                const ClusterRays& rays, LayerStats& stats) = 0;
+    // Its own phases (e.g. GPU time), added to the render's ms_per_phase
+    // after the bounce phase.
+    virtual void add_phases(RenderStats& /*stats*/) const {}
 };
 
 // The bounce of `rays` in layers already built: each group's segments
