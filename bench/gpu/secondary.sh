@@ -7,8 +7,9 @@
 # with every thread, on the built-in secondary-ray scenes, in one run; then
 # the JCST configuration (water, 800x600, 100 spp) beside the paper's 196 ms
 # on a GTX 285. Prints per render the whole time, the primary pass and the
-# bounce phase (host clock: wall time, GL work included), and the PSNR
-# against embree. docs/secondary-rays.md, "What the gl backend runs".
+# bounce phase (host clock: wall time, GL work included), on hardware GL the
+# resident bounce's GPU time (gpu_bounce_layers + gpu_bounce_trace, timer
+# queries), and the PSNR against embree. docs/secondary-rays.md, "What the gl backend runs".
 #
 # Build and pack here, then run from the bundle on the device:
 #   cmake --build build
@@ -49,7 +50,7 @@ say "gl: $renderer ($kind)"
 say "cpus: $(nproc); size $size, spp $spp, runs $runs, seed 1, sampler sobol"
 [ "$kind" = software ] && say "SOFTWARE GL (llvmpipe on the CPU): a smoke run, not GPU figures"
 
-echo "scene,variant,size,spp,run,ms_total,ms_primary,ms_bounce,psnr_db" >"$csv"
+echo "scene,variant,size,spp,run,ms_total,ms_primary,ms_bounce,gpu_bounce_layers,gpu_bounce_trace,psnr_db" >"$csv"
 failed=0
 # One render: scene variant size spp run args...; appends a csv line.
 render() {
@@ -69,9 +70,11 @@ import json, sys
 scene, variant, size, spp, run, psnr, path = sys.argv[1:8]
 d = json.load(open(path))
 p = d.get("ms_per_phase", {})
-primary = sum(v for k, v in p.items() if k not in ("resolve", "bounce", "compile"))
+own = ("resolve", "bounce", "compile")
+primary = sum(v for k, v in p.items() if k not in own and not k.startswith(("gpu_", "wall_")))
+gpu = lambda k: "%.2f" % p[k] if k in p else ""
 print(",".join([scene, variant, size, spp, run, "%.1f" % d["ms_total"], "%.1f" % primary,
-                "%.1f" % p.get("bounce", 0.0), psnr]))
+                "%.1f" % p.get("bounce", 0.0), gpu("gpu_bounce_layers"), gpu("gpu_bounce_trace"), psnr]))
 PY
 }
 # Every variant of one scene and size, embree first (the reference image).
@@ -91,7 +94,7 @@ python3 - "$csv" <<'PY' | tee -a "$summary"
 import csv, statistics, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
 keys = sorted({(r["scene"], r["size"], r["spp"]) for r in rows}, key=lambda k: (k[1], k[0]))
-print("scene size spp | variant: median ms total / primary / bounce, PSNR against embree | bounce gl-readback / gl")
+print("scene size spp | variant: median ms total / primary / bounce (GPU time of the resident bounce), PSNR against embree | bounce gl-readback / gl")
 for key in keys:
     line, bounce = [], {}
     for variant in ("embree", "gl", "gl-compute", "gl-readback"):
@@ -100,9 +103,11 @@ for key in keys:
             continue
         med = lambda f: statistics.median(float(r[f]) for r in rs)
         bounce[variant] = med("ms_bounce")
+        gpu = [float(r["gpu_bounce_layers"]) + float(r["gpu_bounce_trace"]) for r in rs if r["gpu_bounce_layers"]]
         psnr = rs[-1]["psnr_db"]
-        line.append(("%s %.0f / %.0f / %.0f %s" % (variant, med("ms_total"), med("ms_primary"), med("ms_bounce"),
-                                                   psnr + " dB" if psnr not in ("", "-") else "")).strip())
+        line.append(("%s %.0f / %.0f / %.0f%s %s" % (variant, med("ms_total"), med("ms_primary"), med("ms_bounce"),
+                                                     " (GPU %.1f)" % statistics.median(gpu) if gpu else "",
+                                                     psnr + " dB" if psnr not in ("", "-") else "")).strip())
     ratio = "%.2fx" % (bounce["gl-readback"] / bounce["gl"]) if bounce.get("gl") else "-"
     print("%s %s %s | %s | %s" % (key[0], key[1], key[2], "; ".join(line), ratio))
 PY
