@@ -20,10 +20,11 @@ const gl::HeadlessContext& made_current(const gl::HeadlessContext& context) {
 
 // ClusterBouncer on the GL passes: the layers built and left on the GPU,
 // then clipped, traced and the surfaces picked there.
-// Its phases: gpu_bounce_layers and wall_bounce_layers (the layers and
-// pyramid), gpu_bounce_trace and wall_bounce_trace (clipping, traces and
-// surfaces, with the rays' upload and the hits' read-back in the wall time);
-// gpu_* on hardware GL only.
+// Its phases: gpu_bounce_layers (the layers and pyramid) and
+// gpu_bounce_trace (clipping, traces and surfaces), on hardware GL only;
+// wall_bounce_layers (the host's time to issue the layer passes: nothing
+// waits for them) and wall_bounce_trace (from the rays' upload to the hits'
+// read-back, which waits for all of the cluster's GPU work).
 class GlClusterBouncer final : public ClusterBouncer {
 public:
     GlClusterBouncer(const gl::HeadlessContext& context, const GlLayerBuilder& builder, const GlLayerTracer& tracer)
@@ -42,7 +43,7 @@ public:
         builder_->upload_triangles(triangles.vertices, triangles.normals);
         if (!timers_)
             timers_.emplace(context_->gl(), std::vector<std::string>{"bounce_layers", "bounce_trace"},
-                            !context_->software());
+                            !context_->software(), false);  // no wait between the layers and the traces
     }
 
     void add_phases(RenderStats& stats) const override {
@@ -56,17 +57,18 @@ public:
         const GlLayerInput input{&triangles.vertices, &triangles.normals, &culls.own, &culls.origins,
                                  culls.normal_threshold};
         timers_->begin(layers_phase);
-        const GlLayerCounts counts = builder_->build_resident(view, layers, input);
+        builder_->build_resident(view, layers, input);
         timers_->end(layers_phase);
+        timers_->begin(trace_phase);
+        std::vector<LayerBounceHit> hits =
+            tracer_->bounce(view, layers, thickness, *builder_, rays.starts, rays.directions, rays.group_ends);
+        timers_->end(trace_phase);
+        const GlLayerCounts counts = builder_->read_counts();  // the passes are done: no wait
         stats.fragments += counts.fragments;
         stats.culled_near += counts.culled_near;
         stats.culled_in_front += counts.culled_in_front;
         stats.culled_normal += counts.culled_normal;
         stats.dropped += counts.dropped;
-        timers_->begin(trace_phase);
-        std::vector<LayerBounceHit> hits =
-            tracer_->bounce(view, layers, thickness, *builder_, rays.starts, rays.directions, rays.group_ends);
-        timers_->end(trace_phase);
         return hits;
     }
 
@@ -75,7 +77,7 @@ private:
     const gl::HeadlessContext* context_;
     const GlLayerBuilder* builder_;
     const GlLayerTracer* tracer_;
-    std::optional<GlPhaseTimers> timers_;  // made by begin(), on the context
+    mutable std::optional<GlPhaseTimers> timers_;  // made by begin(), on the context; read by add_phases
 };
 
 }  // namespace

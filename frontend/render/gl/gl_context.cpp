@@ -8,6 +8,7 @@
 #include <GL/osmesa.h>
 #include <dlfcn.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <cstdio>
@@ -551,6 +552,22 @@ void Buffer::read(void* out, std::size_t bytes, std::size_t offset) const {
     gl_->GetBufferSubData(target_, static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes), out);
     gl_->BindBuffer(target_, 0);
     check_gl(*gl_, "reading a buffer");
+}
+
+void Buffer::write(const void* data, std::size_t bytes, std::size_t offset) const {
+    if (offset > bytes_ || bytes > bytes_ - offset) throw GlError("writing past the end of a buffer");
+    gl_->BindBuffer(target_, id_);
+    gl_->BufferSubData(target_, static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes), data);
+    gl_->BindBuffer(target_, 0);
+}
+
+const Buffer& reserve_storage(const Functions& gl, std::optional<Buffer>& slot, std::size_t bytes, const void* data) {
+    if (!slot || slot->size() < bytes) {
+        slot.reset();
+        slot.emplace(gl, GL_SHADER_STORAGE_BUFFER, std::max<std::size_t>(bytes, 16));
+    }
+    if (data != nullptr && bytes > 0) slot->write(data, bytes);
+    return *slot;
 }
 
 }  // namespace blurcull::gl

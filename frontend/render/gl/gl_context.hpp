@@ -29,6 +29,7 @@
 
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -197,6 +198,8 @@ public:
     void bind_base(GLuint index) const;
     // Copies bytes [offset, offset + bytes) out; throws GlError when out of range.
     void read(void* out, std::size_t bytes, std::size_t offset = 0) const;
+    // Copies `bytes` bytes of `data` in at `offset`; throws GlError when out of range.
+    void write(const void* data, std::size_t bytes, std::size_t offset = 0) const;
 
 private:
     const Functions* gl_;
@@ -204,5 +207,12 @@ private:
     GLuint id_;
     std::size_t bytes_;
 };
+
+// The shader-storage buffer in `slot`, made anew when it holds fewer than
+// `bytes` bytes (at least 16: a zero-sized one cannot be bound usefully),
+// else kept, so passes that run again (a render's clusters) reuse their
+// buffers; `data`: its `bytes` bytes copied in.
+const Buffer& reserve_storage(const Functions& gl, std::optional<Buffer>& slot, std::size_t bytes,
+                              const void* data = nullptr);
 
 }  // namespace blurcull::gl

@@ -64,6 +64,7 @@
     X(PFNGLCLEARPROC, Clear)                                       \
     X(PFNGLREADPIXELSPROC, ReadPixels)                             \
     X(PFNGLDRAWARRAYSPROC, DrawArrays)                             \
+    X(PFNGLDRAWARRAYSINDIRECTPROC, DrawArraysIndirect)             \
     X(PFNGLENABLEPROC, Enable)                                     \
     X(PFNGLDISABLEPROC, Disable)                                   \
     X(PFNGLDEPTHFUNCPROC, DepthFunc)                               \

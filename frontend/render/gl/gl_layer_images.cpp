@@ -35,23 +35,6 @@ enum Binding : GLuint {
     texel_count_binding = BC_GL_LAYER_TEXEL_COUNTS_BINDING,
 };
 
-// The shader-storage buffer in `slot`, made anew when it holds fewer than
-// `bytes` bytes (at least 16: a zero-sized one cannot be bound usefully),
-// else kept: the clusters of a render reuse their buffers. `data`: copied in.
-const gl::Buffer& reserve(const gl::Functions& f, std::optional<gl::Buffer>& slot, std::size_t bytes,
-                          const void* data = nullptr) {
-    if (!slot || slot->size() < bytes) {
-        slot.reset();
-        slot.emplace(f, GL_SHADER_STORAGE_BUFFER, std::max<std::size_t>(bytes, 16));
-    }
-    if (data != nullptr && bytes > 0) {
-        f.BindBuffer(GL_SHADER_STORAGE_BUFFER, slot->id());
-        f.BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(bytes), data);
-        f.BindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-    }
-    return *slot;
-}
-
 void fill_words(const gl::Functions& f, const gl::Buffer& buffer, std::uint32_t value) {
     f.BindBuffer(GL_SHADER_STORAGE_BUFFER, buffer.id());
     f.ClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &value);
@@ -89,7 +72,7 @@ struct GlLayerBuilder::Passes {
 
     // Binding's buffer with room for `bytes` (`data` copied in), bound.
     const gl::Buffer& buffer(const gl::Functions& f, Binding binding, std::size_t bytes, const void* data = nullptr) {
-        const gl::Buffer& b = reserve(f, buffers[binding], bytes, data);
+        const gl::Buffer& b = gl::reserve_storage(f, buffers[binding], bytes, data);
         b.bind_base(binding);
         return b;
     }
@@ -100,8 +83,8 @@ struct GlLayerBuilder::Passes {
     void upload_triangles(const gl::Functions& f, const std::vector<std::array<glm::vec3, 3>>& vertices,
                           const std::vector<glm::vec3>& normals);
     GlLayerCounts counts(const gl::Functions& f) const;
-    std::uint32_t make_fans(const gl::Functions& f, std::size_t triangles, std::size_t origins);
-    void draw_fans(const gl::Functions& f, int size, std::uint32_t fans);
+    void make_fans(const gl::Functions& f, std::size_t triangles, std::size_t origins);
+    void draw_fans(const gl::Functions& f, int size);
     void make_pyramid(const gl::Functions& f, int size);
     GlClusterLayers read_back(const gl::Functions& f, int size, int layers, std::size_t pyramid_floats) const;
 };
@@ -131,7 +114,8 @@ void GlLayerBuilder::Passes::upload(const gl::Functions& f, const kernelf::Layer
     std::vector<glm::vec4> origin_points(origins);
     for (std::size_t i = 0; i < origins; ++i) origin_points[i] = glm::vec4((*input.origins)[i], 0.0f);
     const gpu::LayerPass pass = pass_of(view, layers, triangles, origins, input.normal_threshold);
-    const std::uint32_t zero_counts[BC_LAYER_COUNTS] = {};
+    std::uint32_t zero_counts[BC_LAYER_COUNTS] = {};
+    zero_counts[BC_LAYER_COUNT_DRAW + 1] = 1;  // the indirect draw's one instance
     if (with_triangles) {
         upload_triangles(f, *input.vertices, *input.normals);
     } else {
@@ -153,9 +137,9 @@ void GlLayerBuilder::Passes::upload(const gl::Functions& f, const kernelf::Layer
     fill_words(f, buffer(f, texel_count_binding, plane * sizeof(std::uint32_t)), 0u);
 }
 
-// The cluster's depth map and the fans; returns the number of fan triangles
-// (the draws' size: a wait for the setup pass, but no culled triangle drawn).
-std::uint32_t GlLayerBuilder::Passes::make_fans(const gl::Functions& f, std::size_t triangles, std::size_t origins) {
+// The cluster's depth map and the fans, with the draws' indirect command
+// (no culled triangle drawn, and no wait for the count).
+void GlLayerBuilder::Passes::make_fans(const gl::Functions& f, std::size_t triangles, std::size_t origins) {
     if (origins > 0) {
         f.UseProgram(cluster_depth.id());
         f.DispatchCompute(groups_of(origins, 64), 1, 1);
@@ -164,15 +148,12 @@ std::uint32_t GlLayerBuilder::Passes::make_fans(const gl::Functions& f, std::siz
         f.UseProgram(setup.id());
         f.DispatchCompute(groups_of(triangles, 64), 1, 1);
     }
-    f.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-    std::uint32_t fans = 0;
-    at(counts_binding).read(&fans, sizeof fans, BC_LAYER_COUNT_FANS * sizeof(std::uint32_t));
-    return fans;
+    f.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
 }
 
-// The two draws: depths into the k-buffer, then their triangles.
-void GlLayerBuilder::Passes::draw_fans(const gl::Functions& f, int size, std::uint32_t fans) {
-    if (fans == 0) return;
+// The two draws: depths into the k-buffer, then their triangles; each of
+// the fans the setup pass counted into the counts buffer's draw command.
+void GlLayerBuilder::Passes::draw_fans(const gl::Functions& f, int size) {
     const gl::Texture target(f, GL_TEXTURE_2D, GL_R8, size, size);  // never written: the shader has no output
     const gl::Framebuffer framebuffer(f);
     f.BindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
@@ -186,11 +167,14 @@ void GlLayerBuilder::Passes::draw_fans(const gl::Functions& f, int size, std::ui
     f.UseProgram(draw.id());
     f.BindVertexArray(vertex_array.id());
     const GLint peel_pass = f.GetUniformLocation(draw.id(), "peel_pass");
+    f.BindBuffer(GL_DRAW_INDIRECT_BUFFER, at(counts_binding).id());
+    const auto command = reinterpret_cast<const void*>(std::uintptr_t{BC_LAYER_COUNT_DRAW * sizeof(std::uint32_t)});
     for (int peel = 0; peel < 2; ++peel) {
         f.Uniform1i(peel_pass, peel);
-        f.DrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(3 * fans));
+        f.DrawArraysIndirect(GL_TRIANGLES, command);
         f.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
+    f.BindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     f.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     f.BindVertexArray(0);
     f.BindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -279,9 +263,8 @@ void GlLayerBuilder::make_layers(const kernelf::LayerView& view, int layers, con
     const gl::Functions& f = *gl_;
     check_layer_limits(f, view.size, layers);
     passes_->upload(f, view, layers, input, pyramid_floats_of(view.size), with_triangles);
-    const std::uint32_t fans =
-        passes_->make_fans(f, input.vertices->size(), input.origins != nullptr ? input.origins->size() : 0);
-    passes_->draw_fans(f, view.size, fans);
+    passes_->make_fans(f, input.vertices->size(), input.origins != nullptr ? input.origins->size() : 0);
+    passes_->draw_fans(f, view.size);
     passes_->make_pyramid(f, view.size);
 }
 
@@ -295,11 +278,11 @@ void GlLayerBuilder::upload_triangles(const std::vector<std::array<glm::vec3, 3>
     passes_->upload_triangles(*gl_, vertices, normals);
 }
 
-GlLayerCounts GlLayerBuilder::build_resident(const kernelf::LayerView& view, int layers,
-                                             const GlLayerInput& input) const {
+void GlLayerBuilder::build_resident(const kernelf::LayerView& view, int layers, const GlLayerInput& input) const {
     make_layers(view, layers, input, false);
-    return passes_->counts(*gl_);
 }
+
+GlLayerCounts GlLayerBuilder::read_counts() const { return passes_->counts(*gl_); }
 
 const gl::Buffer& GlLayerBuilder::depth_buffer() const { return passes_->at(layer_depth_binding); }
 const gl::Buffer& GlLayerBuilder::triangle_buffer() const { return passes_->at(layer_triangle_binding); }

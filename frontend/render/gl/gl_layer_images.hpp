@@ -65,12 +65,15 @@ public:
     // uploaded once per render, then per cluster build_resident, which is
     // build() with input.vertices and input.normals taken from the last
     // upload_triangles (only their count is read from input.vertices) and
-    // nothing read back but the counts: the layers' depths, triangles
-    // (~0 for none) and pyramid stay in the buffers below until the next
-    // build. Same throws as build().
+    // nothing read back, so the host does not wait for it: the layers'
+    // depths, triangles (~0 for none) and pyramid stay in the buffers below
+    // until the next build, and read_counts gives its counts (call it after
+    // the passes that use the layers: it waits for them). Same throws as
+    // build().
     void upload_triangles(const std::vector<std::array<glm::vec3, 3>>& vertices,
                           const std::vector<glm::vec3>& normals) const;
-    GlLayerCounts build_resident(const kernelf::LayerView& view, int layers, const GlLayerInput& input) const;
+    void build_resident(const kernelf::LayerView& view, int layers, const GlLayerInput& input) const;
+    GlLayerCounts read_counts() const;
     const gl::Buffer& depth_buffer() const;     // [layer][y][x] float bits, +infinity for none
     const gl::Buffer& triangle_buffer() const;  // [layer][y][x] scene triangle, ~0 for none
     const gl::Buffer& pyramid_buffer() const;   // GlClusterLayers::pyramid's layout

@@ -24,7 +24,11 @@ using ivec4 = glm::ivec4;
 #define BC_LAYER_COUNT_CULLED_NORMAL 3
 #define BC_LAYER_COUNT_DROPPED 4
 #define BC_LAYER_COUNT_FANS 5  // fan triangles written (render_layers_setup.comp)
-#define BC_LAYER_COUNTS 6
+// Slots 6 to 9: the draws' DrawArraysIndirectCommand (vertex count = 3 per
+// fan, 1 instance, first 0, base instance 0), counted by the setup pass so
+// the host draws the fans without reading their number back.
+#define BC_LAYER_COUNT_DRAW 6
+#define BC_LAYER_COUNTS 10
 
 // The bits of +infinity: "no surface" in the layers, "no cluster point" in
 // the cluster's depth map. Positive floats order as their bits, so atomicMin

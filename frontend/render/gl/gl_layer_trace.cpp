@@ -95,12 +95,12 @@ std::vector<LayerBounceHit> GlLayerTracer::bounce(const kernelf::LayerView& view
         rays[2 * i + 1] = glm::vec4(directions[i], 0.0f);
     }
     const std::vector<float> view_floats = view_values(view, layers, thickness);
-    const gl::Buffer view_buffer(f, GL_SHADER_STORAGE_BUFFER, view_floats.size() * sizeof(float), view_floats.data());
-    const gl::Buffer ray_buffer(f, GL_SHADER_STORAGE_BUFFER, rays.size() * sizeof(glm::vec4), rays.data());
-    const gl::Buffer group_buffer(f, GL_SHADER_STORAGE_BUFFER, group_ends.size() * sizeof(std::uint32_t),
-                                  group_ends.data());
-    const gl::Buffer segment_buffer(f, GL_SHADER_STORAGE_BUFFER, starts.size() * 10 * sizeof(float));
-    const gl::Buffer hit_buffer(f, GL_SHADER_STORAGE_BUFFER, starts.size() * 8 * sizeof(std::uint32_t));
+    const gl::Buffer& view_buffer = gl::reserve_storage(f, view_, view_floats.size() * sizeof(float), view_floats.data());
+    const gl::Buffer& ray_buffer = gl::reserve_storage(f, rays_, rays.size() * sizeof(glm::vec4), rays.data());
+    const gl::Buffer& group_buffer =
+        gl::reserve_storage(f, groups_, group_ends.size() * sizeof(std::uint32_t), group_ends.data());
+    const gl::Buffer& segment_buffer = gl::reserve_storage(f, segments_, starts.size() * 10 * sizeof(float));
+    const gl::Buffer& hit_buffer = gl::reserve_storage(f, hits_, starts.size() * 8 * sizeof(std::uint32_t));
     view_buffer.bind_base(BC_GL_TRACE_VIEW_BINDING);
     ray_buffer.bind_base(BC_GL_TRACE_RAYS_BINDING);
     group_buffer.bind_base(BC_GL_TRACE_GROUPS_BINDING);

@@ -15,6 +15,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace blurcull::frontend {
@@ -52,6 +53,9 @@ private:
     const gl::Functions* gl_;
     std::unique_ptr<gl::Program> program_;
     std::unique_ptr<gl::Program> clip_program_;
+    // bounce()'s buffers (view, rays, groups, segments, hits), kept from
+    // one cluster to the next.
+    mutable std::optional<gl::Buffer> view_, rays_, groups_, segments_, hits_;
 };
 
 }  // namespace blurcull::frontend

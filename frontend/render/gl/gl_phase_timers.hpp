@@ -20,28 +20,36 @@ public:
     // One query per name, on the current context (which must stay current
     // for begin, end and the destructor); without `gpu_clock` none, and
     // only the host's clock (for software GL, whose queries mean nothing).
-    GlPhaseTimers(const gl::Functions& gl, std::vector<std::string> names, bool gpu_clock = true);
+    // With `wait` end() waits for the phase's GPU work (the phases do not
+    // overlap, and the wall time includes the GPU's); without, a phase's
+    // query result is collected at its next begin() or at add_to, and its
+    // wall time is the host's time to issue it.
+    GlPhaseTimers(const gl::Functions& gl, std::vector<std::string> names, bool gpu_clock = true, bool wait = true);
     GlPhaseTimers(const GlPhaseTimers&) = delete;
     GlPhaseTimers& operator=(const GlPhaseTimers&) = delete;
     ~GlPhaseTimers();
 
     // Phases do not nest: end(k) before the next begin.
     void begin(std::size_t phase);
-    // Ends the phase's query and adds its time, waiting for the result (so
-    // the phases do not overlap); also the host's clock from begin to then.
+    // Ends the phase's query (adding its time, waiting for it, with `wait`)
+    // and adds the host's clock from begin to then.
     void end(std::size_t phase);
 
     // ms_per_phase gets gpu_<name> (GL_TIME_ELAPSED: the GPU's own clock;
     // llvmpipe's timer queries do not time compute dispatches and read ~0,
     // and give draws nonsense) with the GPU clock, then wall_<name> (the
     // host's clock over the phase's calls and its wait) for every phase.
-    void add_to(RenderStats& stats) const;
+    void add_to(RenderStats& stats);
 
 private:
+    void collect(std::size_t phase);  // a pending query's time, waited for
+
     const gl::Functions* gl_;
     std::vector<std::string> names_;
     std::vector<GLuint> ids_;
     std::vector<double> gpu_ms_, wall_ms_;
+    std::vector<char> pending_;  // a query ended but not read
+    bool wait_;
     RenderClock::time_point started_ = RenderClock::now();
 };
 

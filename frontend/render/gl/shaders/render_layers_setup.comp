@@ -2,7 +2,8 @@
 // triangle, the normal cull (the paper's third), the clip at the cluster's
 // near plane (the first) and the projection into the view, with the host's
 // arithmetic (layer_raster_shared.h); appends the fan of at most two image
-// triangles that render_layers.vert draws (culled triangles append none).
+// triangles that render_layers.vert draws (culled triangles append none),
+// and counts their vertices into the indirect draw's command.
 // docs/secondary-rays.md.
 layout(local_size_x = 64) in;
 layout(std430, binding = BC_GL_LAYER_TRIANGLES_BINDING) readonly buffer Triangles { LayerTriangle triangles[]; };
@@ -47,6 +48,7 @@ void main() {
     for (int k = 0; k < count; ++k) image[k] = bc_raster_image_point(v, clipped[k]);
     int own = int((own_bits[t >> 5u] >> (t & 31u)) & 1u);
     uint first = atomicAdd(counts[BC_LAYER_COUNT_FANS], uint(count - 2));
+    atomicAdd(counts[BC_LAYER_COUNT_DRAW], 3u * uint(count - 2));  // the indirect draw's vertex count
     for (int k = 1; k + 1 < count; ++k) {
         LayerFan fan;
         fan.a = vec4(image[0], 0.0);
