@@ -9,8 +9,13 @@
 #include "render/common/cull_method.hpp"
 #include "render/cpu/cpu_backend.hpp"
 #include "render/gl/gl_backend.hpp"
+#include "render/gl/gl_render_targets.hpp"
+#include "render/gl/gpu_layout_shared.h"
+#include "render/gl/shader_stages.hpp"
 #include "scene/builtin_scenes.hpp"
 #include "scene/gltf/gltf_loader.hpp"
+
+#include <blurcull/glsl/kernel_glsl.hpp>
 
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
@@ -302,4 +307,44 @@ TEST_CASE("gl compute pipeline: --gl-pipeline on the command line, the JSON, the
                                 bad.err.find("--occlusion") != std::string::npos;
         CHECK(names_flag);
     }
+}
+
+// The compute pipeline's sample counters are 64 bits a frame: the raster adds
+// with BC_COUNTER_ADD (render_common.glsl), which counts a carry where the
+// 32-bit word wraps, and SampleCounters reads word + 2^32 carry. Here the
+// words start just below 2^32 and 1024 invocations add 1 and 3 to them
+// (4.29 billion samples tested in one frame are out of llvmpipe's reach).
+TEST_CASE("gl compute pipeline: the sample counters carry past 2^32") {
+    GlRenderer* renderer = renderer_or_skip();
+    if (renderer == nullptr) return;
+    const blurcull::gl::HeadlessContext& context = renderer->context();
+    context.make_current();
+    const blurcull::gl::Functions& f = context.gl();
+    static const char* const main_text = R"glsl(
+layout(local_size_x = 64) in;
+layout(std430, binding = BC_GL_COUNTERS_BINDING) buffer Counters { uint tested; uint hit; uint tested_carry; uint hit_carry; };
+void main() {
+    BC_COUNTER_ADD(tested, tested_carry, 1u)
+    BC_COUNTER_ADD(hit, hit_carry, 3u)
+}
+)glsl";
+    const blurcull::gl::Program program(
+        f, {{GL_COMPUTE_SHADER,
+             {blurcull::glsl::kernel_source(), blurcull::gl::embedded_source("gpu_layout_shared.h"),
+              blurcull::gl::embedded_source("render_common.glsl"), main_text}}});
+    SampleCounters counters(f);
+    const std::uint32_t start[4] = {0xFFFFFF00u, 0xFFFFFFF0u, 0u, 0u};
+    counters.preset(start);
+    counters.bind_base(BC_GL_COUNTERS_BINDING);
+    f.UseProgram(program.id());
+    f.DispatchCompute(16, 1, 1);  // 1024 invocations
+    f.UseProgram(0);
+    RenderStats stats;
+    counters.add_to(stats);
+    CHECK(stats.samples_tested == 0xFFFFFF00ull + 1024ull);
+    CHECK(stats.samples_hit == 0xFFFFFFF0ull + 3ull * 1024ull);
+    RenderStats again;  // add_to resets every word, carries included
+    counters.add_to(again);
+    CHECK(again.samples_tested == 0);
+    CHECK(again.samples_hit == 0);
 }

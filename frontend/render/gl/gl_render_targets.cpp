@@ -7,7 +7,7 @@
 namespace blurcull::frontend {
 namespace {
 
-constexpr std::uint32_t zero_counters[2] = {0, 0};
+constexpr std::uint32_t zero_counters[4] = {0, 0, 0, 0};  // tested, hit, and their carries
 
 }  // namespace
 
@@ -56,12 +56,14 @@ SampleCounters::SampleCounters(const gl::Functions& gl)
 
 void SampleCounters::add_to(RenderStats& stats) {
     gl_->MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    std::uint32_t counters[2] = {0, 0};
+    std::uint32_t counters[4] = {0, 0, 0, 0};
     buffer_.read(counters, sizeof counters);
-    stats.samples_tested += counters[0];
-    stats.samples_hit += counters[1];
+    stats.samples_tested += counters[0] + (std::uint64_t{counters[2]} << 32);
+    stats.samples_hit += counters[1] + (std::uint64_t{counters[3]} << 32);
     gl_->BindBuffer(GL_SHADER_STORAGE_BUFFER, buffer_.id());
     gl_->BufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof zero_counters, zero_counters);
 }
+
+void SampleCounters::preset(const std::uint32_t (&words)[4]) { buffer_.write(words, sizeof words); }
 
 }  // namespace blurcull::frontend

@@ -41,14 +41,19 @@ private:
     gl::Framebuffer framebuffer_;
 };
 
-// Two 32-bit SSBO counters, samples tested and samples hit, that the
-// fragment shaders atomicAdd to; added to RenderStats in 64 bits and reset
-// after each pass, so no pass overflows them.
+// SSBO counters of samples tested and samples hit: two 32-bit words the
+// fragment shaders atomicAdd to, reset after each pass (so no pass
+// overflows them), and after them a carry word each, which the compute
+// pipeline's raster adds to where a frame's count wraps (BC_COUNTER_ADD in
+// render_common.glsl); added to RenderStats in 64 bits. bind_base binds the
+// buffer for a pass; the test of the carry writes words with preset.
 class SampleCounters {
 public:
     explicit SampleCounters(const gl::Functions& gl);
     void bind_base(GLuint index) const { buffer_.bind_base(index); }
     void add_to(RenderStats& stats);
+    // Sets the four words (tested, hit, and their carries): for tests.
+    void preset(const std::uint32_t (&words)[4]);
 
 private:
     const gl::Functions* gl_;

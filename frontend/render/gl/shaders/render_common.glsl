@@ -6,6 +6,17 @@
 // The clip-space triangles, made on the host by make_moving_triangle<float>.
 layout(std430, binding = BC_GL_TRIANGLES_BINDING) readonly buffer Triangles { MovingTriangle triangles[]; };
 
+// Adds uint `n` to the 64-bit counter held as two buffer words, `lo` and
+// `carry`: atomically, the carry counted where lo wraps (old + n < old). A
+// frame of the compute pipeline can test more than 2^32 samples (about 20
+// times the forest at 1024x768, 16 spp); the host reads lo + 2^32 carry
+// (SampleCounters). A macro: atomics take the buffer variable itself.
+#define BC_COUNTER_ADD(lo, carry, n)                    \
+    {                                                   \
+        uint bc_counter_before_ = atomicAdd(lo, (n));   \
+        if (bc_counter_before_ + (n) < bc_counter_before_) atomicAdd(carry, 1u); \
+    }
+
 uniform vec2 image_size;   // width, height in pixels
 uniform float near_plane;  // CameraModel::znear
 uniform uint spp;

@@ -21,7 +21,8 @@
 layout(local_size_x = BC_GL_TILE_SIZE, local_size_y = BC_GL_TILE_SIZE) in;
 
 layout(std430, binding = BC_GL_INFOS_BINDING) readonly buffer Infos { TriangleInfo infos[]; };
-layout(std430, binding = BC_GL_COUNTERS_BINDING) buffer Counters { uint tested; uint hit; };
+// The fragment stages' two words, and their carries (BC_COUNTER_ADD): 64-bit counts per frame.
+layout(std430, binding = BC_GL_COUNTERS_BINDING) buffer Counters { uint tested; uint hit; uint tested_carry; uint hit_carry; };
 layout(std430, binding = BC_GL_SAMPLE_IDS_BINDING) buffer SampleIds { uint sample_ids[]; };
 layout(std430, binding = BC_GL_SAMPLE_KEYS_BINDING) buffer SampleKeys { float sample_keys[]; };
 // render_compute_strata.comp: per triangle the screen box of each shutter slice.
@@ -196,7 +197,7 @@ void main() {
             sample_keys[slot + k] = best_key[k];
         }
     }
-    if (tested_here > 0u) atomicAdd(tested, tested_here);
-    if (hit_here > 0u) atomicAdd(hit, hit_here);
+    if (tested_here > 0u) BC_COUNTER_ADD(tested, tested_carry, tested_here)
+    if (hit_here > 0u) BC_COUNTER_ADD(hit, hit_carry, hit_here)
     if (occluded_here > 0u) atomicAdd(bin_state.occluded, occluded_here);
 }
