@@ -33,6 +33,7 @@
 //    against the host's on the same GL layers: the same hits per ray (the
 //    test case below says how exactly).
 // 5. The primary pass on the compute pipeline: the fragment pipeline's image.
+// 6. More rays than one row of work groups (over 4.19 million).
 //
 // No GL context (no Mesa): fails when CI=true, else skips with a message.
 #include "gl_parity_helpers.hpp"
@@ -434,4 +435,52 @@ TEST_CASE("dof-secondary: the primary pass on the compute pipeline gives the fra
             CHECK(e.max_abs == 0.0);
         }
     }
+}
+
+// 6. More rays than one row of work groups: the clip and trace passes
+//    dispatch rows of at most 65,535 groups of 64 (dispatch_items), so a
+//    cluster of over 4.19 million rays (the JCST water at 800x600, 100 spp,
+//    has some) runs in a second row. 4,194,340 segments through the trace
+//    pass, all empty (quick) but the last 100, which pass through a layer
+//    and must hit as on the host.
+TEST_CASE("dof-secondary: the trace pass takes more rays than one row of work groups") {
+    std::optional<blurcull::gl::HeadlessContext> context = context_or_skip();
+    if (!context) return;
+    GlRenderer rasterizer;
+    const GlDofSecondary passes(rasterizer, *context);
+    const LayerTracer tracer = passes.layer_tracer();
+    kernelf::LayerView view;
+    view.eye = glm::vec3(0.0f);
+    view.forward = glm::vec3(0.0f, 0.0f, 1.0f);
+    view.right = glm::vec3(1.0f, 0.0f, 0.0f);
+    view.up = glm::vec3(0.0f, 1.0f, 0.0f);
+    view.tan_half_fov = 1.0f;
+    view.near = 0.1f;
+    view.far = 100.0f;
+    view.size = 8;
+    const std::vector<float> depth(64, 5.0f);  // one layer: a plane at depth 5
+    const std::size_t count = 65535u * 64u + 100u;
+    kernelf::LayerSegment empty{};
+    empty.empty = true;
+    std::vector<kernelf::LayerSegment> segments(count, empty);
+    for (std::size_t i = count - 100; i < count; ++i) {
+        const float x = -0.5f + 0.01f * static_cast<float>(i - (count - 100));
+        segments[i] = kernelf::layer_segment(view, glm::vec3(x, 0.2f, 1.0f), glm::vec3(0.0f, 0.0f, 1.0f), 1e30f,
+                                             glm::vec2(0.0f, 1e30f));
+    }
+    const std::vector<kernelf::LayerHit> gpu = tracer(view, depth, 1, 0.1f, segments);
+    const std::vector<kernelf::LayerSegment> last(segments.end() - 100, segments.end());
+    const std::vector<kernelf::LayerHit> host = trace_layers_on_host(view, depth, 1, 0.1f, last);
+    REQUIRE(gpu.size() == count);
+    int hits = 0, differ = 0;
+    for (std::size_t i = 0; i < 100; ++i) {
+        const kernelf::LayerHit& g = gpu[count - 100 + i];
+        hits += g.hit ? 1 : 0;
+        differ += g.hit != host[i].hit || g.steps != host[i].steps ? 1 : 0;
+    }
+    int stray = 0;  // an empty segment has no hit and no step
+    for (std::size_t i = 0; i + 100 < count; ++i) stray += gpu[i].hit || gpu[i].steps != 0 ? 1 : 0;
+    CHECK(hits == 100);
+    CHECK(differ == 0);
+    CHECK(stray == 0);
 }

@@ -3,6 +3,7 @@
 #include "render/gl/gpu_layout_shared.h"
 #include "render/gl/shader_stages.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 
@@ -22,6 +23,19 @@ GlLayerTracer::GlLayerTracer(const gl::HeadlessContext& context)
 GlLayerTracer::~GlLayerTracer() { context_->make_current_for_release(); }
 
 namespace {
+
+// Dispatches `items` invocations of the bound program's 64-wide work
+// groups, as render_secondary_common.glsl's dispatch_item numbers them:
+// rows of at most 65,535 groups (the least GL_MAX_COMPUTE_WORK_GROUP_COUNT
+// a GL 4.3 context offers), so a cluster of more than 4.2 million rays
+// fits. The shaders skip items past the count.
+void dispatch_items(const gl::Functions& f, std::size_t items) {
+    constexpr std::size_t row = 65535;
+    const std::size_t groups = (items + 63) / 64;
+    const auto x = static_cast<GLuint>(std::min(groups, row));
+    const auto y = static_cast<GLuint>((groups + row - 1) / row);
+    f.DispatchCompute(x, y, 1);
+}
 
 // The view as render_secondary_common.glsl reads it.
 std::vector<float> view_values(const kernelf::LayerView& view, int layers, float thickness) {
@@ -58,7 +72,7 @@ std::vector<kernelf::LayerHit> GlLayerTracer::trace(const kernelf::LayerView& vi
     f.UseProgram(program_->id());
     f.Uniform1ui(f.GetUniformLocation(program_->id(), "count"), count);
     f.Uniform1i(f.GetUniformLocation(program_->id(), "pick_surface"), 0);
-    f.DispatchCompute((count + 63u) / 64u, 1, 1);
+    dispatch_items(f, count);
     f.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     gl::check_gl(f, "dof-secondary: the layer trace pass");
     std::vector<std::uint32_t> out(segments.size() * 8);
@@ -112,13 +126,13 @@ std::vector<LayerBounceHit> GlLayerTracer::bounce(const kernelf::LayerView& view
     const auto groups = static_cast<GLuint>(group_ends.size());
     f.UseProgram(clip_program_->id());
     f.Uniform1ui(f.GetUniformLocation(clip_program_->id(), "groups"), groups);
-    f.DispatchCompute((groups + 63u) / 64u, 1, 1);
+    dispatch_items(f, groups);
     f.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     const auto count = static_cast<GLuint>(starts.size());
     f.UseProgram(program_->id());
     f.Uniform1ui(f.GetUniformLocation(program_->id(), "count"), count);
     f.Uniform1i(f.GetUniformLocation(program_->id(), "pick_surface"), 1);
-    f.DispatchCompute((count + 63u) / 64u, 1, 1);
+    dispatch_items(f, count);
     f.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     gl::check_gl(f, "dof-secondary: the clip and trace passes");
     std::vector<std::uint32_t> out(starts.size() * 8);

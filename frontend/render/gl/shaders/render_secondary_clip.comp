@@ -6,7 +6,7 @@
 // every non-empty segment is clipped to that interval again: clip_group in
 // render/secondary/dof_secondary.cpp, with the same kernel and
 // bounce_shared.h text, so the same segments. The trace pass reads them.
-layout(local_size_x = 64) in;
+layout(local_size_x = BC_TRACE_GROUP) in;
 layout(std430, binding = BC_GL_TRACE_PYRAMID_BINDING) readonly buffer Pyramid { float pyramid[]; };  // levels, finest first, (lo, hi) a cell
 layout(std430, binding = BC_GL_TRACE_RAYS_BINDING) readonly buffer Rays { vec4 ray_in[]; };          // start, direction per ray
 layout(std430, binding = BC_GL_TRACE_GROUPS_BINDING) readonly buffer Groups { uint group_end[]; };
@@ -36,7 +36,7 @@ vec2 pyramid_interval(int x0, int y0, int x1, int y1, int size) {
 }
 
 void main() {
-    uint g = gl_GlobalInvocationID.x;
+    uint g = dispatch_item();
     if (g >= groups) return;
     uint first = g == 0u ? 0u : group_end[g - 1u];
     uint last = group_end[g];

@@ -6,6 +6,15 @@
 layout(std430, binding = BC_GL_TRACE_VIEW_BINDING) readonly buffer View { float view_in[]; };
 layout(std430, binding = BC_GL_TRACE_SEGMENTS_BINDING) buffer Segments { float segment_io[]; };
 
+// The invocation's item: dispatches are 2D (gl_layer_trace.cpp,
+// dispatch_items) so that more than 65,535 work groups of items fit. Both
+// passes declare local_size_x = BC_TRACE_GROUP (gl_WorkGroupSize is not
+// declared before their layout line).
+#define BC_TRACE_GROUP 64
+uint dispatch_item() {
+    return (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * uint(BC_TRACE_GROUP) + gl_LocalInvocationID.x;
+}
+
 LayerView trace_view() {
     LayerView v;
     v.eye = vec3(view_in[0], view_in[1], view_in[2]);

@@ -7,7 +7,7 @@
 // emitted text as the host, so the same hits. With pick_surface, the hit's
 // surface is picked from the layers' triangles as the host's hit_triangle
 // does (bounce_shared.h), so only it need come back.
-layout(local_size_x = 64) in;
+layout(local_size_x = BC_TRACE_GROUP) in;
 layout(std430, binding = BC_GL_TRACE_DEPTHS_BINDING) readonly buffer Depths { float depth_in[]; };  // layer, y, x
 layout(std430, binding = BC_GL_TRACE_HITS_BINDING) writeonly buffer Hits { uint hit_out[]; };     // 8 per ray
 layout(std430, binding = BC_GL_TRACE_TRIANGLE_IDS_BINDING) readonly buffer TriangleIds { uint triangle_in[]; };  // layer, y, x
@@ -41,7 +41,7 @@ uint hit_surface(LayerView v, LayerHit h) {
 }
 
 void main() {
-    uint r = gl_GlobalInvocationID.x;
+    uint r = dispatch_item();
     if (r >= count) return;
     LayerView v = trace_view();
     int layers = trace_layer_count();
