@@ -18,6 +18,15 @@ const gl::HeadlessContext& made_current(const gl::HeadlessContext& context) {
     return context;
 }
 
+// The GL passes' counts added to render/secondary's.
+void add_counts(LayerStats& stats, const GlLayerCounts& counts) {
+    stats.fragments += counts.fragments;
+    stats.culled_near += counts.culled_near;
+    stats.culled_in_front += counts.culled_in_front;
+    stats.culled_normal += counts.culled_normal;
+    stats.dropped += counts.dropped;
+}
+
 // ClusterBouncer on the GL passes: the layers built and left on the GPU,
 // then clipped, traced and the surfaces picked there.
 // Its phases: gpu_bounce_layers (the layers and pyramid) and
@@ -63,12 +72,7 @@ public:
         std::vector<LayerBounceHit> hits =
             tracer_->bounce(view, layers, thickness, *builder_, rays.starts, rays.directions, rays.group_ends);
         timers_->end(trace_phase);
-        const GlLayerCounts counts = builder_->read_counts();  // the passes are done: no wait
-        stats.fragments += counts.fragments;
-        stats.culled_near += counts.culled_near;
-        stats.culled_in_front += counts.culled_in_front;
-        stats.culled_normal += counts.culled_normal;
-        stats.dropped += counts.dropped;
+        add_counts(stats, builder_->read_counts());  // the passes are done: no wait
         return hits;
     }
 
@@ -83,11 +87,7 @@ private:
 }  // namespace
 
 ClusterLayers to_cluster_layers(GlClusterLayers&& built, LayerStats& stats) {
-    stats.fragments += built.counts.fragments;
-    stats.culled_near += built.counts.culled_near;
-    stats.culled_in_front += built.counts.culled_in_front;
-    stats.culled_normal += built.counts.culled_normal;
-    stats.dropped += built.counts.dropped;
+    add_counts(stats, built.counts);
     LayerImages images;
     images.size = built.size;
     images.layers = built.layers;

@@ -15,7 +15,6 @@
 #include "scene/scene_checks.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>

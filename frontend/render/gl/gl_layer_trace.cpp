@@ -6,23 +6,17 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <string_view>
 
 namespace blurcull::frontend {
 
-GlLayerTracer::GlLayerTracer(const gl::HeadlessContext& context)
-    : context_((context.make_current(), &context)),
-      gl_(&context.gl()),
-      program_(std::make_unique<gl::Program>(
-          context.gl(),
-          std::vector<gl::ShaderStage>{gl::shader_stage(GL_COMPUTE_SHADER, "render_secondary_trace.comp", gl::Prelude::secondary)})),
-      clip_program_(std::make_unique<gl::Program>(
-          context.gl(),
-          std::vector<gl::ShaderStage>{gl::shader_stage(GL_COMPUTE_SHADER, "render_secondary_clip.comp", gl::Prelude::secondary)})) {}
-
-// The program's glDeleteProgram acts on the current context: this one's, with several alive.
-GlLayerTracer::~GlLayerTracer() { context_->make_current_for_release(); }
-
 namespace {
+
+// A compute pass of dof-secondary's (Prelude::secondary).
+std::unique_ptr<gl::Program> secondary_program(const gl::Functions& f, std::string_view main_name) {
+    return std::make_unique<gl::Program>(
+        f, std::vector<gl::ShaderStage>{gl::shader_stage(GL_COMPUTE_SHADER, main_name, gl::Prelude::secondary)});
+}
 
 // Dispatches `items` invocations of the bound program's 64-wide work
 // groups, as render_secondary_common.glsl's dispatch_item numbers them:
@@ -37,6 +31,13 @@ void dispatch_items(const gl::Functions& f, std::size_t items) {
     f.DispatchCompute(x, y, 1);
 }
 
+// `slot`'s buffer with room for `bytes` (gl::reserve_storage; `data` copied
+// in), bound at `binding`.
+void bind_storage(const gl::Functions& f, std::optional<gl::Buffer>& slot, GLuint binding, std::size_t bytes,
+                  const void* data = nullptr) {
+    gl::reserve_storage(f, slot, bytes, data).bind_base(binding);
+}
+
 // The view as render_secondary_common.glsl reads it.
 std::vector<float> view_values(const kernelf::LayerView& view, int layers, float thickness) {
     return {view.eye.x,     view.eye.y,     view.eye.z,        view.forward.x, view.forward.y,   view.forward.z,
@@ -45,6 +46,29 @@ std::vector<float> view_values(const kernelf::LayerView& view, int layers, float
 }
 
 }  // namespace
+
+GlLayerTracer::GlLayerTracer(const gl::HeadlessContext& context)
+    : context_((context.make_current(), &context)),
+      gl_(&context.gl()),
+      program_(secondary_program(context.gl(), "render_secondary_trace.comp")),
+      clip_program_(secondary_program(context.gl(), "render_secondary_clip.comp")) {}
+
+// The programs' and buffers' glDelete* act on the current context: this one's, with several alive.
+GlLayerTracer::~GlLayerTracer() { context_->make_current_for_release(); }
+
+std::vector<std::uint32_t> GlLayerTracer::run_trace(std::size_t count, bool pick_surface, const char* what) const {
+    const gl::Functions& f = *gl_;
+    f.UseProgram(program_->id());
+    f.Uniform1ui(f.GetUniformLocation(program_->id(), "count"), static_cast<GLuint>(count));
+    f.Uniform1i(f.GetUniformLocation(program_->id(), "pick_surface"), pick_surface ? 1 : 0);
+    dispatch_items(f, count);
+    f.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    gl::check_gl(f, what);
+    std::vector<std::uint32_t> out(count * 8);
+    hits_->read(out.data(), out.size() * sizeof(std::uint32_t));
+    f.UseProgram(0);
+    return out;
+}
 
 std::vector<kernelf::LayerHit> GlLayerTracer::trace(const kernelf::LayerView& view, const std::vector<float>& depth,
                                                     int layers, float thickness,
@@ -59,25 +83,13 @@ std::vector<kernelf::LayerHit> GlLayerTracer::trace(const kernelf::LayerView& vi
         std::memcpy(&packed[i * 10], values, sizeof values);
     }
     const std::vector<float> view_floats = view_values(view, layers, thickness);
-    const gl::Buffer depth_buffer(f, GL_SHADER_STORAGE_BUFFER, depth.size() * sizeof(float), depth.data());
-    const gl::Buffer segment_buffer(f, GL_SHADER_STORAGE_BUFFER, packed.size() * sizeof(float), packed.data());
-    const gl::Buffer view_buffer(f, GL_SHADER_STORAGE_BUFFER, view_floats.size() * sizeof(float), view_floats.data());
-    const gl::Buffer hit_buffer(f, GL_SHADER_STORAGE_BUFFER, segments.size() * 8 * sizeof(std::uint32_t));
+    const gl::Buffer& depth_buffer = gl::reserve_storage(f, depths_, depth.size() * sizeof(float), depth.data());
     depth_buffer.bind_base(BC_GL_TRACE_DEPTHS_BINDING);
-    segment_buffer.bind_base(BC_GL_TRACE_SEGMENTS_BINDING);
-    view_buffer.bind_base(BC_GL_TRACE_VIEW_BINDING);
-    hit_buffer.bind_base(BC_GL_TRACE_HITS_BINDING);
     depth_buffer.bind_base(BC_GL_TRACE_TRIANGLE_IDS_BINDING);  // never read: no surface picked here
-    const auto count = static_cast<GLuint>(segments.size());
-    f.UseProgram(program_->id());
-    f.Uniform1ui(f.GetUniformLocation(program_->id(), "count"), count);
-    f.Uniform1i(f.GetUniformLocation(program_->id(), "pick_surface"), 0);
-    dispatch_items(f, count);
-    f.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    gl::check_gl(f, "dof-secondary: the layer trace pass");
-    std::vector<std::uint32_t> out(segments.size() * 8);
-    hit_buffer.read(out.data(), out.size() * sizeof(std::uint32_t));
-    f.UseProgram(0);
+    bind_storage(f, segments_, BC_GL_TRACE_SEGMENTS_BINDING, packed.size() * sizeof(float), packed.data());
+    bind_storage(f, view_, BC_GL_TRACE_VIEW_BINDING, view_floats.size() * sizeof(float), view_floats.data());
+    bind_storage(f, hits_, BC_GL_TRACE_HITS_BINDING, segments.size() * 8 * sizeof(std::uint32_t));
+    const std::vector<std::uint32_t> out = run_trace(segments.size(), false, "dof-secondary: the layer trace pass");
     auto as_float = [](std::uint32_t bits) {
         float value;
         std::memcpy(&value, &bits, sizeof value);
@@ -109,17 +121,11 @@ std::vector<LayerBounceHit> GlLayerTracer::bounce(const kernelf::LayerView& view
         rays[2 * i + 1] = glm::vec4(directions[i], 0.0f);
     }
     const std::vector<float> view_floats = view_values(view, layers, thickness);
-    const gl::Buffer& view_buffer = gl::reserve_storage(f, view_, view_floats.size() * sizeof(float), view_floats.data());
-    const gl::Buffer& ray_buffer = gl::reserve_storage(f, rays_, rays.size() * sizeof(glm::vec4), rays.data());
-    const gl::Buffer& group_buffer =
-        gl::reserve_storage(f, groups_, group_ends.size() * sizeof(std::uint32_t), group_ends.data());
-    const gl::Buffer& segment_buffer = gl::reserve_storage(f, segments_, starts.size() * 10 * sizeof(float));
-    const gl::Buffer& hit_buffer = gl::reserve_storage(f, hits_, starts.size() * 8 * sizeof(std::uint32_t));
-    view_buffer.bind_base(BC_GL_TRACE_VIEW_BINDING);
-    ray_buffer.bind_base(BC_GL_TRACE_RAYS_BINDING);
-    group_buffer.bind_base(BC_GL_TRACE_GROUPS_BINDING);
-    segment_buffer.bind_base(BC_GL_TRACE_SEGMENTS_BINDING);
-    hit_buffer.bind_base(BC_GL_TRACE_HITS_BINDING);
+    bind_storage(f, view_, BC_GL_TRACE_VIEW_BINDING, view_floats.size() * sizeof(float), view_floats.data());
+    bind_storage(f, rays_, BC_GL_TRACE_RAYS_BINDING, rays.size() * sizeof(glm::vec4), rays.data());
+    bind_storage(f, groups_, BC_GL_TRACE_GROUPS_BINDING, group_ends.size() * sizeof(std::uint32_t), group_ends.data());
+    bind_storage(f, segments_, BC_GL_TRACE_SEGMENTS_BINDING, starts.size() * 10 * sizeof(float));
+    bind_storage(f, hits_, BC_GL_TRACE_HITS_BINDING, starts.size() * 8 * sizeof(std::uint32_t));
     built.depth_buffer().bind_base(BC_GL_TRACE_DEPTHS_BINDING);
     built.triangle_buffer().bind_base(BC_GL_TRACE_TRIANGLE_IDS_BINDING);
     built.pyramid_buffer().bind_base(BC_GL_TRACE_PYRAMID_BINDING);
@@ -128,16 +134,7 @@ std::vector<LayerBounceHit> GlLayerTracer::bounce(const kernelf::LayerView& view
     f.Uniform1ui(f.GetUniformLocation(clip_program_->id(), "groups"), groups);
     dispatch_items(f, groups);
     f.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    const auto count = static_cast<GLuint>(starts.size());
-    f.UseProgram(program_->id());
-    f.Uniform1ui(f.GetUniformLocation(program_->id(), "count"), count);
-    f.Uniform1i(f.GetUniformLocation(program_->id(), "pick_surface"), 1);
-    dispatch_items(f, count);
-    f.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    gl::check_gl(f, "dof-secondary: the clip and trace passes");
-    std::vector<std::uint32_t> out(starts.size() * 8);
-    hit_buffer.read(out.data(), out.size() * sizeof(std::uint32_t));
-    f.UseProgram(0);
+    const std::vector<std::uint32_t> out = run_trace(starts.size(), true, "dof-secondary: the clip and trace passes");
     for (std::size_t i = 0; i < hits.size(); ++i) {
         hits[i].hit = out[i * 8] != 0u;
         hits[i].steps = static_cast<int>(out[i * 8 + 2]);

@@ -53,9 +53,14 @@ private:
     const gl::Functions* gl_;
     std::unique_ptr<gl::Program> program_;
     std::unique_ptr<gl::Program> clip_program_;
-    // bounce()'s buffers (view, rays, groups, segments, hits), kept from
-    // one cluster to the next.
-    mutable std::optional<gl::Buffer> view_, rays_, groups_, segments_, hits_;
+    // The passes' buffers (trace's depths; view, rays, groups, segments,
+    // hits), kept from one cluster to the next.
+    mutable std::optional<gl::Buffer> depths_, view_, rays_, groups_, segments_, hits_;
+
+    // The trace pass over `count` segments in the bound buffers (hits_ at
+    // BC_GL_TRACE_HITS_BINDING), picking surfaces or not; its 8 words per
+    // ray read back. Throws gl::GlError naming `what`.
+    std::vector<std::uint32_t> run_trace(std::size_t count, bool pick_surface, const char* what) const;
 };
 
 }  // namespace blurcull::frontend

@@ -341,11 +341,14 @@ RenderResult render_dof_secondary(const Scene& scene, const RenderSettings& sett
 
     phase = Clock::now();
     const float diagonal = std::max(world.diagonal(), 1e-6f);
+    // The bouncer runs the image-space bounce only (exact and environment
+    // bounces stay on the host).
+    ClusterBouncer* const resident = options.bounces == SecondaryBounces::image_space ? bouncer : nullptr;
     const BounceContext context{scene, options, primary.rays, world, colours,
                                 std::tan(0.5f * options.fov_degrees * 3.14159265358979f / 180.0f),
                                 1e-3f * diagonal, options.thickness_fraction * diagonal, 1e-4f * diagonal,
-                                settings.spp, tracer, layer_builder, bouncer};
-    if (bouncer != nullptr && options.bounces == SecondaryBounces::image_space) bouncer->begin(world);
+                                settings.spp, tracer, layer_builder, resident};
+    if (resident != nullptr) resident->begin(world);
     SecondaryStats stats;
     stats.reflector_samples = primary.reflector_samples;
     stats.rays = primary.rays.size();
@@ -355,7 +358,7 @@ RenderResult render_dof_secondary(const Scene& scene, const RenderSettings& sett
     for (std::size_t r = 0; r < primary.rays.size(); ++r)
         primary.sample_colour[primary.rays[r].sample] += primary.rays[r].weight * radiance[r];
     result.stats.ms_per_phase.emplace_back("bounce", ms_since(phase));
-    if (bouncer != nullptr && options.bounces == SecondaryBounces::image_space) bouncer->add_phases(result.stats);
+    if (resident != nullptr) resident->add_phases(result.stats);
     result.image = resolve_samples(primary.sample_colour, settings.width, settings.height, settings.spp);
     result.stats.ms_total = ms_since(start);
     if (stats.clusters_split + stats.clusters_unusable > 0) {
