@@ -20,34 +20,21 @@
 # $OUT (or ./gpu-bench when unset); exits non-zero if a render failed or, on
 # llvmpipe, compute-noocc and fragment disagree on a scene's samples_hit.
 set -u
-blurcull=$(command -v blurcull || true)
-[ -n "$blurcull" ] || blurcull=build/frontend/blurcull
-[ -x "$blurcull" ] || { echo "run.sh: no blurcull on PATH or in build/frontend" >&2; exit 2; }
-dest=${OUT:-$PWD/gpu-bench}
-mkdir -p "$dest"
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-summary=$dest/summary.txt
+script=run.sh
+summary_name=summary.txt
+# shellcheck source=bench/gpu/bench_common.sh
+. "$(dirname "$0")/bench_common.sh"
 csv=$dest/bench.csv
-: >"$summary"
-say() { echo "$*" | tee -a "$summary"; }
 
-# What GL is this? A 1x1 compute render names it (render --json's gl_renderer).
-probe=$("$blurcull" render --backend gl --gl-pipeline compute --scene hand --size 8x8 --spp 4 --json -q \
-        -o "$work/probe.png" 2>"$work/probe.err")
-renderer=$(printf '%s' "$probe" | python3 -c 'import json, sys; print(json.load(sys.stdin).get("gl_renderer", "?"))' \
-           2>/dev/null || echo "none ($(head -c 200 "$work/probe.err"))")
-case "$renderer" in
-  *llvmpipe*|*softpipe*|*swrast*) kind=software; def_size=128x96; def_spp=4; def_runs=1 ;;
-  *) kind=hardware; def_size=1024x768; def_spp=16; def_runs=3 ;;
-esac
+# What GL is this? A tiny compute render names it.
+probe_gl --gl-pipeline compute --scene hand
+if [ "$kind" = software ]; then def_size=128x96; def_spp=4; def_runs=1; else def_size=1024x768; def_spp=16; def_runs=3; fi
 size=${BENCH_SIZE:-$def_size}
 spp=${BENCH_SPP:-$def_spp}
 runs=${BENCH_RUNS:-$def_runs}
 scenes=${BENCH_SCENES:-"hand car dragonfly forest"}
 backends=${BENCH_BACKENDS:-"compute compute-noocc fragment cpu embree"}
-say "date: $(date -u +%FT%TZ)"
-command -v nvidia-smi >/dev/null && say "gpu: $(nvidia-smi --query-gpu=name,driver_version --format=csv,noheader 2>&1)"
+say_machine
 say "gl: $renderer ($kind)"
 say "cpus: $(nproc); size $size, spp $spp, runs $runs, cull bbox, seed 1, sampler sobol"
 [ "$kind" = software ] && say "SOFTWARE GL (llvmpipe on the CPU): a smoke run, not GPU figures"

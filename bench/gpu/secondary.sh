@@ -21,31 +21,19 @@
 # secondary.csv and secondary-summary.txt under $OUT (or ./gpu-bench);
 # exits non-zero if a render failed.
 set -u
-blurcull=$(command -v blurcull || true)
-[ -n "$blurcull" ] || blurcull=build/frontend/blurcull
-[ -x "$blurcull" ] || { echo "secondary.sh: no blurcull on PATH or in build/frontend" >&2; exit 2; }
+script=secondary.sh
+summary_name=secondary-summary.txt
+# shellcheck source=bench/gpu/bench_common.sh
+. "$(dirname "$0")/bench_common.sh"
 here=$(cd "$(dirname "$0")/.." && pwd)
-dest=${OUT:-$PWD/gpu-bench}
-mkdir -p "$dest"
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-summary=$dest/secondary-summary.txt
 csv=$dest/secondary.csv
-: >"$summary"
-say() { echo "$*" | tee -a "$summary"; }
 
-probe=$("$blurcull" render --backend gl --scene mirror-sphere --size 8x8 --spp 4 --json -q -o "$work/probe.png" 2>"$work/probe.err")
-renderer=$(printf '%s' "$probe" | python3 -c 'import json, sys; print(json.load(sys.stdin).get("gl_renderer", "?"))' \
-           2>/dev/null || echo "none ($(head -c 200 "$work/probe.err"))")
-case "$renderer" in
-  *llvmpipe*|*softpipe*|*swrast*) kind=software; def_size=100x75; def_spp=4; def_runs=1 ;;
-  *) kind=hardware; def_size=1024x768; def_spp=16; def_runs=3 ;;
-esac
+probe_gl --scene mirror-sphere
+if [ "$kind" = software ]; then def_size=100x75; def_spp=4; def_runs=1; else def_size=1024x768; def_spp=16; def_runs=3; fi
 size=${BENCH_SIZE:-$def_size}
 spp=${BENCH_SPP:-$def_spp}
 runs=${BENCH_RUNS:-$def_runs}
-say "date: $(date -u +%FT%TZ)"
-command -v nvidia-smi >/dev/null && say "gpu: $(nvidia-smi --query-gpu=name,driver_version --format=csv,noheader 2>&1)"
+say_machine
 say "gl: $renderer ($kind)"
 say "cpus: $(nproc); size $size, spp $spp, runs $runs, seed 1, sampler sobol"
 [ "$kind" = software ] && say "SOFTWARE GL (llvmpipe on the CPU): a smoke run, not GPU figures"
