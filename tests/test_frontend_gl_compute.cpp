@@ -1,7 +1,8 @@
 // The GL backend's compute pipeline (frontend/render/gl/gl_compute_pipeline.hpp,
 // GlOptions::pipeline = compute): the same samples decided the same way as
 // the cpu backend's float path and the fragment pipeline (hits, sample ids,
-// pixels), every cull method, a forced tile-list overflow, and the command
+// pixels), every cull method, a forced tile-list overflow, triangle batches
+// (any size gives the same ids; a scene past one dispatch), and the command
 // line (--gl-pipeline, the JSON). No GL context: SKIPPED, or a failure when
 // CI=true.
 #include "cli_runner.hpp"
@@ -253,6 +254,81 @@ TEST_CASE("gl compute pipeline: an overflowing tile list is binned again, the sa
     CHECK(forced.stats.samples_hit == normal.stats.samples_hit);
     CHECK(forced.stats.samples_tested == normal.stats.samples_tested);
     CHECK(same_pixels(forced.image, normal.image));
+}
+
+TEST_CASE("gl compute pipeline: triangles in batches, the same samples whatever the batch") {
+    GlRenderer* gl = renderer_or_skip();
+    if (gl == nullptr) return;
+    // The forest with occlusion (the held depth keys carry between batches)
+    // and a texture-masked model with one material made BLEND (the mask and
+    // the blend hash take the scene index, the kernel the batch's).
+    const std::string data = std::string(BLURCULL_SOURCE_DIR) + "/tests/data/shading/";
+    Scene masked = load_gltf_scene(data + "mask_texture.gltf", GltfOptions{}, [](const std::string&) {});
+    REQUIRE(masked.materials.size() >= 1);
+    masked.materials.back().alpha_mode = AlphaMode::blend;
+    masked.camera.lens_radius = 0.05f;
+    masked.camera.focus_distance = 4.0f;
+    const Scene forest = small_scene("forest", 96, 72);
+    for (const Scene* scene : {&forest, static_cast<const Scene*>(&masked)}) {
+        const RenderSettings settings = settings_for(96, 72, 8);
+        const std::size_t count = scene->triangles.size();
+        std::vector<std::uint32_t> ids;
+        const RenderResult whole = gl->render(*scene, settings, compute_options(true), &ids);
+        CHECK(counter(whole.stats, "triangle_batches") == 1.0);
+        for (const std::size_t batch : {std::size_t{1}, std::size_t{1000}, count / 3 + 1}) {
+            if (batch == 1 && count > 2000) continue;  // a dispatch per triangle: the small model only
+            GlOptions options = compute_options(true);
+            options.triangle_batch = batch;
+            std::vector<std::uint32_t> batched_ids;
+            const RenderResult batched = gl->render(*scene, settings, options, &batched_ids);
+            INFO(scene->name, ", ", count, " triangles in batches of ", batch);
+            CHECK(counter(batched.stats, "triangle_batches") == static_cast<double>((count + batch - 1) / batch));
+            CHECK(counter(batched.stats, "gpu_buffer_bytes") < counter(whole.stats, "gpu_buffer_bytes"));
+            CHECK(batched_ids == ids);
+            CHECK(same_pixels(batched.image, whole.image));
+        }
+    }
+}
+
+// More triangles than one dispatch of 65,535 groups of 64 holds (the
+// pipeline's old limit): 4,194,340, all but the last 100 behind the camera.
+// The image and ids are those of the last 100 alone, their ids shifted.
+TEST_CASE("gl compute pipeline: a scene of over 4.19 million triangles") {
+    GlRenderer* gl = renderer_or_skip();
+    if (gl == nullptr) return;
+    Scene front;
+    front.name = "quads";
+    front.materials.push_back(Material{});
+    for (int k = 0; k < 50; ++k) {  // 100 triangles: 50 small quads in a row, moving right
+        const float x = -1.0f + 0.04f * static_cast<float>(k), y = 0.02f * static_cast<float>(k % 7) - 0.1f;
+        add_quad(front, {x, y, -3.0f}, {x + 0.03f, y, -3.0f}, {x + 0.03f, y + 0.2f, -3.0f}, {x, y + 0.2f, -3.0f},
+                 {0.02f, 0.0f, 0.0f}, 0);
+    }
+    REQUIRE(front.triangles.size() == 100);
+    const std::size_t count = std::size_t{65535} * 64 + 100;
+    Scene big = front;
+    big.position_open.insert(big.position_open.end(), {{0, 0, 1}, {1, 0, 1}, {0, 1, 1}});  // behind the camera
+    big.position_close.insert(big.position_close.end(), {{0, 0, 1}, {1, 0, 1}, {0, 1, 1}});
+    const auto behind = static_cast<std::uint32_t>(big.position_open.size() - 3);
+    big.triangles.assign(count - 100, glm::uvec3(behind, behind + 1, behind + 2));
+    big.triangles.insert(big.triangles.end(), front.triangles.begin(), front.triangles.end());
+    big.triangle_material.assign(count, 0);
+    const RenderSettings settings = settings_for(64, 48, 4);
+    std::vector<std::uint32_t> ids, front_ids;
+    const RenderResult whole = gl->render(big, settings, compute_options(), &ids);
+    const RenderResult alone = gl->render(front, settings, compute_options(), &front_ids);
+    REQUIRE(ids.size() == front_ids.size());
+    std::size_t differ = 0, shown = 0;
+    for (std::size_t j = 0; j < ids.size(); ++j) {
+        const std::uint32_t expected = front_ids[j] == no_triangle ? no_triangle : front_ids[j] + (count - 100);
+        differ += ids[j] != expected ? 1 : 0;
+        shown += front_ids[j] != no_triangle ? 1 : 0;
+    }
+    INFO(counter(whole.stats, "triangle_batches"), " batches");
+    CHECK(shown > 100);
+    CHECK(differ == 0);
+    CHECK(same_pixels(whole.image, alone.image));
+    CHECK(whole.stats.samples_hit == alone.stats.samples_hit);
 }
 
 namespace {

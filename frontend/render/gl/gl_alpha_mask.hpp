@@ -28,6 +28,8 @@ public:
     void bind() const;
     // Triangles whose material is alphaMode MASK or BLEND.
     std::size_t masked_triangles() const { return masked_; }
+    // Their buffers' bytes (GPU memory).
+    std::size_t buffer_bytes() const { return slots_.size() + triangles_.size() + texels_.size(); }
 
 private:
     GlAlphaMask(const gl::Functions& gl, const gl_mask_detail::MaskData& data);

@@ -48,6 +48,12 @@ struct GlOptions {
     // The same image; fewer samples tested, and fewer counted in
     // samples_hit, as the cpu backend's CpuOptions::occlusion.
     bool occlusion = true;
+    // Compute pipeline: triangles set up, binned and rasterized at a time
+    // (0: 2^20; at most 4,194,240, and as many as a storage block holds of
+    // their 464-byte records). The per-triangle buffers hold one batch, so
+    // GPU memory is bounded whatever the scene's size (counter
+    // gpu_buffer_bytes); the same image for any size.
+    std::size_t triangle_batch = 0;
     // Compute pipeline: a moving or defocused triangle's samples tested only
     // inside the screen box of their shutter slice (BC_GL_TIME_STRATA of
     // them, the kernel's stratum_screen_box). The same image, fewer samples

@@ -70,18 +70,34 @@ void check_compute_request(const Scene& scene, const RenderSettings& settings) {
         throw std::invalid_argument(std::string("gl: the compute pipeline renders the stochastic method only (method ") +
                                     to_string(settings.method) + ")");
     }
-    // One invocation per triangle, 64 per work group, at most 65535 groups.
-    constexpr std::size_t triangle_limit = std::size_t{65535} * 64;
-    if (scene.triangles.size() > triangle_limit) {
+    // Sample ids hold a scene index below no_triangle (the background).
+    if (scene.triangles.size() >= no_triangle) {
         throw gl::GlError("gl: " + std::to_string(scene.triangles.size()) +
-                          " triangles exceed the compute pipeline's limit of " + std::to_string(triangle_limit));
+                          " triangles exceed the compute pipeline's limit of " + std::to_string(no_triangle - 1));
     }
+}
+
+// The GL's largest shader storage block, in bytes.
+std::size_t storage_block_limit(const gl::Functions& gl) {
+    return static_cast<std::size_t>(static_cast<unsigned>(get_integer(gl, GL_MAX_SHADER_STORAGE_BLOCK_SIZE)));
+}
+
+// Triangles per batch: GlOptions::triangle_batch, or 2^20 (~700 MiB of
+// per-batch buffers, docs/gl-backend.md); at most as many TriangleInfos (the
+// largest per-triangle record) as a storage block holds (llvmpipe: 128 MiB,
+// ~289,000), and one invocation per triangle in at most 65535 work groups
+// of 64 (GL's guaranteed dispatch size).
+std::size_t batch_size(const gl::Functions& gl, const GlOptions& options) {
+    constexpr std::size_t dispatch_limit = std::size_t{65535} * 64;
+    const std::size_t wanted = options.triangle_batch > 0 ? options.triangle_batch : std::size_t{1} << 20;
+    const std::size_t block_limit = std::max<std::size_t>(storage_block_limit(gl) / sizeof(TriangleInfo), 1);
+    return std::min({wanted, dispatch_limit, block_limit});
 }
 
 // A storage buffer of `bytes`, refused in one line when it exceeds the GL's
 // largest shader storage block.
 gl::Buffer bounded_buffer(const gl::Functions& gl, std::size_t bytes, const char* what) {
-    const auto limit = static_cast<std::size_t>(static_cast<unsigned>(get_integer(gl, GL_MAX_SHADER_STORAGE_BLOCK_SIZE)));
+    const std::size_t limit = storage_block_limit(gl);
     if (bytes > limit) {
         throw gl::GlError("gl: the compute pipeline's " + std::string(what) + " need " + std::to_string(bytes >> 20) +
                           " MiB, more than the GL's largest storage block (" + std::to_string(limit >> 20) + " MiB)");
@@ -89,23 +105,26 @@ gl::Buffer bounded_buffer(const gl::Functions& gl, std::size_t bytes, const char
     return storage_buffer(gl, std::max<std::size_t>(bytes, 4));
 }
 
+// One frame: the per-sample buffers live through it; the per-triangle ones
+// hold one batch of at most `batch` triangles (load_batch), which is set up,
+// binned and rasterized before the next; the samples carry the winners over.
 class ComputeFrame {
 public:
     ComputeFrame(const gl::Functions& gl, GlComputePrograms& programs, const Scene& scene,
-                 const RenderSettings& settings)
+                 const RenderSettings& settings, std::size_t batch)
         : gl_(gl),
           programs_(programs),
+          scene_(scene),
           settings_(settings),
           model_(scene.camera, settings.width, settings.height),
-          count_(scene.triangles.size()),
+          batch_capacity_(std::max<std::size_t>(std::min(batch, scene.triangles.size()), 1)),
           pixels_(static_cast<std::size_t>(settings.width) * static_cast<std::size_t>(settings.height)),
           tiles_x_(static_cast<std::uint32_t>((settings.width + tile_size - 1) / tile_size)),
           tiles_y_(static_cast<std::uint32_t>((settings.height + tile_size - 1) / tile_size)),
           tiles_(static_cast<std::size_t>(tiles_x_) * tiles_y_),
-          triangles_(frame_triangles(scene, model_, false)),
-          triangle_buffer_(storage_buffer(gl_, triangles_.gpu)),
-          info_buffer_(bounded_buffer(gl_, std::max<std::size_t>(count_, 1) * sizeof(TriangleInfo), "triangle infos")),
-          class_buffer_(storage_buffer(gl_, triangles_.classes)),
+          triangle_buffer_(bounded_buffer(gl_, batch_capacity_ * sizeof(gpu::GpuMovingTriangle), "triangles")),
+          info_buffer_(bounded_buffer(gl_, batch_capacity_ * sizeof(TriangleInfo), "triangle infos")),
+          class_buffer_(bounded_buffer(gl_, batch_capacity_ * sizeof(std::int32_t), "triangle classes")),
           counters_(gl_),
           colour_buffer_(storage_buffer(gl_, frame_colours(scene))),
           sum_buffer_(bounded_buffer(gl_, pixels_ * sizeof(glm::vec4), "pixel sums")),
@@ -113,12 +132,34 @@ public:
                                     "sample ids")),
           key_buffer_(bounded_buffer(gl_, pixels_ * static_cast<std::size_t>(settings.spp) * sizeof(float),
                                      "sample depth keys")),
-          stratum_buffer_(bounded_buffer(gl_, std::max<std::size_t>(count_, 1) * BC_GL_TIME_STRATA * sizeof(glm::vec4),
-                                         "stratum boxes")),
+          stratum_buffer_(bounded_buffer(gl_, batch_capacity_ * BC_GL_TIME_STRATA * sizeof(glm::vec4), "stratum boxes")),
           tile_count_buffer_(storage_buffer(gl_, tiles_ * sizeof(std::uint32_t))),
           tile_end_buffer_(storage_buffer(gl_, tiles_ * sizeof(std::uint32_t))),
           state_buffer_(storage_buffer(gl_, sizeof(TileBinState))),
           mask_(gl_, scene) {}
+
+    // The scene's triangles first ... first + count - 1 (count at most the
+    // batch size) into the per-triangle buffers, made on the host as the
+    // fragment pipeline's (frame_triangles).
+    void load_batch(std::size_t first, std::size_t count) {
+        const FrameTriangles batch = frame_triangles(scene_, model_, false, first, count);
+        triangle_buffer_.write(batch.gpu.data(), batch.gpu.size() * sizeof(gpu::GpuMovingTriangle));
+        class_buffer_.write(batch.classes.data(), batch.classes.size() * sizeof(std::int32_t));
+        first_ = first;
+        count_ = count;
+    }
+
+    // The bytes of every buffer the frame holds now (the tile lists at their
+    // current capacity): what it needs of GPU memory, less the programs.
+    std::size_t buffer_bytes() const {
+        std::size_t bytes = mask_.buffer_bytes();  // and the counters' 16
+        for (const gl::Buffer* buffer :
+             {&triangle_buffer_, &info_buffer_, &class_buffer_, &colour_buffer_, &sum_buffer_, &id_buffer_,
+              &key_buffer_, &stratum_buffer_, &tile_count_buffer_, &tile_end_buffer_, &state_buffer_}) {
+            bytes += buffer->size();
+        }
+        return bytes + (list_buffer_ ? list_buffer_->size() : 0);
+    }
 
     // render_setup.comp: each triangle's screen bound, pixel rectangle, path;
     // render_compute_strata.comp: its shutter slices' screen boxes.
@@ -144,7 +185,7 @@ public:
     // Binning: count, prefix sum, then (the lists grown first when the scan
     // found them longer than `capacity`: counted in `retries`) the fill.
     TileBinState run_binning(std::size_t& capacity, int& retries, GlPhaseTimers& timers) {
-        list_buffer_.emplace(bounded_buffer(gl_, capacity * sizeof(std::uint32_t), "tile lists"));
+        reserve_lists(capacity);
         bind_common();
         timers.begin(binning_phase);
         gl_.BindBuffer(GL_SHADER_STORAGE_BUFFER, tile_count_buffer_.id());
@@ -165,7 +206,7 @@ public:
             // Found before anything was written: the lists get room for all.
             capacity = state.entries;
             ++retries;
-            list_buffer_.emplace(bounded_buffer(gl_, capacity * sizeof(std::uint32_t), "tile lists"));
+            reserve_lists(capacity);
             list_buffer_->bind_base(BC_GL_TILE_LIST_BINDING);
             state.capacity = static_cast<std::uint32_t>(capacity);
             state.overflow = 0;
@@ -180,8 +221,9 @@ public:
         return state;
     }
 
-    // The raster pass: a dispatch per chunk of samples and slice of the
-    // lists (slice_entries of them; the lists are at most max_count long).
+    // The raster pass over the loaded batch: a dispatch per chunk of samples
+    // and slice of the lists (slice_entries of them; the lists are at most
+    // max_count long). The first batch starts every sample at the background.
     void run_raster(std::uint32_t max_count, std::uint32_t slice_entries, bool occlusion, GlPhaseTimers& timers) {
         timers.begin(raster_phase);
         set_common(gl_, programs_.raster, model_, settings_, 0);
@@ -190,12 +232,14 @@ public:
         set_uint(gl_, programs_.raster, "tiles_x", tiles_x_);
         set_uint(gl_, programs_.raster, "slice_entries", slice_entries);
         set_int(gl_, programs_.raster, "occlusion", occlusion ? 1 : 0);
+        set_uint(gl_, programs_.raster, "triangle_base", static_cast<std::uint32_t>(first_));
         const auto spp = static_cast<std::uint32_t>(settings_.spp);
         for (std::uint32_t chunk = 0; chunk < spp; chunk += raster_chunk) {
             set_uint(gl_, programs_.raster, "chunk_base", chunk);
             // At least one slice: the first starts every sample at the background.
             for (std::uint32_t first = 0; first == 0 || first < max_count; first += slice_entries) {
                 set_uint(gl_, programs_.raster, "slice_first", first);
+                set_int(gl_, programs_.raster, "carry", first > 0 || first_ > 0 ? 1 : 0);
                 gl_.DispatchCompute(tiles_x_, tiles_y_, 1);
                 gl_.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
             }
@@ -216,7 +260,7 @@ public:
     void run_resolve(GlPhaseTimers& timers, RenderStats& stats) {
         timers.begin(resolve_phase);
         set_common(gl_, programs_.resolve, model_, settings_, 0);
-        set_uint(gl_, programs_.resolve, "background", static_cast<std::uint32_t>(count_));
+        set_uint(gl_, programs_.resolve, "background", static_cast<std::uint32_t>(scene_.triangles.size()));
         set_int(gl_, programs_.resolve, "keep_ids", 0);
         set_int(gl_, programs_.resolve, "ids_in_buffer", 1);
         set_int(gl_, programs_.resolve, "pass_ids", BC_GL_PASS_IDS_UNIT);
@@ -238,10 +282,20 @@ public:
         return image;
     }
 
-    // A first capacity: at least 4 entries per triangle and one per tile.
-    std::size_t default_capacity() const { return std::max<std::size_t>(4 * count_, tiles_); }
+    // A first capacity: at least 4 entries per triangle of a batch and one per tile.
+    std::size_t default_capacity() const { return std::max<std::size_t>(4 * batch_capacity_, tiles_); }
 
 private:
+    // Tile lists of at least `capacity` entries: the batch before's when they
+    // hold that many, else new ones.
+    void reserve_lists(std::size_t capacity) {
+        const std::size_t bytes = std::max<std::size_t>(capacity, 1) * sizeof(std::uint32_t);
+        if (!list_buffer_ || list_buffer_->size() < bytes) {
+            list_buffer_.reset();
+            list_buffer_.emplace(bounded_buffer(gl_, bytes, "tile lists"));
+        }
+    }
+
     void write_state(std::size_t capacity) const {
         TileBinState start{};
         start.capacity = static_cast<std::uint32_t>(capacity);
@@ -283,12 +337,13 @@ private:
 
     const gl::Functions& gl_;
     GlComputePrograms& programs_;
+    const Scene& scene_;
     const RenderSettings& settings_;
     CameraModel model_;
-    std::size_t count_, pixels_;
+    std::size_t batch_capacity_, pixels_;
     std::uint32_t tiles_x_, tiles_y_;
     std::size_t tiles_;
-    FrameTriangles triangles_;
+    std::size_t first_ = 0, count_ = 0;  // the loaded batch
     gl::Buffer triangle_buffer_, info_buffer_, class_buffer_;
     SampleCounters counters_;
     gl::Buffer colour_buffer_, sum_buffer_, id_buffer_, key_buffer_, stratum_buffer_;
@@ -319,39 +374,59 @@ RenderResult render_gl_compute(const gl::HeadlessContext& context, std::shared_p
     const bool keep_ids = (options.keep_sample_ids && sample_ids != nullptr) || shader.any_per_hit();
     std::vector<std::uint32_t>* kept_ids = options.keep_sample_ids && sample_ids != nullptr ? sample_ids : &winners;
     GlPhaseTimers timers(gl, phase_names());
-    ComputeFrame frame(gl, *programs, scene, settings);
-    frame.run_setup(options.time_strata, timers);
-    stats.ms_per_phase.emplace_back("setup", ms_since(phase));
-
-    phase = RenderClock::now();
+    const std::size_t count = scene.triangles.size();
+    const std::size_t batch = batch_size(gl, options);
+    ComputeFrame frame(gl, *programs, scene, settings, batch);
     std::size_t capacity = options.tile_list_capacity > 0
                                ? options.tile_list_capacity
                                : std::max(frame.default_capacity(),
                                           programs->needed_entries + programs->needed_entries / 4);
+    // Summed or the largest over the batches.
     int retries = 0;
-    const TileBinState state = frame.run_binning(capacity, retries, timers);
-    if (options.tile_list_capacity == 0) programs->needed_entries = state.entries;
-    const std::uint32_t slice =
-        context.software() ? software_slice_entries : std::max<std::uint32_t>(state.max_count, 1);
-    frame.run_raster(state.max_count, slice, options.occlusion, timers);
-    frame.run_resolve(timers, stats);
-    stats.ms_per_phase.emplace_back("raster+resolve", ms_since(phase));
+    std::size_t batches = 0, needed = 0, peak_bytes = 0;
+    double entries = 0.0, occluded = 0.0, setup_ms = 0.0, raster_ms = 0.0;
+    std::uint32_t longest = 0, slice = 0;
+    for (std::size_t first = 0; first == 0 || first < count; first += batch) {
+        phase = RenderClock::now();
+        frame.load_batch(first, std::min(batch, count - first));
+        frame.run_setup(options.time_strata, timers);
+        setup_ms += ms_since(phase);
 
-    const TileBinState final_state = frame.final_state();
-    if (final_state.overflow != 0) {
-        throw gl::GlError("gl: the compute pipeline's tile lists overflowed after they were sized");
+        phase = RenderClock::now();
+        const TileBinState state = frame.run_binning(capacity, retries, timers);
+        slice = context.software() ? software_slice_entries : std::max<std::uint32_t>(state.max_count, 1);
+        frame.run_raster(state.max_count, slice, options.occlusion, timers);
+        const TileBinState final_state = frame.final_state();
+        if (final_state.overflow != 0) {
+            throw gl::GlError("gl: the compute pipeline's tile lists overflowed after they were sized");
+        }
+        raster_ms += ms_since(phase);
+        ++batches;
+        needed = std::max<std::size_t>(needed, state.entries);
+        entries += state.entries;
+        occluded += final_state.occluded;
+        longest = std::max(longest, state.max_count);
+        peak_bytes = std::max(peak_bytes, frame.buffer_bytes());
     }
+    if (options.tile_list_capacity == 0) programs->needed_entries = needed;
+    stats.ms_per_phase.emplace_back("setup", setup_ms);
+    phase = RenderClock::now();
+    frame.run_resolve(timers, stats);
+    stats.ms_per_phase.emplace_back("raster+resolve", raster_ms + ms_since(phase));
+
     phase = RenderClock::now();
     result.image = frame.read_back(keep_ids ? kept_ids : nullptr);
     if (shader.any_per_hit()) result.image = resolve_sample_ids(shader, model, settings, *kept_ids);
     stats.ms_per_phase.emplace_back("readback", ms_since(phase));
     timers.add_to(stats);
-    stats.counters.emplace_back("tile_list_entries", static_cast<double>(state.entries));
+    stats.counters.emplace_back("triangle_batches", static_cast<double>(batches));
+    stats.counters.emplace_back("gpu_buffer_bytes", static_cast<double>(peak_bytes));
+    stats.counters.emplace_back("tile_list_entries", entries);
     stats.counters.emplace_back("tile_list_capacity", static_cast<double>(capacity));
     stats.counters.emplace_back("tile_list_retries", static_cast<double>(retries));
-    stats.counters.emplace_back("tile_list_longest", static_cast<double>(state.max_count));
+    stats.counters.emplace_back("tile_list_longest", static_cast<double>(longest));
     stats.counters.emplace_back("raster_slice_entries", static_cast<double>(slice));
-    stats.counters.emplace_back("occluded_entries", static_cast<double>(final_state.occluded));
+    stats.counters.emplace_back("occluded_entries", occluded);
     stats.ms_total = ms_since(start);
     return result;
 }

@@ -36,19 +36,24 @@ gl::Buffer storage_buffer(const gl::Functions& gl, std::size_t bytes) {
 }
 
 FrameTriangles frame_triangles(const Scene& scene, const CameraModel& model, bool force_full_path) {
-    const std::size_t count = scene.triangles.size();
+    return frame_triangles(scene, model, force_full_path, 0, scene.triangles.size());
+}
+
+FrameTriangles frame_triangles(const Scene& scene, const CameraModel& model, bool force_full_path,
+                               std::size_t first, std::size_t count) {
     FrameTriangles out;
     out.gpu.resize(std::max<std::size_t>(count, 1));
     out.classes.assign(std::max<std::size_t>(count, 1), BC_INVALID);
-    for (std::size_t i = 0; i < count; ++i) {
+    for (std::size_t k = 0; k < count; ++k) {
+        const std::size_t i = first + k;
         const kernelf::MovingTriangle tri = make_moving_triangle<float>(scene, model, i);
-        out.classes[i] = kernelf::classify(tri);
-        if (out.classes[i] == 0 && !force_full_path) {
+        out.classes[k] = kernelf::classify(tri);
+        if (out.classes[k] == 0 && !force_full_path) {
             out.static_list.push_back(static_cast<std::uint32_t>(i));
-        } else if (out.classes[i] != BC_INVALID) {
+        } else if (out.classes[k] != BC_INVALID) {
             out.moving_list.push_back(static_cast<std::uint32_t>(i));
         }
-        out.gpu[i] = gpu::to_gpu(tri);
+        out.gpu[k] = gpu::to_gpu(tri);
     }
     out.static_count = out.static_list.size();
     out.moving_count = out.moving_list.size();

@@ -48,8 +48,12 @@ struct FrameTriangles {
 
 // classify() here, on the float triangle the GLSL sees (kernel<float> and its
 // GLSL twin are bit-identical), so each path draws a list of only its own
-// triangles, in index order.
+// triangles, in index order. With `first` and `count`: the scene's triangles
+// first ... first + count - 1 only (the compute pipeline's batches), at
+// entries 0 ... count - 1 of gpu and classes; the lists hold scene indices.
 FrameTriangles frame_triangles(const Scene& scene, const CameraModel& model, bool force_full_path);
+FrameTriangles frame_triangles(const Scene& scene, const CameraModel& model, bool force_full_path,
+                               std::size_t first, std::size_t count);
 
 // Each triangle's shaded colour, then the background's (index = triangle count).
 std::vector<glm::vec4> frame_colours(const Scene& scene);

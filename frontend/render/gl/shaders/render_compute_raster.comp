@@ -4,7 +4,11 @@
 // (chunk_base ...) against the entries slice_first ... slice_first +
 // slice_entries - 1 of each tile's list; the host dispatches every (chunk,
 // slice), and the winners so far carry over between slices in SampleIds and
-// SampleKeys. (One slice holds the longest list on a hardware GPU; on
+// SampleKeys, and between triangle batches too (the host sets up, bins and
+// rasterizes a scene in batches of at most GlOptions::triangle_batch
+// triangles: triangles[], the infos, stratum boxes and lists hold the batch,
+// indices local to it; a sample's id is the scene index, triangle_base plus
+// the local one). (One slice holds the longest list on a hardware GPU; on
 // llvmpipe, which ends any shader invocation's loops after 65535 iterations
 // in all, a slice is one batch of 64 entries.) The slice is read in batches of one
 // triangle per invocation: each invocation sets up one triangle's pixels in
@@ -36,6 +40,8 @@ uniform uint tiles_x;       // tiles per row
 uniform uint chunk_base;    // this dispatch's samples: chunk_base ... chunk_base + CHUNK - 1
 uniform uint slice_first;   // and list entries: slice_first ... slice_first + slice_entries - 1
 uniform uint slice_entries;
+uniform uint triangle_base; // the batch's first scene triangle
+uniform int carry;          // 1: the samples hold earlier slices' or batches' winners (SampleIds, SampleKeys)
 uniform int occlusion;      // 1: skip an entry whose depth floor is behind every sample the tile holds
 
 #define BATCH (BC_GL_TILE_SIZE * BC_GL_TILE_SIZE)
@@ -55,10 +61,10 @@ void main() {
     uvec2 tile = gl_WorkGroupID.xy;
     uint t = tile.y * tiles_x + tile.x;
     uint count = tile_counts[t];
-    // Uniform over the work group, before any barrier: a later slice past
-    // the list's end has nothing to add (the first slice always runs: it
-    // starts every sample at the background).
-    if (slice_first > 0u && slice_first >= count) return;
+    // Uniform over the work group, before any barrier: a later slice or
+    // batch past the list's end has nothing to add (the frame's first slice
+    // always runs: it starts every sample at the background).
+    if (carry != 0 && slice_first >= count) return;
     uint first = tile_ends[t] - count;  // the fill advanced each end by the count
     uint slice_end = min(count, slice_first + slice_entries);
     uvec2 pixel = tile * uint(BC_GL_TILE_SIZE) + gl_LocalInvocationID.xy;
@@ -80,7 +86,7 @@ void main() {
         best_id[k] = NO_TRIANGLE;
         if (inside && k < samples_here) {
             pattern_sample(setup, pixel, chunk_base + k, ndc_lens[k], times[k]);
-            if (slice_first > 0u) {
+            if (carry != 0) {
                 best_key[k] = sample_keys[slot + k];
                 best_id[k] = sample_ids[slot + k];
             }
@@ -151,6 +157,7 @@ void main() {
                 continue;
             }
             int i = int(batch_triangle[e]);
+            uint scene_index = triangle_base + uint(i);
             SampleBounds sb = carried_sample_bounds(c.lens, c.time_lines_u_a, c.time_lines_u_b, c.time_lines_v_a,
                                                     c.time_lines_v_b);
             ScreenBound screen;
@@ -173,14 +180,15 @@ void main() {
                                              near_plane, depth);
                 if (verdict != BC_SAMPLE_CULLED) ++tested_here;
                 // alphaMode MASK after coverage, before the depth rule
-                if (verdict == BC_SAMPLE_COVERED && mask_keeps(i, ndc_lens[k].xy, ndc_lens[k].zw, times[k])) {
+                if (verdict == BC_SAMPLE_COVERED &&
+                    mask_keeps_batch(int(scene_index), i, ndc_lens[k].xy, ndc_lens[k].zw, times[k])) {
                     ++hit_here;
                     float key = bc_depth_key(near_plane, depth);
                     // key > 0: as the depth test against the cleared 0
                     if (key > 0.0 &&
-                        (best_id[k] == NO_TRIANGLE || bc_depth_key_wins(key, uint(i), best_key[k], best_id[k]))) {
+                        (best_id[k] == NO_TRIANGLE || bc_depth_key_wins(key, scene_index, best_key[k], best_id[k]))) {
                         best_key[k] = key;
-                        best_id[k] = uint(i);
+                        best_id[k] = scene_index;
                     }
                 }
             }

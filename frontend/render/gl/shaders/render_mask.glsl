@@ -23,14 +23,16 @@ vec4 bc_texel(ivec4 tex, int x, int y) {
 }
 
 // Whether sample (ndc, lens, time), which bc_sample_test found covered by
-// `triangle`, stays covered: always for an opaque triangle.
-bool mask_keeps(int triangle, vec2 ndc, vec2 lens, float time) {
+// scene triangle `triangle` (at triangles[local]: the compute pipeline's
+// batches hold a part of the scene), stays covered: always for an opaque
+// triangle.
+bool mask_keeps_batch(int triangle, int local, vec2 ndc, vec2 lens, float time) {
     int slot = mask_slot[triangle];
     if (slot < 0) return true;
     MaskTriangle m = mask_triangles[slot];
     float depth;
     vec3 b;
-    if (!bc_covers_hit(triangles[triangle], ndc, lens, time, near_plane, depth, b)) b = vec3(1.0 / 3.0);
+    if (!bc_covers_hit(triangles[local], ndc, lens, time, near_plane, depth, b)) b = vec3(1.0 / 3.0);
     int flags = m.wrap_flags.z;
     float vertex_alpha = 1.0;
     if ((flags & BC_GL_MASK_HAS_COLOR) != 0) {
@@ -47,4 +49,10 @@ bool mask_keeps(int triangle, vec2 ndc, vec2 lens, float time) {
     }
     return bc_alpha_test(bc_hit_alpha(m.uv2_alpha.z, vertex_alpha, texture_alpha), m.uv2_alpha.w,
                          (flags & BC_GL_MASK_BLEND) != 0, uint(triangle), ndc, time);
+}
+
+// The same where triangles[] holds the whole scene (every pass but the
+// compute pipeline's raster).
+bool mask_keeps(int triangle, vec2 ndc, vec2 lens, float time) {
+    return mask_keeps_batch(triangle, triangle, ndc, lens, time);
 }
