@@ -13,6 +13,7 @@
 
 #include <glm/glm.hpp>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -111,10 +112,12 @@ TEST_CASE("built-in scenes: the catalogue lists every scene once, its descriptio
     const std::vector<BuiltinSceneInfo> catalogue = builtin_scene_catalogue();
     std::vector<std::string> expected = builtin_scene_names();
     for (const std::string& name : secondary_scene_names()) expected.push_back(name);
+    for (const std::string& name : large_scene_names()) expected.push_back(name);
     std::vector<std::string> names;
     for (const BuiltinSceneInfo& scene : catalogue) {
         CAPTURE(scene.name);
         names.push_back(scene.name);
+        if (scene.name == "forest-10m") continue;  // its own test below builds it once
         CHECK(scene.description.find('\n') == std::string::npos);
         // "(... 54k triangles)": within 1k (rounding) of the scene's count.
         const std::size_t at = scene.description.find("k triangles)");
@@ -127,7 +130,31 @@ TEST_CASE("built-in scenes: the catalogue lists every scene once, its descriptio
         CHECK(std::abs(triangles / 1000.0 - thousands) <= 1.0);
     }
     CHECK(names == expected);
-    CHECK(expected.size() == 7);
+    CHECK(expected.size() == 8);
+}
+
+TEST_CASE("built-in scenes: forest-10m is the forest's walk at 10 million triangles") {
+    const Scene big = make_builtin_scene("forest-10m", SceneOptions{});
+    const Scene forest = make_builtin_scene("forest", SceneOptions{});
+    CHECK(big.name == "forest-10m");
+    CHECK(big.triangles.size() >= 10'000'000);
+    CHECK(big.triangles.size() <= 10'001'000);  // the catalogue's "10000k", a tree past the target at most
+    std::string description;
+    for (const BuiltinSceneInfo& scene : builtin_scene_catalogue())
+        if (scene.name == "forest-10m") description = scene.description;
+    CHECK(description.find("(10000k triangles)") != std::string::npos);
+    const std::vector<std::string> iterated = builtin_scene_names();  // what the tests and benchmarks walk
+    CHECK(std::find(iterated.begin(), iterated.end(), "forest-10m") == iterated.end());
+    // The same camera, blur and materials as the forest: every triangle moves on screen.
+    CHECK(big.camera.view_open == forest.camera.view_open);
+    CHECK(big.camera.view_close == forest.camera.view_close);
+    CHECK(big.camera.lens_radius == forest.camera.lens_radius);
+    REQUIRE(big.materials.size() == forest.materials.size());
+    for (std::size_t m = 0; m < big.materials.size(); ++m) CHECK(big.materials[m].name == forest.materials[m].name);
+    const SceneStats stats = describe(big);
+    CHECK(stats.camera_motion);
+    CHECK_FALSE(stats.object_motion);
+    CHECK_NOTHROW(validate_scene(big));
 }
 
 TEST_CASE("built-in scenes: names, sizes near the thesis workloads, determinism, validity") {
@@ -312,7 +339,7 @@ TEST_CASE("built-in scenes: the camera frames the subject for the aspect") {
 
 TEST_CASE("built-in scenes: bad names and options are one-line SceneErrors") {
     CHECK(error_of([] { make_builtin_scene("x", SceneOptions{}); }) ==
-          "unknown scene 'x' (known: hand, car, dragonfly, forest, mirror-sphere, water, curved-mirror)");
+          "unknown scene 'x' (known: hand, car, dragonfly, forest, mirror-sphere, water, curved-mirror, forest-10m)");
     CHECK(error_of([] { make_builtin_scene("hand", SceneOptions{-1.0f, 1.0f}); }).find("blur scale") !=
           std::string::npos);
     CHECK(error_of([] { make_builtin_scene("hand", SceneOptions{1.0f, 0.0f}); }).find("aspect") !=
@@ -630,7 +657,7 @@ TEST_CASE("load_scene: upper-case extensions load the file; other extensions are
     CHECK(error_of([] { load_scene("scenes/car.OBJ"); }) ==
           "scenes/car.OBJ: unsupported scene file type (expected .gltf or .glb)");
     CHECK(error_of([] { load_scene("nowhere"); }) ==
-          "unknown scene 'nowhere' (known: hand, car, dragonfly, forest, mirror-sphere, water, curved-mirror)");
+          "unknown scene 'nowhere' (known: hand, car, dragonfly, forest, mirror-sphere, water, curved-mirror, forest-10m)");
 }
 
 TEST_CASE("load_scene: settings over the scene's own, validated once at the end") {

@@ -15,7 +15,7 @@
 set -u
 gl_tests=(
   test_frontend_gl_parity test_frontend_gl_raster_parity test_frontend_gl_optics_parity
-  test_frontend_gl_secondary_parity test_frontend_gl_dof_secondary test_frontend_gl_render
+  test_frontend_gl_secondary_parity test_frontend_gl_dof_secondary test_frontend_gl_render test_frontend_gl_compute
   test_frontend_gl_methods test_frontend_shading test_frontend_sampler
   test_frontend_gl_arithmetic test_frontend_gl_properties test_frontend_gl_contexts
 )

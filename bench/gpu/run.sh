@@ -16,6 +16,10 @@
 # and BENCH_BACKENDS (default: compute compute-noocc fragment cpu embree)
 # pick a subset; compute-noocc is the compute pipeline with --occlusion off,
 # whose samples_hit counts every covered sample as the fragment pipeline's.
+# Then the scale runs, compute pipeline only, once each: BENCH_LARGE (on a
+# hardware GPU "forest@1920x1080@64 forest-10m@1920x1080@16", the issue's
+# targets; on llvmpipe none), entries scene@size@spp, with the frame's
+# largest GPU buffer total (gpu_buffer_bytes) and its triangle batches.
 # Writes bench.csv (one line per render) and summary.txt (medians) under
 # $OUT (or ./gpu-bench when unset); exits non-zero if a render failed or, on
 # llvmpipe, compute-noocc and fragment disagree on a scene's samples_hit.
@@ -34,32 +38,40 @@ spp=${BENCH_SPP:-$def_spp}
 runs=${BENCH_RUNS:-$def_runs}
 scenes=${BENCH_SCENES:-"hand car dragonfly forest"}
 backends=${BENCH_BACKENDS:-"compute compute-noocc fragment cpu embree"}
+if [ "$kind" = software ]; then def_large=""; else def_large="forest@1920x1080@64 forest-10m@1920x1080@16"; fi
+large=${BENCH_LARGE-$def_large}
 say_machine
 say "gl: $renderer ($kind)"
 say "cpus: $(nproc); size $size, spp $spp, runs $runs, cull bbox, seed 1, sampler sobol"
 [ "$kind" = software ] && say "SOFTWARE GL (llvmpipe on the CPU): a smoke run, not GPU figures"
 
-echo "scene,backend,run,frame_ms,compile_ms,samples_hit,samples_tested,gpu_setup,gpu_binning,gpu_raster,gpu_resolve,wall_setup,wall_binning,wall_raster,wall_resolve,tile_list_entries,tile_list_longest" >"$csv"
+echo "scene,backend,run,frame_ms,compile_ms,samples_hit,samples_tested,gpu_setup,gpu_binning,gpu_raster,gpu_resolve,wall_setup,wall_binning,wall_raster,wall_resolve,tile_list_entries,tile_list_longest,gpu_buffer_bytes,triangle_batches,size,spp" >"$csv"
 failed=0
-for scene in $scenes; do
-  for backend in $backends; do
+# The main runs (every backend at $size, $spp, $runs times), then the scale
+# runs (compute, once): entries scene@size@spp.
+entries=""
+for scene in $scenes; do entries="$entries $scene@$size@$spp@$runs@$(echo "$backends" | tr ' ' ,)"; done
+for item in $large; do entries="$entries $item@1@compute"; done
+for entry in $entries; do
+  IFS=@ read -r scene size_here spp_here runs_here backends_here <<<"$entry"
+  for backend in ${backends_here//,/ }; do
     case "$backend" in
       compute) args="--backend gl --gl-pipeline compute" ;;
       compute-noocc) args="--backend gl --gl-pipeline compute --occlusion off" ;;
       fragment) args="--backend gl --gl-pipeline fragment" ;;
       *) args="--backend $backend" ;;
     esac
-    for run in $(seq 1 "$runs"); do
+    for run in $(seq 1 "$runs_here"); do
       # shellcheck disable=SC2086
-      if ! "$blurcull" render $args --scene "$scene" --size "$size" --spp "$spp" --json -q \
+      if ! "$blurcull" render $args --scene "$scene" --size "$size_here" --spp "$spp_here" --json -q \
            -o "$work/$scene-$backend.png" >"$work/out.json" 2>"$work/err.txt"; then
         say "$scene $backend: FAILED: $(head -c 300 "$work/err.txt")"
         failed=$((failed + 1))
         break
       fi
-      python3 - "$scene" "$backend" "$run" "$work/out.json" >>"$csv" <<'PY'
+      python3 - "$scene" "$backend" "$run" "$work/out.json" "$size_here" "$spp_here" >>"$csv" <<'PY'
 import json, sys
-scene, backend, run, path = sys.argv[1:5]
+scene, backend, run, path, size, spp = sys.argv[1:7]
 d = json.load(open(path))
 p = d.get("ms_per_phase", {})
 c = d.get("counters", {})
@@ -69,8 +81,9 @@ row = [scene, backend, run, "%.1f" % (d["ms_total"] - compile_ms), "%.1f" % comp
 row += ["%.2f" % p[k] if k in p else "" for k in
         ("gpu_setup", "gpu_binning", "gpu_raster", "gpu_resolve", "wall_setup", "wall_binning", "wall_raster",
          "wall_resolve")]
-row += ["%d" % c[k] if k in c else "" for k in ("tile_list_entries", "tile_list_longest")]
-print(",".join(row))
+row += ["%d" % c[k] if k in c else "" for k in ("tile_list_entries", "tile_list_longest", "gpu_buffer_bytes",
+                                              "triangle_batches")]
+print(",".join(row + [size, spp]))
 PY
     done
   done
@@ -87,18 +100,20 @@ def med(values):
     return statistics.median(values) if values else float("nan")
 print("\nframe ms (render minus shader compile), median; compute phases in ms (gpu: timer queries, wall: host clock)"
       + (" -- SOFTWARE GL" if kind == "software" else ""))
-print("%-10s %-14s %10s %10s  %s" % ("scene", "backend", "frame_ms", "hits", "compute phases gpu setup/binning/raster/resolve | wall"))
+print("%-26s %-14s %10s %10s  %s" % ("scene", "backend", "frame_ms", "hits", "compute phases gpu setup/binning/raster/resolve | wall"))
 bad = 0
-for scene in dict.fromkeys(r["scene"] for r in rows):
+for key in dict.fromkeys((r["scene"], r["size"], r["spp"]) for r in rows):
+    scene = "%s %s %sspp" % key
     hits = {}
-    for backend in dict.fromkeys(r["backend"] for r in rows if r["scene"] == scene):
-        rs = [r for r in rows if r["scene"] == scene and r["backend"] == backend]
+    for backend in dict.fromkeys(r["backend"] for r in rows if (r["scene"], r["size"], r["spp"]) == key):
+        rs = [r for r in rows if (r["scene"], r["size"], r["spp"]) == key and r["backend"] == backend]
         hits[backend] = rs[0]["samples_hit"]
         phases = ""
         if backend.startswith("compute"):
             phases = "/".join("%.1f" % med(r[k] for r in rs) for k in ("gpu_setup", "gpu_binning", "gpu_raster", "gpu_resolve"))
             phases += " | " + "/".join("%.1f" % med(r[k] for r in rs) for k in ("wall_setup", "wall_binning", "wall_raster", "wall_resolve"))
-        print("%-10s %-14s %10.1f %10s  %s" % (scene, backend, med(r["frame_ms"] for r in rs), hits[backend], phases))
+            phases += " | %.0f MiB, %s batches" % (med(r["gpu_buffer_bytes"] for r in rs) / 2**20, rs[0]["triangle_batches"])
+        print("%-26s %-14s %10.1f %10s  %s" % (scene, backend, med(r["frame_ms"] for r in rs), hits[backend], phases))
     if "compute-noocc" in hits and "fragment" in hits and hits["compute-noocc"] != hits["fragment"]:
         # llvmpipe is IEEE-exact, so there they must agree; a GPU may
         # compile the same GLSL differently in two shaders (../shared/gpu/README.md).

@@ -16,12 +16,14 @@ Scene build_scene(const std::string& name, const SceneOptions& options) {
     if (name == "car") return make_car(options.blur_scale, options.aspect);
     if (name == "dragonfly") return make_dragonfly(options.blur_scale, options.aspect);
     if (name == "forest") return make_forest(options.blur_scale, options.aspect);
+    if (name == "forest-10m") return make_forest_10m(options.blur_scale, options.aspect);
     if (name == "mirror-sphere") return make_mirror_sphere(options.blur_scale, options.aspect);
     if (name == "water") return make_water(options.blur_scale, options.aspect);
     if (name == "curved-mirror") return make_curved_mirror(options.blur_scale, options.aspect);
     std::string known;
     for (const std::string& candidate : builtin_scene_names()) known += (known.empty() ? "" : ", ") + candidate;
     for (const std::string& candidate : secondary_scene_names()) known += ", " + candidate;
+    for (const std::string& candidate : large_scene_names()) known += ", " + candidate;
     throw SceneError("unknown scene '" + name + "' (known: " + known + ")");
 }
 
@@ -31,45 +33,52 @@ namespace {
 
 // Every built-in scene once: the name lists and `blurcull scenes` read this
 // table, so a scene added here is listed everywhere (build_scene above makes it).
+enum class SceneKind { thesis, secondary, large };
+
 struct SceneEntry {
     const char* name;
-    bool secondary;  // mirrors or dielectrics: secondary_scene_names()
+    SceneKind kind;  // which of the name lists holds it
     const char* description;
 };
 
 constexpr SceneEntry kScenes[] = {
-    {"hand", false, "a hand before a wall; defocus only (the thesis's Hand; 15k triangles)"},
-    {"car", false, "a car driving down a street; object motion only (the thesis's Car; 54k triangles)"},
-    {"dragonfly", false, "a dragonfly on a plant stem; camera motion only (the thesis's Dragonfly; 85k triangles)"},
-    {"forest", false,
+    {"hand", SceneKind::thesis, "a hand before a wall; defocus only (the thesis's Hand; 15k triangles)"},
+    {"car", SceneKind::thesis, "a car driving down a street; object motion only (the thesis's Car; 54k triangles)"},
+    {"dragonfly", SceneKind::thesis, "a dragonfly on a plant stem; camera motion only (the thesis's Dragonfly; 85k triangles)"},
+    {"forest", SceneKind::thesis,
      "a walk through 236 trees; camera motion and defocus (the thesis's FairyForest; 168k triangles); the default"},
-    {"mirror-sphere", true,
+    {"mirror-sphere", SceneKind::secondary,
      "a mirror sphere on a chessboard; defocus; reflections with --method dof-secondary (29k triangles)"},
-    {"water", true,
+    {"water", SceneKind::secondary,
      "a waved water surface over a pool floor; defocus; refraction with --method dof-secondary (36k triangles)"},
-    {"curved-mirror", true,
+    {"curved-mirror", SceneKind::secondary,
      "a chessboard before flat and convex mirrors (JCST 2013 Fig. 6); defocus; with --method dof-secondary "
      "(12k triangles)"},
+    {"forest-10m", SceneKind::large,
+     "the forest's walk through 15,600 of its trees, out to 390 m; camera motion and defocus; a GPU scale test, "
+     "several GB of memory (10000k triangles)"},
 };
 
-std::vector<std::string> scene_names(bool secondary) {
+std::vector<std::string> scene_names(SceneKind kind) {
     std::vector<std::string> names;
     for (const SceneEntry& entry : kScenes)
-        if (entry.secondary == secondary) names.emplace_back(entry.name);
+        if (entry.kind == kind) names.emplace_back(entry.name);
     return names;
 }
 
 }  // namespace
 
-std::vector<std::string> builtin_scene_names() { return scene_names(false); }
+std::vector<std::string> builtin_scene_names() { return scene_names(SceneKind::thesis); }
 
-std::vector<std::string> secondary_scene_names() { return scene_names(true); }
+std::vector<std::string> secondary_scene_names() { return scene_names(SceneKind::secondary); }
+
+std::vector<std::string> large_scene_names() { return scene_names(SceneKind::large); }
 
 std::vector<BuiltinSceneInfo> builtin_scene_catalogue() {
     std::vector<BuiltinSceneInfo> catalogue;
-    for (bool secondary : {false, true})
+    for (SceneKind kind : {SceneKind::thesis, SceneKind::secondary, SceneKind::large})
         for (const SceneEntry& entry : kScenes)
-            if (entry.secondary == secondary) catalogue.push_back({entry.name, entry.description});
+            if (entry.kind == kind) catalogue.push_back({entry.name, entry.description});
     return catalogue;
 }
 

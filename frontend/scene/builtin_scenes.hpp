@@ -20,8 +20,8 @@ struct SceneOptions {
     float aspect = 4.0f / 3.0f;
 };
 
-// "hand", "car", "dragonfly", "forest", or one of secondary_scene_names(),
-// validated. Throws SceneError for any
+// "hand", "car", "dragonfly", "forest", or one of secondary_scene_names()
+// or large_scene_names(), validated. Throws SceneError for any
 // other name, or for a blur_scale / aspect that is negative, zero (aspect) or
 // not finite. Each scene is built in scene/builtin/<name>.cpp from the shapes
 // of scene/builtin/mesh_builder.hpp.
@@ -38,15 +38,21 @@ std::vector<std::string> builtin_scene_names();
 // or dielectric materials and the sky environment; static, defocus only.
 std::vector<std::string> secondary_scene_names();
 
+// The built-in scale tests: "forest-10m" (the forest's trees and walk at 10
+// million triangles, ~2 s and ~1 GB to build). Listed by `blurcull scenes`,
+// left out of the lists the tests and benchmarks iterate.
+std::vector<std::string> large_scene_names();
+
 // One built-in scene as `blurcull scenes` lists it.
 struct BuiltinSceneInfo {
     std::string name;
     std::string description;  // one line: what it shows, its blur, how to see it
 };
 
-// Every built-in scene, builtin_scene_names() then secondary_scene_names(),
-// with a one-line description each: what `blurcull scenes` prints (name, then
-// description). The three lists come from one table (builtin_scenes.cpp).
+// Every built-in scene, builtin_scene_names(), secondary_scene_names(), then
+// large_scene_names(), with a one-line description each: what `blurcull
+// scenes` prints (name, then description). The lists come from one table
+// (builtin_scenes.cpp).
 std::vector<BuiltinSceneInfo> builtin_scene_catalogue();
 
 // `source` with the lens closed, the camera still, and every triangle given

@@ -18,6 +18,8 @@ Scene make_car(float blur, float aspect);
 Scene make_dragonfly(float blur, float aspect);
 // ~170k triangles, camera motion and defocus.
 Scene make_forest(float blur, float aspect);
+// The forest's trees and walk at 10 million triangles (large_scene_names()).
+Scene make_forest_10m(float blur, float aspect);
 
 // make_builtin_scene without the final validate_scene: for load_scene
 // (scene/load_scene.hpp), which applies its overrides first and then
