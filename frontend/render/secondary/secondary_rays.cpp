@@ -3,6 +3,7 @@
 #include "render/common/method_plan.hpp"
 #include "render/common/optics_shared.h"
 #include "render/common/shading.hpp"
+#include "render/cpu/parallel_items.hpp"
 
 #include <blurcull/kernel.hpp>
 #include <blurcull/patterns.hpp>
@@ -24,8 +25,11 @@ struct SurfaceHit {
 // triangle's view-space vertices at t; the world point has the same
 // barycentric coordinates on the world triangle at t (exact for a static
 // camera). The world incident direction runs from the world lens point.
-SurfaceHit sample_hit(const Scene& scene, const CameraModel& model, std::uint32_t triangle, glm::vec2 ndc,
-                      glm::vec2 lens, float time) {
+// `inverse_open` and `inverse_close`: the inverses of the model's views, in
+// double (made once per frame by the caller).
+SurfaceHit sample_hit(const Scene& scene, const CameraModel& model, const glm::dmat4& inverse_open,
+                      const glm::dmat4& inverse_close, std::uint32_t triangle, glm::vec2 ndc, glm::vec2 lens,
+                      float time) {
     const glm::uvec3& tri = scene.triangles[triangle];
     glm::dvec3 view[3], world[3];
     for (int k = 0; k < 3; ++k) {
@@ -48,8 +52,6 @@ SurfaceHit sample_hit(const Scene& scene, const CameraModel& model, std::uint32_
     if (!(det > 0.0)) return hit;
     const double b1 = (d22 * p1 - d12 * p2) / det, b2 = (d11 * p2 - d12 * p1) / det;
     const glm::dvec3 point = world[0] + b1 * (world[1] - world[0]) + b2 * (world[2] - world[0]);
-    const glm::dmat4 inverse_open = glm::inverse(glm::dmat4(model.view_open));
-    const glm::dmat4 inverse_close = glm::inverse(glm::dmat4(model.view_close));
     const glm::dvec4 lens_view(o, 1.0);
     const glm::dvec3 lens_world =
         glm::mix(glm::dvec3(inverse_open * lens_view), glm::dvec3(inverse_close * lens_view), double(time));
@@ -100,7 +102,17 @@ PrimaryResolve resolve_primary(const Scene& scene, const CameraModel& model, con
     const auto spp = static_cast<std::uint32_t>(settings.spp);
     PrimaryResolve out;
     out.sample_colour.assign(sample_ids.size(), glm::vec3(0.0f));
-    for (int py = 0; py < settings.height; ++py) {
+    // Rows in parallel: each writes its own samples' colours and its own
+    // rays, which are joined in row order (the order of a serial loop).
+    struct Row {
+        std::vector<SecondaryRay> rays;
+        std::uint64_t reflector_samples = 0;
+    };
+    std::vector<Row> rows(static_cast<std::size_t>(settings.height));
+    const glm::dmat4 inverse_open = glm::inverse(glm::dmat4(model.view_open));
+    const glm::dmat4 inverse_close = glm::inverse(glm::dmat4(model.view_close));
+    auto resolve_row = [&](int py) {
+        Row& row = rows[static_cast<std::size_t>(py)];
         for (int px = 0; px < settings.width; ++px) {
             const patternsf::SamplerSetup pattern = patternsf::sampler_setup(
                 settings.sampler, static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py), spp, settings.seed);
@@ -116,14 +128,25 @@ PrimaryResolve resolve_primary(const Scene& scene, const CameraModel& model, con
                     out.sample_colour[k] = colours[id];
                     continue;
                 }
-                ++out.reflector_samples;
+                ++row.reflector_samples;
                 const kernelf::PixelSample s = patternsf::sampler_sample(pattern, j);
-                const SurfaceHit hit = sample_hit(scene, model, id, model.sample_ndc(px, py, s.offset), s.lens, s.time);
+                const SurfaceHit hit = sample_hit(scene, model, inverse_open, inverse_close, id,
+                                                  model.sample_ndc(px, py, s.offset), s.lens, s.time);
                 // A degenerate hit (grazing to the rounding) sees the environment straight on.
                 if (!hit.valid) continue;
-                spawn_rays(material, hit, k, lens_part_of(s.lens, lens_parts), id, out.rays);
+                spawn_rays(material, hit, k, lens_part_of(s.lens, lens_parts), id, row.rays);
             }
         }
+    };
+    cpu_methods::run_parallel_items(
+        cpu_methods::render_threads(settings), settings.height, [] { return 0; },
+        [&](int&, int py) { resolve_row(py); }, [](int&) {});
+    std::size_t ray_count = 0;
+    for (const Row& row : rows) ray_count += row.rays.size();
+    out.rays.reserve(ray_count);
+    for (const Row& row : rows) {
+        out.rays.insert(out.rays.end(), row.rays.begin(), row.rays.end());
+        out.reflector_samples += row.reflector_samples;
     }
     return out;
 }
