@@ -5,6 +5,7 @@
 // (any size gives the same ids; a scene past one dispatch), and the command
 // line (--gl-pipeline, the JSON). No GL context: SKIPPED, or a failure when
 // CI=true.
+#include "gl_render_reference.hpp"  // first: it keeps the host from contracting a*b+c
 #include "cli_runner.hpp"
 #include "frontend_test_helpers.hpp"
 #include "render/common/cull_method.hpp"
@@ -15,6 +16,7 @@
 #include "render/gl/shader_stages.hpp"
 #include "scene/builtin_scenes.hpp"
 #include "scene/gltf/gltf_loader.hpp"
+#include "test_data_dirs.hpp"
 
 #include <blurcull/glsl/kernel_glsl.hpp>
 
@@ -58,6 +60,59 @@ double counter(const RenderStats& stats, const std::string& name) {
     return -1.0;
 }
 
+// The compute pipeline's sample ids and hits against the cpu float path's
+// (`cpu_ids`, `cpu`: render_cpu in float, occlusion off). Where the GL
+// computes as the host (llvmpipe), the very same ids, hits and image;
+// elsewhere every differing sample explained by the GPU arithmetic model
+// against the host's float decisions (reference_samples<float>,
+// compare_sample_ids, docs/glsl.md: near an edge, or a depth tie within a
+// division's rounding), the hits within the pairs near an edge of the cpu's,
+// the image within what those samples can move it (per-hit shading apart:
+// then within 0.01).
+void check_float_decisions(GlRenderer& gl, const Scene& scene, const RenderSettings& settings,
+                           const RenderResult& compute, const std::vector<std::uint32_t>& ids,
+                           const RenderResult& cpu, const std::vector<std::uint32_t>& cpu_ids) {
+    const auto compute_hits = static_cast<double>(compute.stats.samples_hit);
+    const auto cpu_hits = static_cast<double>(cpu.stats.samples_hit);
+    INFO("hits compute ", compute_hits, " cpu float ", cpu_hits, ", rmse ", rmse(compute.image, cpu.image));
+    CHECK(compute_hits > 0.0);
+    if (!render_probe(gl).tolerant()) {
+        // The same ids but where two triangles' distinct float depths round
+        // to one depth key near / w (raster_body.inl: the cpu keeps the
+        // nearer, the GPU rule the lower index).
+        REQUIRE(ids.size() == cpu_ids.size());
+        long differ = 0, key_ties = 0;
+        if (ids != cpu_ids) {
+            using K = blurcull::kernel<float>;
+            const SampleReference<float> ref = reference_samples<float>(scene, settings);
+            for (std::size_t k = 0; k < ids.size(); ++k) {
+                if (ids[k] == cpu_ids[k]) continue;
+                ++differ;
+                if (ids[k] == no_triangle || cpu_ids[k] == no_triangle) continue;
+                const auto& sample = ref.samples[k];
+                float za = 0.0f, zb = 0.0f;
+                if (K::covers(ref.triangles[cpu_ids[k]], sample.ndc, sample.lens, sample.time, ref.near, za) &&
+                    K::covers(ref.triangles[ids[k]], sample.ndc, sample.lens, sample.time, ref.near, zb) &&
+                    K::depth_key(ref.near, za) == K::depth_key(ref.near, zb)) {
+                    ++key_ties;
+                }
+            }
+        }
+        INFO(differ, " samples show another triangle than the cpu's, ", key_ties, " of them depth-key ties");
+        CHECK(differ == key_ties);
+        CHECK(compute_hits == cpu_hits);
+        CHECK(same_pixels(compute.image, cpu.image));
+        return;
+    }
+    const SampleReference<float> ref = reference_samples<float>(scene, settings, true);
+    const SampleIdComparison cmp = compare_sample_ids(scene, ref, ids, settings.spp);
+    INFO(cmp.near_edge, " near an edge, ", cmp.depth_tie, " depth ties; first outside the model: ",
+         cmp.first_outside);
+    CHECK(cmp.outside == 0);
+    CHECK(std::abs(compute_hits - cpu_hits) <= double(ref.pairs_near_edge));
+    CHECK(rmse(compute.image, cpu.image) <= std::max(cmp.image_rmse_limit + 1e-6, 0.01));
+}
+
 bool has_phase(const RenderStats& stats, const std::string& name) {
     for (const auto& entry : stats.ms_per_phase)
         if (entry.first == name) return entry.second >= 0.0;
@@ -77,15 +132,15 @@ TEST_CASE("gl compute pipeline: every built-in scene gives the cpu float path's 
         CpuOptions cpu_options;
         cpu_options.occlusion = false;  // samples_hit counts every covered sample, as GL's does
         cpu_options.precision = KernelPrecision::float32;
-        const RenderResult cpu = render_cpu(scene, settings, cpu_options);
-        const RenderResult compute = gl->render(scene, settings, compute_options());
+        std::vector<std::uint32_t> cpu_ids, ids;
+        const RenderResult cpu = render_cpu(scene, settings, cpu_options, &cpu_ids);
+        const RenderResult compute = gl->render(scene, settings, compute_options(), &ids);
         std::printf("%-10s 128x96 4 spp: hits compute %llu cpu float %llu, rmse %.6f, tested %llu, %.0f ms\n",
                     name.c_str(), static_cast<unsigned long long>(compute.stats.samples_hit),
                     static_cast<unsigned long long>(cpu.stats.samples_hit), rmse(compute.image, cpu.image),
                     static_cast<unsigned long long>(compute.stats.samples_tested), compute.stats.ms_total);
         INFO(name);
-        CHECK(compute.stats.samples_hit == cpu.stats.samples_hit);
-        CHECK(same_pixels(compute.image, cpu.image));
+        check_float_decisions(*gl, scene, settings, compute, ids, cpu, cpu_ids);
         CHECK(compute.stats.samples_tested >= compute.stats.samples_hit);
         CHECK(compute.stats.triangles == scene.triangles.size());
         CHECK(counter(compute.stats, "tile_list_retries") == 0.0);
@@ -93,6 +148,42 @@ TEST_CASE("gl compute pipeline: every built-in scene gives the cpu float path's 
             CHECK(has_phase(compute.stats, phase));
         }
     }
+}
+
+// The Khronos sample models of tests/data/khronos (files nobody here wrote:
+// animated, skinned, morphed, textured, with cameras), each with a moving
+// shutter and a lens, under every cull method: the host's float decisions
+// sample by sample, and the cpu float path's image.
+TEST_CASE("gl compute pipeline: the Khronos sample models, every cull, as the cpu float path") {
+    GlRenderer* gl = renderer_or_skip();
+    if (gl == nullptr) return;
+    const std::string dir = blurcull::testing::khronos_test_dir();
+    int models = 0;
+    for (const std::string file : {"AnimatedTriangle.gltf", "BoxAnimated.gltf", "Cameras.gltf", "Cube/Cube.gltf",
+                                   "RiggedFigure.gltf", "RiggedSimple.gltf",
+                                   "SparseMorphCube/singleBlendshapeCube_sparse.glb"}) {
+        GltfOptions options;
+        options.aspect = 96.0f / 72.0f;
+        options.motion_segments = 1;      // the gl backend's one linear motion
+        options.shutter_close = 0.25f;    // a quarter second: visible motion in the animated ones
+        options.lens_radius = 0.02f;      // and a little defocus (focus: the scene's centre)
+        const Scene scene = load_gltf_scene(dir + "/" + file, options, [](const std::string&) {});
+        ++models;
+        RenderSettings settings = settings_for(96, 72, 8);  // two chunks of samples
+        CpuOptions cpu_options;
+        cpu_options.occlusion = false;
+        cpu_options.precision = KernelPrecision::float32;
+        std::vector<std::uint32_t> cpu_ids;
+        const RenderResult cpu = render_cpu(scene, settings, cpu_options, &cpu_ids);
+        for (const CullMethodInfo& method : cull_methods()) {
+            settings.cull = method.method;
+            std::vector<std::uint32_t> ids;
+            const RenderResult compute = gl->render(scene, settings, compute_options(), &ids);
+            INFO(file, " (", scene.triangles.size(), " triangles), cull ", std::string(method.name));
+            check_float_decisions(*gl, scene, settings, compute, ids, cpu, cpu_ids);
+        }
+    }
+    CHECK(models == 7);
 }
 
 TEST_CASE("gl compute pipeline: the fragment pipeline's samples") {
