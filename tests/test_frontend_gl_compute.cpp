@@ -460,6 +460,15 @@ TEST_CASE("gl compute pipeline: --gl-pipeline on the command line, the JSON, the
     const nlohmann::json secondary_summary = nlohmann::json::parse(secondary.out);
     CHECK(secondary_summary["gl_pipeline"] == "compute");
     CHECK(secondary_summary["secondary_rays"].get<double>() > 0);
+    // Progress on stderr ("gl: N%", ending at 100%) once a render runs past a
+    // second (on llvmpipe this one does; on a GPU it may end sooner, silently).
+    const CliRun slow = run_cli("render --backend gl --gl-pipeline compute --scene car --size 96x72 --spp 16 "
+                                "--json -o car_progress.png");
+    REQUIRE(slow.status == 0);
+    const double slow_ms = nlohmann::json::parse(slow.out)["ms_total"].get<double>();
+    INFO("car 96x72 16 spp: ", slow_ms, " ms; stderr: ", slow.err);
+    if (slow_ms > 1500.0) CHECK(slow.err.find("gl: 100%") != std::string::npos);
+    if (slow_ms < 900.0) CHECK(slow.err.find("gl:") == std::string::npos);
     // One line each, naming the flag.
     for (const char* refused : {"render --backend gl --gl-pipeline compute --method interleave --size 32x24 -q",
                                 "render --backend gl --gl-pipeline compute --gl-cell 4 --size 32x24 -q",

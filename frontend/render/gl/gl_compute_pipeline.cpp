@@ -132,7 +132,8 @@ public:
                                     "sample ids")),
           key_buffer_(bounded_buffer(gl_, pixels_ * static_cast<std::size_t>(settings.spp) * sizeof(float),
                                      "sample depth keys")),
-          stratum_buffer_(bounded_buffer(gl_, batch_capacity_ * BC_GL_TIME_STRATA * sizeof(glm::vec4), "stratum boxes")),
+          stratum_buffer_(
+              bounded_buffer(gl_, batch_capacity_ * BC_GL_TIME_STRATA * sizeof(glm::vec4), "stratum boxes")),
           tile_count_buffer_(storage_buffer(gl_, tiles_ * sizeof(std::uint32_t))),
           tile_end_buffer_(storage_buffer(gl_, tiles_ * sizeof(std::uint32_t))),
           state_buffer_(storage_buffer(gl_, sizeof(TileBinState))),
@@ -224,7 +225,12 @@ public:
     // The raster pass over the loaded batch: a dispatch per chunk of samples
     // and slice of the lists (slice_entries of them; the lists are at most
     // max_count long). The first batch starts every sample at the background.
-    void run_raster(std::uint32_t max_count, std::uint32_t slice_entries, bool occlusion, GlPhaseTimers& timers) {
+    // `progress` gets `units` advances over the pass: after each
+    // dispatch where `finish_each` (software GL, whose dispatches are slow
+    // and a glFinish cheap), else all at the end (the caller's read of the
+    // bin state waits for the GPU).
+    void run_raster(std::uint32_t max_count, std::uint32_t slice_entries, bool occlusion, GlPhaseTimers& timers,
+                    Progress& progress, int units, bool finish_each) {
         timers.begin(raster_phase);
         set_common(gl_, programs_.raster, model_, settings_, 0);
         set_int(gl_, programs_.raster, "method", kernel_cull_method(settings_.cull));
@@ -234,6 +240,11 @@ public:
         set_int(gl_, programs_.raster, "occlusion", occlusion ? 1 : 0);
         set_uint(gl_, programs_.raster, "triangle_base", static_cast<std::uint32_t>(first_));
         const auto spp = static_cast<std::uint32_t>(settings_.spp);
+        const std::uint64_t slices =
+            max_count == 0 ? 1 : (std::uint64_t{max_count} + slice_entries - 1) / slice_entries;
+        const std::uint64_t dispatches = slices * ((spp + raster_chunk - 1) / raster_chunk);
+        std::uint64_t done = 0;
+        int advanced = 0;
         for (std::uint32_t chunk = 0; chunk < spp; chunk += raster_chunk) {
             set_uint(gl_, programs_.raster, "chunk_base", chunk);
             // At least one slice: the first starts every sample at the background.
@@ -242,8 +253,15 @@ public:
                 set_int(gl_, programs_.raster, "carry", first > 0 || first_ > 0 ? 1 : 0);
                 gl_.DispatchCompute(tiles_x_, tiles_y_, 1);
                 gl_.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+                ++done;
+                if (finish_each) {
+                    gl_.Finish();
+                    const auto due = static_cast<int>(static_cast<std::uint64_t>(units) * done / dispatches);
+                    for (; advanced < due; ++advanced) progress.advance();
+                }
             }
         }
+        for (; advanced < units; ++advanced) progress.advance();
         gl_.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
         timers.end(raster_phase);
         gl::check_gl(gl_, "gl: compute raster");
@@ -384,6 +402,12 @@ RenderResult render_gl_compute(const gl::HeadlessContext& context, std::shared_p
     // Summed or the largest over the batches.
     int retries = 0;
     std::size_t batches = 0, needed = 0, peak_bytes = 0;
+    // "gl: N%" on stderr past a second: 100 steps per batch's raster (one
+    // per batch when there are many).
+    const std::size_t batch_count = std::max<std::size_t>((count + batch - 1) / batch, 1);
+    const int units = batch_count > 1000 ? 1 : 100;
+    const int steps = static_cast<int>(std::min<std::size_t>(batch_count, std::size_t{1} << 30)) * units;
+    Progress progress(settings.progress, start, steps, "gl");
     double entries = 0.0, occluded = 0.0, setup_ms = 0.0, raster_ms = 0.0;
     std::uint32_t longest = 0, slice = 0;
     for (std::size_t first = 0; first == 0 || first < count; first += batch) {
@@ -395,7 +419,7 @@ RenderResult render_gl_compute(const gl::HeadlessContext& context, std::shared_p
         phase = RenderClock::now();
         const TileBinState state = frame.run_binning(capacity, retries, timers);
         slice = context.software() ? software_slice_entries : std::max<std::uint32_t>(state.max_count, 1);
-        frame.run_raster(state.max_count, slice, options.occlusion, timers);
+        frame.run_raster(state.max_count, slice, options.occlusion, timers, progress, units, context.software());
         const TileBinState final_state = frame.final_state();
         if (final_state.overflow != 0) {
             throw gl::GlError("gl: the compute pipeline's tile lists overflowed after they were sized");
@@ -408,6 +432,7 @@ RenderResult render_gl_compute(const gl::HeadlessContext& context, std::shared_p
         longest = std::max(longest, state.max_count);
         peak_bytes = std::max(peak_bytes, frame.buffer_bytes());
     }
+    progress.finish();
     if (options.tile_list_capacity == 0) programs->needed_entries = needed;
     stats.ms_per_phase.emplace_back("setup", setup_ms);
     phase = RenderClock::now();
