@@ -12,8 +12,8 @@
 #   bash ../shared/gpu/bundle.sh build $(bash bench/gpu/all.sh --list)
 #   bash .gpu/env.sh bash bench/gpu/all.sh      (carry [".gpu"], timeout_s 600)
 #
-# GPU_ALL_BUDGETS="check exit run secondary" in seconds (default "280 45
-# 145 90": 560 s in all; run.sh's scale renders take ~30 s of it) and GPU_ALL_PARTS (default "check exit run
+# GPU_ALL_BUDGETS="check exit run secondary" in seconds (default "265 45
+# 160 90": 560 s in all; run.sh's 1920x1080 renders take ~60 s of it) and GPU_ALL_PARTS (default "check exit run
 # secondary") change what runs; here (llvmpipe) e.g.
 #   GPU_ALL_PARTS="exit secondary" GPU_ALL_BUDGETS="0 60 0 120" bash bench/gpu/all.sh
 set -u
@@ -29,7 +29,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 summary=$dest/summary.txt
 : >"$summary"
-read -r -a budget <<<"${GPU_ALL_BUDGETS:-280 45 145 90}"
+read -r -a budget <<<"${GPU_ALL_BUDGETS:-265 45 160 90}"
 # One render per variant in the benches (their medians want 3: BENCH_RUNS=3
 # where the budget allows).
 export BENCH_RUNS=${BENCH_RUNS:-1}
@@ -49,9 +49,9 @@ part() {
     tee -a "$summary"
   [ "$rc" -eq 0 ] || status=1
 }
-part check "${budget[0]:-280}" check.sh summary.txt
+part check "${budget[0]:-265}" check.sh summary.txt
 part exit "${budget[1]:-45}" exit_check.sh exit_check.txt
-part run "${budget[2]:-145}" run.sh summary.txt
+part run "${budget[2]:-160}" run.sh summary.txt
 part secondary "${budget[3]:-90}" secondary.sh secondary-summary.txt
 tar -C "$work" -czf "$dest/all.tar.gz" . 2>/dev/null
 exit $status

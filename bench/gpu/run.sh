@@ -16,10 +16,12 @@
 # and BENCH_BACKENDS (default: compute compute-noocc fragment cpu embree)
 # pick a subset; compute-noocc is the compute pipeline with --occlusion off,
 # whose samples_hit counts every covered sample as the fragment pipeline's.
-# Then the scale runs, compute pipeline only, once each: BENCH_LARGE (on a
-# hardware GPU "forest@1920x1080@64 forest-10m@1920x1080@16", the issue's
-# targets; on llvmpipe none), entries scene@size@spp, with the frame's
-# largest GPU buffer total (gpu_buffer_bytes) and its triangle batches.
+# Then the large runs, once each: BENCH_LARGE (on a hardware GPU every
+# built-in scene at 1920x1080, 64 spp through compute, cpu and embree, and
+# forest-10m at 1920x1080, 16 spp through compute: the issue's targets; on
+# llvmpipe none), entries scene@size@spp[@runs@backend,backend...] (default
+# 1 run, compute), with the frame's largest GPU buffer total
+# (gpu_buffer_bytes) and its triangle batches.
 # Writes bench.csv (one line per render) and summary.txt (medians) under
 # $OUT (or ./gpu-bench when unset); exits non-zero if a render failed or, on
 # llvmpipe, compute-noocc and fragment disagree on a scene's samples_hit.
@@ -38,7 +40,13 @@ spp=${BENCH_SPP:-$def_spp}
 runs=${BENCH_RUNS:-$def_runs}
 scenes=${BENCH_SCENES:-"hand car dragonfly forest"}
 backends=${BENCH_BACKENDS:-"compute compute-noocc fragment cpu embree"}
-if [ "$kind" = software ]; then def_large=""; else def_large="forest@1920x1080@64 forest-10m@1920x1080@16"; fi
+if [ "$kind" = software ]; then
+  def_large=""
+else
+  def_large=""
+  for scene in hand car dragonfly forest; do def_large="$def_large $scene@1920x1080@64@1@compute,cpu,embree"; done
+  def_large="$def_large forest-10m@1920x1080@16"
+fi
 large=${BENCH_LARGE-$def_large}
 say_machine
 say "gl: $renderer ($kind)"
@@ -51,7 +59,9 @@ failed=0
 # runs (compute, once): entries scene@size@spp.
 entries=""
 for scene in $scenes; do entries="$entries $scene@$size@$spp@$runs@$(echo "$backends" | tr ' ' ,)"; done
-for item in $large; do entries="$entries $item@1@compute"; done
+for item in $large; do
+  case "$item" in *@*@*@*@*) entries="$entries $item" ;; *) entries="$entries $item@1@compute" ;; esac
+done
 for entry in $entries; do
   IFS=@ read -r scene size_here spp_here runs_here backends_here <<<"$entry"
   for backend in ${backends_here//,/ }; do
@@ -114,6 +124,16 @@ for key in dict.fromkeys((r["scene"], r["size"], r["spp"]) for r in rows):
             phases += " | " + "/".join("%.1f" % med(r[k] for r in rs) for k in ("wall_setup", "wall_binning", "wall_raster", "wall_resolve"))
             phases += " | %.0f MiB, %s batches" % (med(r["gpu_buffer_bytes"] for r in rs) / 2**20, rs[0]["triangle_batches"])
         print("%-26s %-14s %10.1f %10s  %s" % (scene, backend, med(r["frame_ms"] for r in rs), hits[backend], phases))
+    # Every backend against the compute pipeline, frame time for frame time,
+    # and the compute pipeline's GPU time (timer queries, setup to resolve).
+    frames = {b: med(r["frame_ms"] for r in rows if (r["scene"], r["size"], r["spp"]) == key and r["backend"] == b)
+              for b in hits}
+    if "compute" in frames:
+        rs = [r for r in rows if (r["scene"], r["size"], r["spp"]) == key and r["backend"] == "compute"]
+        gpu = sum(med(r[k] for r in rs) for k in ("gpu_setup", "gpu_binning", "gpu_raster", "gpu_resolve"))
+        others = ", ".join("%s/compute %.2f" % (b, frames[b] / frames["compute"]) for b in frames
+                           if b != "compute" and frames["compute"] > 0)
+        print("%-26s compute GPU time %.2f ms%s" % ("", gpu, ("; " + others) if others else ""))
     if "compute-noocc" in hits and "fragment" in hits and hits["compute-noocc"] != hits["fragment"]:
         # llvmpipe is IEEE-exact, so there they must agree; a GPU may
         # compile the same GLSL differently in two shaders (../shared/gpu/README.md).
