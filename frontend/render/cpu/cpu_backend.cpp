@@ -6,7 +6,7 @@
 #include "render/common/surface_shading.hpp"
 #include "render/cpu/frame_context.hpp"
 #include "render/cpu/frame_setup.hpp"
-#include "render/cpu/parallel_items.hpp"
+#include "render/common/parallel_items.hpp"
 #include "render/cpu/tile_rasterizer.hpp"
 #include "scene/scene_checks.hpp"
 
@@ -48,7 +48,7 @@ RasterSplit rasterize_tiles(const FrameContext<Real>& frame, int threads, Clock:
     double raster_seconds = 0.0, resolve_seconds = 0.0;
     const int tile_count = frame.setup.tiles_x * frame.setup.tiles_y;
     Progress progress(frame.settings.progress, start, tile_count);
-    cpu_methods::run_parallel_items(
+    run_parallel_items(
         threads, tile_count, [&] { return TileRasterizer<Real>(frame); },
         [&](TileRasterizer<Real>& rasterizer, int tile) {
             if (frame.cancel != nullptr && frame.cancel->load(std::memory_order_relaxed)) return;
@@ -90,7 +90,7 @@ RenderResult render_cpu_in(const Scene& scene, const RenderSettings& settings, c
     // Only the per-footprint methods bound lens and time; a static, in-focus
     // triangle has neither to bound, whatever the method.
     const bool cull_bounds = cull.bounds_samples;
-    const int threads = cpu_methods::render_threads(settings);
+    const int threads = render_threads(settings);
 
     RenderResult result;
     result.stats.triangles = scene.triangles.size();

@@ -1,6 +1,6 @@
 #include "render/cpu/method_runner.hpp"
 
-#include "render/cpu/parallel_items.hpp"
+#include "render/common/parallel_items.hpp"
 
 #include <atomic>
 #include <utility>

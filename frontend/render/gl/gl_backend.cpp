@@ -4,6 +4,7 @@
 #include "render/common/camera_model.hpp"
 #include "render/common/cull_method.hpp"
 #include "render/common/moving_triangle.hpp"
+#include "render/common/parallel_items.hpp"
 #include "render/common/progress.hpp"
 #include "render/common/shading.hpp"
 #include "render/common/surface_shading.hpp"
@@ -265,7 +266,7 @@ StochasticFrame::StochasticFrame(const GlRenderer::State& state, const Scene& sc
       keep_ids_(keep_ids),
       cull_(kernel_cull_method(settings.cull)),
       cells_per_triangle_(cells_per_triangle_for(settings.cull)),
-      triangles_(frame_triangles(scene, model_, options.force_full_path)),
+      triangles_(frame_triangles(scene, model_, options.force_full_path, render_threads(settings))),
       cell_count_(triangles_.moving_count * static_cast<std::size_t>(cells_per_triangle_)),
       triangle_buffer_(storage_buffer(gl_, triangles_.gpu)),
       info_buffer_(storage_buffer(gl_, std::max<std::size_t>(count_, 1) * sizeof(TriangleInfo))),

@@ -2,6 +2,7 @@
 
 #include "render/common/camera_model.hpp"
 #include "render/common/cull_method.hpp"
+#include "render/common/parallel_items.hpp"
 #include "render/common/progress.hpp"
 #include "render/common/render_method.hpp"
 #include "render/common/surface_shading.hpp"
@@ -143,7 +144,8 @@ public:
     // batch size) into the per-triangle buffers, made on the host as the
     // fragment pipeline's (frame_triangles).
     void load_batch(std::size_t first, std::size_t count) {
-        const FrameTriangles batch = frame_triangles(scene_, model_, false, first, count);
+        const FrameTriangles batch =
+            frame_triangles(scene_, model_, false, first, count, render_threads(settings_));
         triangle_buffer_.write(batch.gpu.data(), batch.gpu.size() * sizeof(gpu::GpuMovingTriangle));
         class_buffer_.write(batch.classes.data(), batch.classes.size() * sizeof(std::int32_t));
         first_ = first;

@@ -1,6 +1,7 @@
 #include "render/gl/gl_frame_common.hpp"
 
 #include "render/common/moving_triangle.hpp"
+#include "render/common/parallel_items.hpp"
 #include "render/common/shading.hpp"
 
 #include <blurcull/kernel.hpp>
@@ -35,25 +36,37 @@ gl::Buffer storage_buffer(const gl::Functions& gl, std::size_t bytes) {
     return gl::Buffer(gl, GL_SHADER_STORAGE_BUFFER, bytes);
 }
 
-FrameTriangles frame_triangles(const Scene& scene, const CameraModel& model, bool force_full_path) {
-    return frame_triangles(scene, model, force_full_path, 0, scene.triangles.size());
+FrameTriangles frame_triangles(const Scene& scene, const CameraModel& model, bool force_full_path, int threads) {
+    return frame_triangles(scene, model, force_full_path, 0, scene.triangles.size(), threads);
 }
 
 FrameTriangles frame_triangles(const Scene& scene, const CameraModel& model, bool force_full_path,
-                               std::size_t first, std::size_t count) {
+                               std::size_t first, std::size_t count, int threads) {
     FrameTriangles out;
     out.gpu.resize(std::max<std::size_t>(count, 1));
     out.classes.assign(std::max<std::size_t>(count, 1), BC_INVALID);
+    // Each triangle on its own: runs of 16,384 on the threads, then the
+    // lists in index order.
+    constexpr std::size_t run = 16384;
+    const int runs = static_cast<int>((count + run - 1) / run);
+    run_parallel_items(
+        threads, runs, [] { return 0; },
+        [&](int&, int item) {
+            const std::size_t end = std::min(count, (static_cast<std::size_t>(item) + 1) * run);
+            for (std::size_t k = static_cast<std::size_t>(item) * run; k < end; ++k) {
+                const kernelf::MovingTriangle tri = make_moving_triangle<float>(scene, model, first + k);
+                out.classes[k] = kernelf::classify(tri);
+                out.gpu[k] = gpu::to_gpu(tri);
+            }
+        },
+        [](int&) {});
     for (std::size_t k = 0; k < count; ++k) {
-        const std::size_t i = first + k;
-        const kernelf::MovingTriangle tri = make_moving_triangle<float>(scene, model, i);
-        out.classes[k] = kernelf::classify(tri);
+        const auto i = static_cast<std::uint32_t>(first + k);
         if (out.classes[k] == 0 && !force_full_path) {
-            out.static_list.push_back(static_cast<std::uint32_t>(i));
+            out.static_list.push_back(i);
         } else if (out.classes[k] != BC_INVALID) {
-            out.moving_list.push_back(static_cast<std::uint32_t>(i));
+            out.moving_list.push_back(i);
         }
-        out.gpu[k] = gpu::to_gpu(tri);
     }
     out.static_count = out.static_list.size();
     out.moving_count = out.moving_list.size();

@@ -51,9 +51,11 @@ struct FrameTriangles {
 // triangles, in index order. With `first` and `count`: the scene's triangles
 // first ... first + count - 1 only (the compute pipeline's batches), at
 // entries 0 ... count - 1 of gpu and classes; the lists hold scene indices.
-FrameTriangles frame_triangles(const Scene& scene, const CameraModel& model, bool force_full_path);
+// On `threads` threads (render_threads: the settings' --threads); the same
+// result on any number.
+FrameTriangles frame_triangles(const Scene& scene, const CameraModel& model, bool force_full_path, int threads);
 FrameTriangles frame_triangles(const Scene& scene, const CameraModel& model, bool force_full_path,
-                               std::size_t first, std::size_t count);
+                               std::size_t first, std::size_t count, int threads);
 
 // Each triangle's shaded colour, then the background's (index = triangle count).
 std::vector<glm::vec4> frame_colours(const Scene& scene);

@@ -5,7 +5,7 @@
 #include "render/common/progress.hpp"
 #include "render/common/shading.hpp"
 #include "render/cpu/cpu_backend.hpp"
-#include "render/cpu/parallel_items.hpp"
+#include "render/common/parallel_items.hpp"
 #include "render/secondary/exact_trace.hpp"
 #include "render/secondary/secondary_rays.hpp"
 
@@ -245,7 +245,7 @@ std::vector<glm::vec3> bounce_all(const BounceContext& c, int threads, Secondary
     };
     if (c.options.bounces != SecondaryBounces::image_space) {
         const int chunks = static_cast<int>(std::min<std::size_t>(c.rays.size() / 256 + 1, 4096));
-        cpu_methods::run_parallel_items(
+        run_parallel_items(
             threads, chunks, [] { return SecondaryStats{}; },
             [&](SecondaryStats& local, int chunk) {
                 for (std::size_t r = c.rays.size() * std::size_t(chunk) / std::size_t(chunks);
@@ -270,7 +270,7 @@ std::vector<glm::vec3> bounce_all(const BounceContext& c, int threads, Secondary
     std::vector<std::vector<std::uint32_t>> members(clustering.clusters.size());
     for (std::size_t r = 0; r < c.rays.size(); ++r)
         members[static_cast<std::size_t>(clustering.cluster_of[r])].push_back(static_cast<std::uint32_t>(r));
-    cpu_methods::run_parallel_items(
+    run_parallel_items(
         threads, stats.clusters, [] { return SecondaryStats{}; },
         [&](SecondaryStats& local, int j) {
             bounce_cluster(c, clustering.clusters[static_cast<std::size_t>(j)], members[static_cast<std::size_t>(j)],
@@ -353,7 +353,7 @@ RenderResult render_dof_secondary(const Scene& scene, const RenderSettings& sett
     stats.reflector_samples = primary.reflector_samples;
     stats.rays = primary.rays.size();
     const int threads =
-        tracer != nullptr || layer_builder != nullptr || bouncer != nullptr ? 1 : cpu_methods::render_threads(settings);
+        tracer != nullptr || layer_builder != nullptr || bouncer != nullptr ? 1 : render_threads(settings);
     const std::vector<glm::vec3> radiance = bounce_all(context, threads, stats);
     for (std::size_t r = 0; r < primary.rays.size(); ++r)
         primary.sample_colour[primary.rays[r].sample] += primary.rays[r].weight * radiance[r];

@@ -3,7 +3,7 @@
 #include "render/common/method_plan.hpp"
 #include "render/common/optics_shared.h"
 #include "render/common/shading.hpp"
-#include "render/cpu/parallel_items.hpp"
+#include "render/common/parallel_items.hpp"
 
 #include <blurcull/kernel.hpp>
 #include <blurcull/patterns.hpp>
@@ -138,8 +138,8 @@ PrimaryResolve resolve_primary(const Scene& scene, const CameraModel& model, con
             }
         }
     };
-    cpu_methods::run_parallel_items(
-        cpu_methods::render_threads(settings), settings.height, [] { return 0; },
+    run_parallel_items(
+        render_threads(settings), settings.height, [] { return 0; },
         [&](int&, int py) { resolve_row(py); }, [](int&) {});
     std::size_t ray_count = 0;
     for (const Row& row : rows) ray_count += row.rays.size();

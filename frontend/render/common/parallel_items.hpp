@@ -1,5 +1,6 @@
-// The thread pool the CPU renderers share: work items handed out one at a
-// time to the settings' threads, each thread with its own state.
+// The thread pool the renderers share (the cpu backend, dof-secondary, the
+// gl backends' host-side setup): work items handed out one at a time to the
+// settings' threads, each thread with its own state.
 #pragma once
 
 #include "render/common/render_types.hpp"
@@ -9,7 +10,7 @@
 #include <thread>
 #include <vector>
 
-namespace blurcull::frontend::cpu_methods {
+namespace blurcull::frontend {
 
 // The threads a CPU render runs on: settings.threads, or one per hardware
 // thread when it is 0.
@@ -42,4 +43,4 @@ void run_parallel_items(int threads, int items, MakeState&& make_state, Work&& w
     for (std::thread& helper : helpers) helper.join();
 }
 
-}  // namespace blurcull::frontend::cpu_methods
+}  // namespace blurcull::frontend
