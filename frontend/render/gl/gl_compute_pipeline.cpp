@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <future>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -141,11 +142,15 @@ public:
           mask_(gl_, scene) {}
 
     // The scene's triangles first ... first + count - 1 (count at most the
-    // batch size) into the per-triangle buffers, made on the host as the
-    // fragment pipeline's (frame_triangles).
-    void load_batch(std::size_t first, std::size_t count) {
-        const FrameTriangles batch =
-            frame_triangles(scene_, model_, false, first, count, render_threads(settings_));
+    // batch size), made on the host as the fragment pipeline's
+    // (frame_triangles): no GL call, so it may run on another thread while
+    // the GPU works on the batch before.
+    FrameTriangles prepare_batch(std::size_t first, std::size_t count) const {
+        return frame_triangles(scene_, model_, false, first, count, render_threads(settings_));
+    }
+
+    // That batch into the per-triangle buffers.
+    void load_batch(std::size_t first, std::size_t count, const FrameTriangles& batch) {
         triangle_buffer_.write(batch.gpu.data(), batch.gpu.size() * sizeof(gpu::GpuMovingTriangle));
         class_buffer_.write(batch.classes.data(), batch.classes.size() * sizeof(std::int32_t));
         first_ = first;
@@ -412,9 +417,19 @@ RenderResult render_gl_compute(const gl::HeadlessContext& context, std::shared_p
     Progress progress(settings.progress, start, steps, "gl");
     double entries = 0.0, occluded = 0.0, setup_ms = 0.0, raster_ms = 0.0;
     std::uint32_t longest = 0, slice = 0;
+    // The next batch is made on the host while the GPU works on this one.
+    auto batch_size_at = [&](std::size_t first) { return std::min(batch, count - first); };
+    std::future<FrameTriangles> next;
     for (std::size_t first = 0; first == 0 || first < count; first += batch) {
         phase = RenderClock::now();
-        frame.load_batch(first, std::min(batch, count - first));
+        const FrameTriangles current = next.valid() ? next.get() : frame.prepare_batch(first, batch_size_at(first));
+        if (first + batch < count) {
+            next = std::async(std::launch::async,
+                              [&frame, at = first + batch, n = batch_size_at(first + batch)] {
+                                  return frame.prepare_batch(at, n);
+                              });
+        }
+        frame.load_batch(first, batch_size_at(first), current);
         frame.run_setup(options.time_strata, timers);
         setup_ms += ms_since(phase);
 
