@@ -42,20 +42,38 @@ uniform uint slice_first;   // and list entries: slice_first ... slice_first + s
 uniform uint slice_entries;
 uniform uint triangle_base; // the batch's first scene triangle
 uniform int carry;          // 1: the samples hold earlier slices' or batches' winners (SampleIds, SampleKeys)
-uniform int occlusion;      // 1: skip an entry whose depth floor is behind every sample the tile holds
+uniform int occlusion;      // 1: skip an entry (or its shutter slices) behind every sample the tile holds there
 
 #define BATCH (BC_GL_TILE_SIZE * BC_GL_TILE_SIZE)
 #define CHUNK 8
 #define NO_TRIANGLE 0xffffffffu
 
-// The smallest depth key the tile's samples (this chunk) hold, as float
-// bits (positive floats order as their bits; 0: a sample shows the
-// background), double-buffered by batch: the loaders of batch j read what
-// the invocations left after batch j - 1.
-shared uint tile_min_key[2];
+// Per shutter slice (BC_GL_TIME_STRATA of them, as the stratum boxes), the
+// smallest depth key the tile's samples of this chunk in that slice hold,
+// as float bits (positive floats order as their bits; 0: a sample shows the
+// background; +infinity: no sample in the slice), double-buffered by batch:
+// the loaders of batch j read what the invocations left after batch j - 1
+// (entry parity * BC_GL_TIME_STRATA + slice).
+shared uint tile_min_key[2 * BC_GL_TIME_STRATA];
+// Each batch entry's shutter slices whose samples it cannot win (bit s:
+// slice s), by the occlusion test.
+shared uint batch_hidden_slices[BATCH];
 shared uint batch_triangle[BATCH];
 // Each batch entry's pixels in the tile (empty: x0 > x1) and sample bounds.
 shared CellBounds batch_bounds[BATCH];
+
+// Per shutter slice, the smallest key this invocation's samples hold, into
+// tile_min_key[base + slice] (a slice none of them is in is left alone).
+void hold_keys(uint base, float best_key[CHUNK], int slices[CHUNK], uint samples_here) {
+    const float nothing = uintBitsToFloat(0x7f800000u);
+    for (int slice = 0; slice < BC_GL_TIME_STRATA; ++slice) {
+        float held = nothing;
+        for (uint k = 0u; k < samples_here; ++k) {
+            if (slices[k] == slice) held = min(held, best_key[k]);
+        }
+        if (held < nothing) atomicMin(tile_min_key[base + uint(slice)], floatBitsToUint(held));
+    }
+}
 
 void main() {
     uvec2 tile = gl_WorkGroupID.xy;
@@ -76,6 +94,7 @@ void main() {
     uint slot = (min(pixel.y, height - 1u) * width + min(pixel.x, width - 1u)) * spp + chunk_base;
     vec4 ndc_lens[CHUNK];
     float times[CHUNK];
+    int slices[CHUNK];  // each sample's shutter slice
     float best_key[CHUNK];
     uint best_id[CHUNK];
     SamplerSetup setup = bc_sampler_setup(sampler, min(pixel.x, width - 1u), min(pixel.y, height - 1u), spp, seed);
@@ -84,8 +103,10 @@ void main() {
         times[k] = 0.0;
         best_key[k] = 0.0;
         best_id[k] = NO_TRIANGLE;
+        slices[k] = 0;
         if (inside && k < samples_here) {
             pattern_sample(setup, pixel, chunk_base + k, ndc_lens[k], times[k]);
+            slices[k] = min(int(times[k] * float(BC_GL_TIME_STRATA)), BC_GL_TIME_STRATA - 1);
             if (carry != 0) {
                 best_key[k] = sample_keys[slot + k];
                 best_id[k] = sample_ids[slot + k];
@@ -95,22 +116,15 @@ void main() {
     uint local = gl_LocalInvocationIndex;
     uint tested_here = 0u, hit_here = 0u, occluded_here = 0u;
     const uint no_key = 0x7f800000u;  // +infinity: nothing held yet
-    if (local == 0u) {
-        tile_min_key[0] = no_key;
-        tile_min_key[1] = no_key;
-    }
+    if (local < uint(2 * BC_GL_TIME_STRATA)) tile_min_key[local] = no_key;
     memoryBarrierShared();
     barrier();
-    if (inside && occlusion != 0) {
-        float held = uintBitsToFloat(no_key);
-        for (uint k = 0u; k < samples_here; ++k) held = min(held, best_key[k]);
-        atomicMin(tile_min_key[1], floatBitsToUint(held));
-    }
+    if (inside && occlusion != 0) hold_keys(uint(BC_GL_TIME_STRATA), best_key, slices, samples_here);
     for (uint b = slice_first; b < slice_end; b += uint(BATCH)) {
         uint parity = ((b - slice_first) / uint(BATCH)) & 1u;
         memoryBarrierShared();
         barrier();  // the previous batch is no longer read, its keys are in tile_min_key[1 - parity]
-        if (local == 0u) tile_min_key[parity] = no_key;
+        if (local < uint(BC_GL_TIME_STRATA)) tile_min_key[parity * uint(BC_GL_TIME_STRATA) + local] = no_key;
         if (b + local < slice_end) {
             uint i = tile_list[first + b + local];
             batch_triangle[local] = i;
@@ -125,20 +139,28 @@ void main() {
                 sb = bc_sample_bounds(triangles[i], footprint.xy, footprint.zw, method);
                 if (sb.empty) c.rect = ivec4(0, 0, -1, -1);
             }
-            // Hierarchical occlusion, per tile: the kernel's depth floor (no
-            // covered sample of the triangle is nearer) against the farthest
-            // sample the tile holds; strictly behind it, the triangle wins no
-            // sample of the tile (bc_depth_key is monotone in the depth).
+            // Hierarchical occlusion, per tile and shutter slice: the
+            // kernel's depth floor over the slice (no covered sample of the
+            // triangle in it is nearer) against the farthest sample the tile
+            // holds in that slice; strictly behind it, the triangle wins no
+            // sample of the slice (bc_depth_key is monotone in the depth).
+            // Hidden in every slice, it is dropped for the tile.
+            uint hidden = 0u;
             if (occlusion != 0 && c.rect.x <= c.rect.z && c.rect.y <= c.rect.w) {
-                float held = uintBitsToFloat(tile_min_key[1u - parity]);
                 // Every sample has |NDC| <= 1; 2 leaves room for their rounding (as the cpu's frame_setup).
                 float scale = bc_depth_floor_scale(triangles[i], vec2(0.0, 1.0), vec2(-1.0, 1.0), vec2(-1.0, 1.0), 2.0);
-                float floor_depth = bc_depth_floor(triangles[i], vec2(0.0, 1.0), scale);
-                if (floor_depth > 0.0 && bc_depth_key(near_plane, floor_depth) < held) {
+                for (int slice = 0; slice < BC_GL_TIME_STRATA; ++slice) {
+                    float held = uintBitsToFloat(tile_min_key[(1u - parity) * uint(BC_GL_TIME_STRATA) + uint(slice)]);
+                    vec2 time = vec2(float(slice), float(slice + 1)) / float(BC_GL_TIME_STRATA);
+                    float floor_depth = bc_depth_floor(triangles[i], time, scale);
+                    if (floor_depth > 0.0 && bc_depth_key(near_plane, floor_depth) < held) hidden |= 1u << slice;
+                }
+                if (hidden == (1u << BC_GL_TIME_STRATA) - 1u) {
                     c.rect = ivec4(0, 0, -1, -1);
                     ++occluded_here;
                 }
             }
+            batch_hidden_slices[local] = hidden;
             c.lens = vec4(sb.u_range, sb.v_range);
             c.time_lines_u_a = sb.u_time_a;
             c.time_lines_u_b = sb.u_time_b;
@@ -158,6 +180,7 @@ void main() {
             }
             int i = int(batch_triangle[e]);
             uint scene_index = triangle_base + uint(i);
+            uint hidden = batch_hidden_slices[e];
             SampleBounds sb = carried_sample_bounds(c.lens, c.time_lines_u_a, c.time_lines_u_b, c.time_lines_v_a,
                                                     c.time_lines_v_b);
             ScreenBound screen;
@@ -169,7 +192,8 @@ void main() {
             for (uint k = 0u; k < samples_here; ++k) {
                 // The sample's shutter slice: outside its screen box the
                 // triangle covers it at no lens position (culled, not tested).
-                int slice = min(int(times[k] * float(BC_GL_TIME_STRATA)), BC_GL_TIME_STRATA - 1);
+                int slice = slices[k];
+                if (((hidden >> uint(slice)) & 1u) != 0u) continue;  // every sample of the slice holds a nearer one
                 vec4 box = stratum_boxes[i * BC_GL_TIME_STRATA + slice];
                 if (!(ndc_lens[k].x >= box.x && ndc_lens[k].y >= box.y && ndc_lens[k].x <= box.z &&
                       ndc_lens[k].y <= box.w)) {
@@ -193,11 +217,7 @@ void main() {
                 }
             }
         }
-        if (occlusion != 0) {
-            float held = uintBitsToFloat(no_key);
-            for (uint k = 0u; k < samples_here; ++k) held = min(held, best_key[k]);
-            atomicMin(tile_min_key[parity], floatBitsToUint(held));
-        }
+        if (occlusion != 0) hold_keys(parity * uint(BC_GL_TIME_STRATA), best_key, slices, samples_here);
     }
     if (inside) {
         for (uint k = 0u; k < samples_here; ++k) {
