@@ -43,8 +43,9 @@ struct GlOptions {
     // more is detected on the GPU and binned again with room for all (counter
     // tile_list_retries); a tiny value forces that path (the tests do).
     std::size_t tile_list_capacity = 0;
-    // Compute pipeline: hierarchical occlusion per tile (an entry whose
-    // kernel depth floor is behind every sample its tile holds is skipped).
+    // Compute pipeline: hierarchical occlusion per tile and shutter slice
+    // (an entry's samples in a slice where its kernel depth floor is behind
+    // every sample its tile holds are skipped; hidden in all, it is dropped).
     // The same image; fewer samples tested, and fewer counted in
     // samples_hit, as the cpu backend's CpuOptions::occlusion.
     bool occlusion = true;
