@@ -120,8 +120,8 @@ void check_triangle_limit(std::size_t count) {
     // 64 cells per work group, at most 65535 groups (GL's minimum limit).
     constexpr std::size_t triangle_limit = 65535 * 64 / cells_max;
     if (count > triangle_limit) {
-        throw GlError("gl: " + std::to_string(count) + " triangles exceed the backend's limit of " +
-                      std::to_string(triangle_limit));
+        throw GlError("gl: " + std::to_string(count) + " triangles exceed the fragment pipeline's limit of " +
+                      std::to_string(triangle_limit) + " (--gl-pipeline compute takes any number)");
     }
 }
 
