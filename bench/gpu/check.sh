@@ -38,6 +38,11 @@ say "date: $(date -u +%FT%TZ)"
 command -v nvidia-smi >/dev/null && say "gpu: $(nvidia-smi --query-gpu=name,driver_version --format=csv,noheader 2>&1)"
 say "cpus: $(nproc)"
 
+# The command's compiled-in path, linked to the bundle's where it is missing.
+# shellcheck source=bench/gpu/compiled_cli.sh
+. "$(dirname "$0")/compiled_cli.sh"
+for t in "${gl_tests[@]}"; do link_compiled_cli "$(command -v "$t" || true)"; done >>"$summary"
+
 debugger=$(command -v cuda-gdb || command -v gdb || true)
 failed=0
 for t in "${gl_tests[@]}"; do

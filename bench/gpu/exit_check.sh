@@ -21,6 +21,9 @@ tests=("$@")
                                  test_frontend_shading test_frontend_sampler)
 summary="$out/exit_check.txt"
 : > "$summary"
+# shellcheck source=bench/gpu/compiled_cli.sh
+. "$(dirname "$0")/compiled_cli.sh"
+for t in "${tests[@]}"; do link_compiled_cli "$(command -v "$t" || true)"; done >>"$summary"
 bad=0
 for t in "${tests[@]}"; do
   exe=$(command -v "$t" || true)
