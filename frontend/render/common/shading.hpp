@@ -15,12 +15,14 @@
 // by spp (resolve_box), so backends that agree on every sample agree bit for bit.
 #pragma once
 
+#include "render/common/parallel_items.hpp"
 #include "render/common/specular_shading.hpp"
 #include "render/common/surface_shared.h"
 #include "scene/scene.hpp"
 
 #include <glm/glm.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <vector>
@@ -69,10 +71,19 @@ inline glm::vec3 shade(const Scene& scene, std::size_t triangle) {
                                        material.emissive, shading_ambient);
 }
 
-// shade() for every triangle, computed once per render.
-inline std::vector<glm::vec3> shade_all(const Scene& scene) {
+// shade() for every triangle, computed once per render; on `threads`
+// threads (render_threads), runs of 16,384 triangles each: the same colours
+// on any number.
+inline std::vector<glm::vec3> shade_all(const Scene& scene, int threads = 1) {
     std::vector<glm::vec3> colours(scene.triangles.size());
-    for (std::size_t t = 0; t < colours.size(); ++t) colours[t] = shade(scene, t);
+    constexpr std::size_t run = 16384;
+    run_parallel_items(
+        threads, static_cast<int>((colours.size() + run - 1) / run), [] { return 0; },
+        [&](int&, int item) {
+            const std::size_t end = std::min(colours.size(), (static_cast<std::size_t>(item) + 1) * run);
+            for (std::size_t t = static_cast<std::size_t>(item) * run; t < end; ++t) colours[t] = shade(scene, t);
+        },
+        [](int&) {});
     return colours;
 }
 

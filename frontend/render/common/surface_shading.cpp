@@ -87,8 +87,8 @@ glm::vec3 shade_hit(const Scene& scene, std::size_t triangle, glm::vec3 barycent
                                        emissive, shading_ambient);
 }
 
-SurfaceShader::SurfaceShader(const Scene& scene, const CameraModel& model)
-    : scene_(scene), near_(static_cast<double>(model.znear)), flat_(shade_all(scene)),
+SurfaceShader::SurfaceShader(const Scene& scene, const CameraModel& model, int threads)
+    : scene_(scene), near_(static_cast<double>(model.znear)), flat_(shade_all(scene, threads)),
       per_hit_(scene.triangles.size(), 0), masked_(scene.triangles.size(), 0) {
     for (std::size_t t = 0; t < scene.triangles.size(); ++t) {
         per_hit_[t] = shades_per_hit(scene, t) ? 1 : 0;

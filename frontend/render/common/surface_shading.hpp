@@ -48,7 +48,8 @@ public:
     // No sample hit (every backend's "none" id: 0xffffffff).
     static constexpr std::uint32_t no_hit = 0xffffffffu;
 
-    SurfaceShader(const Scene& scene, const CameraModel& model);
+    // `threads`: the flat colours (shade_all) on that many threads.
+    SurfaceShader(const Scene& scene, const CameraModel& model, int threads = 1);
 
     // Whether `triangle`'s material is alphaMode MASK or BLEND: its coverage
     // depends on sample_kept, which the raster decision must call.

@@ -97,7 +97,7 @@ RenderResult render_cpu_in(const Scene& scene, const RenderSettings& settings, c
 
     // Setup: clip-space triangles, their screen rectangles, binned into tiles.
     Clock::time_point phase = Clock::now();
-    const SurfaceShader shader(scene, model);
+    const SurfaceShader shader(scene, model, threads);
     FrameSetup<Real> setup;
     // Strata only where no per-footprint bound culls lens and time (bbox, hull).
     const SampleStrata strata = cull_bounds ? SampleStrata{} : SampleStrata{options.time_strata, options.lens_strata};

@@ -367,7 +367,7 @@ RenderResult render_embree(const Scene& scene, const RenderSettings& settings, c
     stats.triangles = scene.triangles.size();
 
     Clock::time_point phase_start = Clock::now();
-    const SurfaceShader shader(scene, model);
+    const SurfaceShader shader(scene, model, static_cast<int>(thread_count));
     stats.ms_per_phase.emplace_back("shade", ms_since(phase_start));
 
     phase_start = Clock::now();

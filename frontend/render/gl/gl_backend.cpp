@@ -271,7 +271,7 @@ StochasticFrame::StochasticFrame(const GlRenderer::State& state, const Scene& sc
       triangle_buffer_(storage_buffer(gl_, triangles_.gpu)),
       info_buffer_(storage_buffer(gl_, std::max<std::size_t>(count_, 1) * sizeof(TriangleInfo))),
       counters_(gl_),
-      colour_buffer_(storage_buffer(gl_, frame_colours(scene))),
+      colour_buffer_(storage_buffer(gl_, frame_colours(scene, render_threads(settings)))),
       sum_buffer_(storage_buffer(gl_, pixels_ * sizeof(glm::vec4))),
       id_buffer_(storage_buffer(gl_, keep_ids ? pixels_ * spp_ * sizeof(std::uint32_t) : 4)),
       cell_buffer_(storage_buffer(gl_, std::max<std::size_t>(cell_count_, 1) * sizeof(CellBounds))),
@@ -481,7 +481,8 @@ RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settin
     // Per-hit shading (textures, vertex colours, normals) is resolved on the
     // host from the winners the GPU read back, with the CPU backend's
     // function: the shading contract's resolve step (docs/gl-backend.md).
-    const SurfaceShader shader(scene, CameraModel(scene.camera, settings.width, settings.height));
+    const SurfaceShader shader(scene, CameraModel(scene.camera, settings.width, settings.height),
+                               render_threads(settings));
     std::vector<std::uint32_t> winners;
     std::vector<std::uint32_t>* kept_ids = shader.any_per_hit() && sample_ids == nullptr ? &winners : sample_ids;
     const bool keep_ids = (options.keep_sample_ids && sample_ids != nullptr) || shader.any_per_hit();

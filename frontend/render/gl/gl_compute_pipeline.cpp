@@ -128,7 +128,7 @@ public:
           info_buffer_(bounded_buffer(gl_, batch_capacity_ * sizeof(TriangleInfo), "triangle infos")),
           class_buffer_(bounded_buffer(gl_, batch_capacity_ * sizeof(std::int32_t), "triangle classes")),
           counters_(gl_),
-          colour_buffer_(storage_buffer(gl_, frame_colours(scene))),
+          colour_buffer_(storage_buffer(gl_, frame_colours(scene, render_threads(settings)))),
           sum_buffer_(bounded_buffer(gl_, pixels_ * sizeof(glm::vec4), "pixel sums")),
           id_buffer_(bounded_buffer(gl_, pixels_ * static_cast<std::size_t>(settings.spp) * sizeof(std::uint32_t),
                                     "sample ids")),
@@ -394,7 +394,7 @@ RenderResult render_gl_compute(const gl::HeadlessContext& context, std::shared_p
     // Per-hit shading (textures, vertex colours, normals) on the host from the
     // winners, as the fragment pipeline does (GlRenderer::render).
     const CameraModel model(scene.camera, settings.width, settings.height);
-    const SurfaceShader shader(scene, model);
+    const SurfaceShader shader(scene, model, render_threads(settings));
     std::vector<std::uint32_t> winners;
     const bool keep_ids = (options.keep_sample_ids && sample_ids != nullptr) || shader.any_per_hit();
     std::vector<std::uint32_t>* kept_ids = options.keep_sample_ids && sample_ids != nullptr ? sample_ids : &winners;

@@ -75,8 +75,8 @@ FrameTriangles frame_triangles(const Scene& scene, const CameraModel& model, boo
     return out;
 }
 
-std::vector<glm::vec4> frame_colours(const Scene& scene) {
-    const std::vector<glm::vec3> shaded = shade_all(scene);
+std::vector<glm::vec4> frame_colours(const Scene& scene, int threads) {
+    const std::vector<glm::vec3> shaded = shade_all(scene, threads);
     std::vector<glm::vec4> colours;
     colours.reserve(shaded.size() + 1);
     for (const glm::vec3& colour : shaded) colours.emplace_back(colour, 1.0f);

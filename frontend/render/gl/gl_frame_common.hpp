@@ -58,7 +58,8 @@ FrameTriangles frame_triangles(const Scene& scene, const CameraModel& model, boo
                                std::size_t first, std::size_t count, int threads);
 
 // Each triangle's shaded colour, then the background's (index = triangle count).
-std::vector<glm::vec4> frame_colours(const Scene& scene);
+// On `threads` threads (shade_all).
+std::vector<glm::vec4> frame_colours(const Scene& scene, int threads);
 
 // The image from render_resolve.comp's per-pixel sums (rgb, hit count),
 // divided by spp as the CPU backend resolves (resolve_box, resolve_coverage).
