@@ -1,10 +1,12 @@
 // The GL backend's compute pipeline (frontend/render/gl/gl_compute_pipeline.hpp,
 // GlOptions::pipeline = compute): the same samples decided the same way as
 // the cpu backend's float path and the fragment pipeline (hits, sample ids,
-// pixels), every cull method, a forced tile-list overflow, triangle batches
-// (any size gives the same ids; a scene past one dispatch), and the command
-// line (--gl-pipeline, the JSON). No GL context: SKIPPED, or a failure when
-// CI=true.
+// pixels) on the built-in scenes and the Khronos sample models (on a GPU
+// that does not compute as the host, within issue 22's arithmetic model),
+// every cull method, a forced tile-list overflow, triangle batches (any size
+// gives the same ids; a scene past one dispatch), and the command line
+// (--gl-pipeline, the JSON, progress). No GL context: SKIPPED, or a failure
+// when CI=true. One CTest per case (tests/CMakeLists.txt).
 #include "gl_render_reference.hpp"  // first: it keeps the host from contracting a*b+c
 #include "cli_runner.hpp"
 #include "frontend_test_helpers.hpp"
