@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstddef>
 #include <thread>
 #include <vector>
 
@@ -41,6 +42,21 @@ void run_parallel_items(int threads, int items, MakeState&& make_state, Work&& w
     }
     worker();
     for (std::thread& helper : helpers) helper.join();
+}
+
+// Runs body(begin, end) over the ranges of `run` items that cover
+// [0, count), on up to `threads` threads: a loop whose items are independent
+// (each writes only its own results), the same result on any number.
+template <class Body>
+void run_parallel_ranges(int threads, std::size_t count, std::size_t run, Body&& body) {
+    const auto runs = static_cast<int>((count + run - 1) / run);
+    run_parallel_items(
+        threads, runs, [] { return 0; },
+        [&](int&, int item) {
+            const std::size_t begin = static_cast<std::size_t>(item) * run;
+            body(begin, std::min(count, begin + run));
+        },
+        [](int&) {});
 }
 
 }  // namespace blurcull::frontend

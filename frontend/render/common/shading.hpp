@@ -22,7 +22,6 @@
 
 #include <glm/glm.hpp>
 
-#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <vector>
@@ -76,14 +75,9 @@ inline glm::vec3 shade(const Scene& scene, std::size_t triangle) {
 // on any number.
 inline std::vector<glm::vec3> shade_all(const Scene& scene, int threads = 1) {
     std::vector<glm::vec3> colours(scene.triangles.size());
-    constexpr std::size_t run = 16384;
-    run_parallel_items(
-        threads, static_cast<int>((colours.size() + run - 1) / run), [] { return 0; },
-        [&](int&, int item) {
-            const std::size_t end = std::min(colours.size(), (static_cast<std::size_t>(item) + 1) * run);
-            for (std::size_t t = static_cast<std::size_t>(item) * run; t < end; ++t) colours[t] = shade(scene, t);
-        },
-        [](int&) {});
+    run_parallel_ranges(threads, colours.size(), 16384, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t t = begin; t < end; ++t) colours[t] = shade(scene, t);
+    });
     return colours;
 }
 

@@ -199,8 +199,9 @@ struct StaticGroups {
 // shaders' bindings); GlRenderer::render then runs the steps in order.
 class StochasticFrame {
 public:
+    // `flat`: each triangle's flat colour (the render's SurfaceShader).
     StochasticFrame(const GlRenderer::State& state, const Scene& scene, const RenderSettings& settings,
-                    const GlOptions& options, bool keep_ids);
+                    const GlOptions& options, bool keep_ids, const std::vector<glm::vec3>& flat);
 
     // Per triangle and per moving cell, once per frame: render_setup.comp
     // (screen bound, path) and render_bounds.comp (cells' sample bounds);
@@ -254,7 +255,7 @@ int cells_per_triangle_for(CullMethod cull) {
 }
 
 StochasticFrame::StochasticFrame(const GlRenderer::State& state, const Scene& scene, const RenderSettings& settings,
-                                 const GlOptions& options, bool keep_ids)
+                                 const GlOptions& options, bool keep_ids, const std::vector<glm::vec3>& flat)
     : state_(state),
       gl_(state.context.gl()),
       settings_(settings),
@@ -271,7 +272,7 @@ StochasticFrame::StochasticFrame(const GlRenderer::State& state, const Scene& sc
       triangle_buffer_(storage_buffer(gl_, triangles_.gpu)),
       info_buffer_(storage_buffer(gl_, std::max<std::size_t>(count_, 1) * sizeof(TriangleInfo))),
       counters_(gl_),
-      colour_buffer_(storage_buffer(gl_, frame_colours(scene, render_threads(settings)))),
+      colour_buffer_(storage_buffer(gl_, frame_colours(flat, scene))),
       sum_buffer_(storage_buffer(gl_, pixels_ * sizeof(glm::vec4))),
       id_buffer_(storage_buffer(gl_, keep_ids ? pixels_ * spp_ * sizeof(std::uint32_t) : 4)),
       cell_buffer_(storage_buffer(gl_, std::max<std::size_t>(cell_count_, 1) * sizeof(CellBounds))),
@@ -486,7 +487,7 @@ RenderResult GlRenderer::render(const Scene& scene, const RenderSettings& settin
     std::vector<std::uint32_t> winners;
     std::vector<std::uint32_t>* kept_ids = shader.any_per_hit() && sample_ids == nullptr ? &winners : sample_ids;
     const bool keep_ids = (options.keep_sample_ids && sample_ids != nullptr) || shader.any_per_hit();
-    StochasticFrame frame(*state_, scene, settings, options, keep_ids);
+    StochasticFrame frame(*state_, scene, settings, options, keep_ids, shader.flat_colours());
     frame.run_setup();
     stats.ms_per_phase.emplace_back("setup", ms_since(phase));
 

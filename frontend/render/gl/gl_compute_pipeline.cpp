@@ -112,8 +112,9 @@ gl::Buffer bounded_buffer(const gl::Functions& gl, std::size_t bytes, const char
 // binned and rasterized before the next; the samples carry the winners over.
 class ComputeFrame {
 public:
+    // `flat`: each triangle's flat colour (the render's SurfaceShader).
     ComputeFrame(const gl::Functions& gl, GlComputePrograms& programs, const Scene& scene,
-                 const RenderSettings& settings, std::size_t batch)
+                 const RenderSettings& settings, std::size_t batch, const std::vector<glm::vec3>& flat)
         : gl_(gl),
           programs_(programs),
           scene_(scene),
@@ -128,7 +129,7 @@ public:
           info_buffer_(bounded_buffer(gl_, batch_capacity_ * sizeof(TriangleInfo), "triangle infos")),
           class_buffer_(bounded_buffer(gl_, batch_capacity_ * sizeof(std::int32_t), "triangle classes")),
           counters_(gl_),
-          colour_buffer_(storage_buffer(gl_, frame_colours(scene, render_threads(settings)))),
+          colour_buffer_(storage_buffer(gl_, frame_colours(flat, scene))),
           sum_buffer_(bounded_buffer(gl_, pixels_ * sizeof(glm::vec4), "pixel sums")),
           id_buffer_(bounded_buffer(gl_, pixels_ * static_cast<std::size_t>(settings.spp) * sizeof(std::uint32_t),
                                     "sample ids")),
@@ -401,7 +402,7 @@ RenderResult render_gl_compute(const gl::HeadlessContext& context, std::shared_p
     GlPhaseTimers timers(gl, phase_names());
     const std::size_t count = scene.triangles.size();
     const std::size_t batch = batch_size(gl, options);
-    ComputeFrame frame(gl, *programs, scene, settings, batch);
+    ComputeFrame frame(gl, *programs, scene, settings, batch, shader.flat_colours());
     std::size_t capacity = options.tile_list_capacity > 0
                                ? options.tile_list_capacity
                                : std::max(frame.default_capacity(),

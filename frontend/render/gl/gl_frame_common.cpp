@@ -47,19 +47,13 @@ FrameTriangles frame_triangles(const Scene& scene, const CameraModel& model, boo
     out.classes.assign(std::max<std::size_t>(count, 1), BC_INVALID);
     // Each triangle on its own: runs of 16,384 on the threads, then the
     // lists in index order.
-    constexpr std::size_t run = 16384;
-    const int runs = static_cast<int>((count + run - 1) / run);
-    run_parallel_items(
-        threads, runs, [] { return 0; },
-        [&](int&, int item) {
-            const std::size_t end = std::min(count, (static_cast<std::size_t>(item) + 1) * run);
-            for (std::size_t k = static_cast<std::size_t>(item) * run; k < end; ++k) {
-                const kernelf::MovingTriangle tri = make_moving_triangle<float>(scene, model, first + k);
-                out.classes[k] = kernelf::classify(tri);
-                out.gpu[k] = gpu::to_gpu(tri);
-            }
-        },
-        [](int&) {});
+    run_parallel_ranges(threads, count, 16384, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k) {
+            const kernelf::MovingTriangle tri = make_moving_triangle<float>(scene, model, first + k);
+            out.classes[k] = kernelf::classify(tri);
+            out.gpu[k] = gpu::to_gpu(tri);
+        }
+    });
     for (std::size_t k = 0; k < count; ++k) {
         const auto i = static_cast<std::uint32_t>(first + k);
         if (out.classes[k] == 0 && !force_full_path) {
@@ -75,11 +69,10 @@ FrameTriangles frame_triangles(const Scene& scene, const CameraModel& model, boo
     return out;
 }
 
-std::vector<glm::vec4> frame_colours(const Scene& scene, int threads) {
-    const std::vector<glm::vec3> shaded = shade_all(scene, threads);
+std::vector<glm::vec4> frame_colours(const std::vector<glm::vec3>& flat, const Scene& scene) {
     std::vector<glm::vec4> colours;
-    colours.reserve(shaded.size() + 1);
-    for (const glm::vec3& colour : shaded) colours.emplace_back(colour, 1.0f);
+    colours.reserve(flat.size() + 1);
+    for (const glm::vec3& colour : flat) colours.emplace_back(colour, 1.0f);
     colours.emplace_back(scene.background, 1.0f);
     return colours;
 }

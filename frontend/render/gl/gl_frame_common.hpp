@@ -57,9 +57,9 @@ FrameTriangles frame_triangles(const Scene& scene, const CameraModel& model, boo
 FrameTriangles frame_triangles(const Scene& scene, const CameraModel& model, bool force_full_path,
                                std::size_t first, std::size_t count, int threads);
 
-// Each triangle's shaded colour, then the background's (index = triangle count).
-// On `threads` threads (shade_all).
-std::vector<glm::vec4> frame_colours(const Scene& scene, int threads);
+// Each triangle's flat colour (`flat`: SurfaceShader::flat_colours, the
+// render's shade_all), then the scene's background (index = triangle count).
+std::vector<glm::vec4> frame_colours(const std::vector<glm::vec3>& flat, const Scene& scene);
 
 // The image from render_resolve.comp's per-pixel sums (rgb, hit count),
 // divided by spp as the CPU backend resolves (resolve_box, resolve_coverage).
