@@ -228,27 +228,50 @@ inline CoversCondition covers_condition(const kernel<float>::MovingTriangle& tri
         a[i] = glm::abs(tri.p[i]) + glm::abs(tri.p[i + 3]) +
                Kd::vec3(glm::abs(tri.c[i]) + glm::abs(tri.c[i + 3]), 0.0);
     }
-    // covers_hit's evaluation (oracle_body.inl: the edges relative to V0),
-    // each value with the scale of its rounding error to first order (in
-    // units of the roundoff): what it inherits from its operands plus its
-    // own rounding. A vertex inherits a[i] (vertex_at's sums).
+    // covers_hit's evaluation (oracle_body.inl: relative to the pivot, taken
+    // first; the edges in the frame sheared by the sample), each value with
+    // the scale of its rounding error to first order (in units of the
+    // roundoff): what it inherits from its operands plus its own rounding. A
+    // vertex inherits a[i] (vertex_at's sums). Only the smallest margin is
+    // kept, so the edges' order is moot.
+    const int pivot = Kd::bc_oracle_pivot(v[0], v[1], v[2]);
+    std::rotate(v, v + pivot, v + 3);
+    std::rotate(a, a + pivot, a + 3);
     auto cross_terms = [](const Kd::vec3& x, const Kd::vec3& y) {
         return Kd::vec3(x.y * y.z + x.z * y.y, x.z * y.x + x.x * y.z, x.x * y.y + x.y * y.x);
     };
     auto dot_error = [](const Kd::vec3& x, const Kd::vec3& x_err, const Kd::vec3& y, const Kd::vec3& y_err) {
         return glm::dot(x_err, y) + glm::dot(x, y_err) + glm::dot(x, y);
     };
-    const Kd::vec3 ray(double(s_f.x), double(s_f.y), 1.0), ray_abs = glm::abs(ray);
-    const Kd::vec3 d1 = v[1] - v[0], d2 = v[2] - v[0], d21 = d2 - d1;
-    const Kd::vec3 d1_abs = glm::abs(d1), d2_abs = glm::abs(d2), d21_abs = glm::abs(d21), v0_abs = glm::abs(v[0]);
-    const Kd::vec3 d1_err = d1_abs + a[0] + a[1], d2_err = d2_abs + a[0] + a[2], d21_err = d21_abs + d1_err + d2_err;
+    const Kd::vec3 d1 = v[1] - v[0], d2 = v[2] - v[0];
+    const Kd::vec3 d1_abs = glm::abs(d1), d2_abs = glm::abs(d2), v0_abs = glm::abs(v[0]);
+    const Kd::vec3 d1_err = d1_abs + a[0] + a[1], d2_err = d2_abs + a[0] + a[2];
     const Kd::vec3 n = glm::cross(d1, d2), n_abs = glm::abs(n);
     const Kd::vec3 n_err = cross_terms(d1_err, d2_abs) + cross_terms(d1_abs, d2_err) + cross_terms(d1_abs, d2_abs);
-    const Kd::vec3 q = glm::cross(ray, v[0]), q_abs = glm::abs(q);
-    const Kd::vec3 q_err = cross_terms(ray_abs, a[0]) + cross_terms(ray_abs, v0_abs);
-    const double e[3] = {glm::dot(d21, q) + glm::dot(n, ray), -glm::dot(d2, q), glm::dot(d1, q)};
-    const double terms[3] = {dot_error(d21_abs, d21_err, q_abs, q_err) + dot_error(n_abs, n_err, ray_abs, Kd::vec3(0.0)),
-                             dot_error(d2_abs, d2_err, q_abs, q_err), dot_error(d1_abs, d1_err, q_abs, q_err)};
+    // A value and its error scale; products and differences as covers_hit rounds them.
+    struct Term {
+        double v, err;
+    };
+    auto mul = [](Term x, Term y) {
+        const double p = x.v * y.v;
+        return Term{p, x.err * std::abs(y.v) + std::abs(x.v) * y.err + std::abs(p)};
+    };
+    auto sub = [](Term x, Term y) {
+        const double d = x.v - y.v;
+        return Term{d, x.err + y.err + std::abs(d)};
+    };
+    auto add = [&](Term x, Term y) { return sub(x, Term{-y.v, y.err}); };
+    const Term sx{double(s_f.x), 0.0}, sy{double(s_f.y), 0.0};
+    auto sheared = [&](double c, double c_err, double w, double w_err, Term s_axis) {
+        return sub(Term{c, c_err}, mul(s_axis, Term{w, w_err}));
+    };
+    const Term px = sheared(v[0].x, a[0].x, v[0].z, a[0].z, sx), py = sheared(v[0].y, a[0].y, v[0].z, a[0].z, sy);
+    const Term a1 = sheared(d1.x, d1_err.x, d1.z, d1_err.z, sx), b1 = sheared(d1.y, d1_err.y, d1.z, d1_err.z, sy);
+    const Term a2 = sheared(d2.x, d2_err.x, d2.z, d2_err.z, sx), b2 = sheared(d2.y, d2_err.y, d2.z, d2_err.z, sy);
+    const Term edge[3] = {add(sub(mul(sub(b2, b1), px), mul(sub(a2, a1), py)), sub(mul(a1, b2), mul(b1, a2))),
+                          sub(mul(a2, py), mul(b2, px)), sub(mul(px, b1), mul(py, a1))};
+    const double e[3] = {edge[0].v, edge[1].v, edge[2].v};
+    const double terms[3] = {edge[0].err, edge[1].err, edge[2].err};
     double margin = 1e300, e_sum = 0.0, e_terms = 0.0;
     for (int i = 0; i < 3; ++i) {
         margin = std::min(margin, std::abs(e[i]) / std::max(terms[i], 1e-300));

@@ -95,9 +95,10 @@
 //   triangle at time t (edges inclusive; homogeneous rasterization, so vertices
 //   behind the eye are handled) at a view depth >= near. depth: that view depth
 //   when covered; 0 when the ray misses; the too-close depth when false because
-//   the hit is nearer than near. Computed relative to the first vertex, so
-//   an edge lands within about eps |s| of where it is whatever the
-//   triangle's size; a triangle seen edge-on through the eye within rounding
+//   the hit is nearer than near. Computed relative to the sample's smallest
+//   vertex (bc_oracle_pivot), the edges in the frame sheared so that the
+//   sample's ray is the w axis, so an edge lands within a few eps |s| of
+//   where it is whatever the triangle's size or tilt; a triangle seen edge-on through the eye within rounding
 //   (det within 32 eps of its terms) covers nothing. NaN anywhere in the computation gives false; classify() flags such input.
 //
 // bool covers_hit(MovingTriangle tri, vec2 s, vec2 uv, real t, real near, out real depth, out vec3 barycentric)

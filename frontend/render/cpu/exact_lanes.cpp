@@ -66,6 +66,28 @@ __attribute__((target("avx"))) inline __m256d pair4(__m256d p, __m256d q, __m256
     return _mm256_add_pd(_mm256_mul_pd(p, q), _mm256_mul_pd(r, s));
 }
 
+// |x| + |y| + |w| (sign: -0.0 on every lane), as bc_oracle_pivot sums it.
+__attribute__((target("avx"))) inline __m256d l1_norm4(const Vertex4& a, __m256d sign) {
+    return _mm256_add_pd(_mm256_add_pd(_mm256_andnot_pd(sign, a.x), _mm256_andnot_pd(sign, a.y)),
+                         _mm256_andnot_pd(sign, a.w));
+}
+
+// b on the lanes where mask is set, a elsewhere.
+__attribute__((target("avx"))) inline Vertex4 select4(const Vertex4& a, const Vertex4& b, __m256d mask) {
+    return Vertex4{_mm256_blendv_pd(a.x, b.x, mask), _mm256_blendv_pd(a.y, b.y, mask),
+                   _mm256_blendv_pd(a.w, b.w, mask)};
+}
+
+// (x - sx w, y - sy w, w): sheared so that the sample's ray is the w axis.
+__attribute__((target("avx"))) inline Vertex4 shear4(const Vertex4& a, __m256d sx, __m256d sy) {
+    return Vertex4{_mm256_sub_pd(a.x, _mm256_mul_pd(sx, a.w)), _mm256_sub_pd(a.y, _mm256_mul_pd(sy, a.w)), a.w};
+}
+
+// a.x b.y - a.y b.x.
+__attribute__((target("avx"))) inline __m256d cross_z4(const Vertex4& a, const Vertex4& b) {
+    return _mm256_sub_pd(_mm256_mul_pd(a.x, b.y), _mm256_mul_pd(a.y, b.x));
+}
+
 // covers_hit's verdict and depth on four lanes. Where covers returns early
 // (seen edge-on within rounding or NaN, an edge value negative, the sum not
 // positive) the lane's mask is cleared instead; the values computed on such
@@ -80,15 +102,24 @@ __attribute__((target("avx"))) std::uint32_t covers4_avx(const kerneld::MovingTr
     const Vertex4 v1 = vertex4(tri, 1, one_minus_t, T, U, V);
     const Vertex4 v2 = vertex4(tri, 2, one_minus_t, T, U, V);
     const __m256d zero = _mm256_setzero_pd(), sign = _mm256_set1_pd(-0.0);
-    // covers_hit's values relative to v0, in the body's order: d1, d2,
-    // n = d1 x d2, det = v0 . n and its bound 32 eps bc_det_terms(|v0|, |d1|,
-    // |d2|) (|det| > bound ordered, so NaN is rejected as in C++), then
-    // q = ray x v0 and the edge values.
-    const Vertex4 d1{_mm256_sub_pd(v1.x, v0.x), _mm256_sub_pd(v1.y, v0.y), _mm256_sub_pd(v1.w, v0.w)};
-    const Vertex4 d2{_mm256_sub_pd(v2.x, v0.x), _mm256_sub_pd(v2.y, v0.y), _mm256_sub_pd(v2.w, v0.w)};
+    // bc_oracle_pivot per lane (the smallest vertex in the L1 norm, the
+    // lowest index on a tie) and the vertices in cyclic order from it; then
+    // covers_hit's values relative to the pivot p0, in the body's order: d1,
+    // d2, n = d1 x d2, det = p0 . n and its bound 32 eps bc_det_terms(|p0|,
+    // |d1|, |d2|) (|det| > bound ordered, so NaN is rejected as in C++), then
+    // the edge values in the frame sheared by the sample. The edge values
+    // stay in the pivot's order: only their sum and the verdict leave.
+    const __m256d m0 = l1_norm4(v0, sign), m1 = l1_norm4(v1, sign), m2 = l1_norm4(v2, sign);
+    const __m256d pivot1 = _mm256_cmp_pd(m1, m0, _CMP_LT_OQ);
+    const __m256d pivot2 = _mm256_cmp_pd(m2, _mm256_blendv_pd(m0, m1, pivot1), _CMP_LT_OQ);
+    const Vertex4 p0 = select4(select4(v0, v1, pivot1), v2, pivot2);
+    const Vertex4 p1 = select4(select4(v1, v2, pivot1), v0, pivot2);
+    const Vertex4 p2 = select4(select4(v2, v0, pivot1), v1, pivot2);
+    const Vertex4 d1{_mm256_sub_pd(p1.x, p0.x), _mm256_sub_pd(p1.y, p0.y), _mm256_sub_pd(p1.w, p0.w)};
+    const Vertex4 d2{_mm256_sub_pd(p2.x, p0.x), _mm256_sub_pd(p2.y, p0.y), _mm256_sub_pd(p2.w, p0.w)};
     const Vertex4 n = cross4(d1, d2);
-    __m256d det = dot4(v0, n.x, n.y, n.w);
-    const Vertex4 a0{_mm256_andnot_pd(sign, v0.x), _mm256_andnot_pd(sign, v0.y), _mm256_andnot_pd(sign, v0.w)};
+    __m256d det = dot4(p0, n.x, n.y, n.w);
+    const Vertex4 a0{_mm256_andnot_pd(sign, p0.x), _mm256_andnot_pd(sign, p0.y), _mm256_andnot_pd(sign, p0.w)};
     const Vertex4 a1{_mm256_andnot_pd(sign, d1.x), _mm256_andnot_pd(sign, d1.y), _mm256_andnot_pd(sign, d1.w)};
     const Vertex4 a2{_mm256_andnot_pd(sign, d2.x), _mm256_andnot_pd(sign, d2.y), _mm256_andnot_pd(sign, d2.w)};
     const __m256d terms = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(a0.x, pair4(a1.y, a2.w, a2.y, a1.w)),
@@ -96,12 +127,13 @@ __attribute__((target("avx"))) std::uint32_t covers4_avx(const kerneld::MovingTr
                                         _mm256_mul_pd(a0.w, pair4(a1.x, a2.y, a2.x, a1.y)));
     const __m256d bound = _mm256_mul_pd(_mm256_set1_pd(32.0 * kerneld::bc_epsilon()), terms);
     __m256d ok = _mm256_cmp_pd(_mm256_andnot_pd(sign, det), bound, _CMP_GT_OQ);
-    const Vertex4 ray{SX, SY, one};
-    const Vertex4 q = cross4(ray, v0);
-    const Vertex4 d21{_mm256_sub_pd(d2.x, d1.x), _mm256_sub_pd(d2.y, d1.y), _mm256_sub_pd(d2.w, d1.w)};
-    __m256d e0 = _mm256_add_pd(dot4(d21, q.x, q.y, q.w), dot4(n, SX, SY, one));
-    __m256d e1 = _mm256_xor_pd(dot4(d2, q.x, q.y, q.w), sign);
-    __m256d e2 = dot4(d1, q.x, q.y, q.w);
+    // Sheared: the pivot's offset from the ray (px, py) and the edges (a, b).
+    const Vertex4 p = shear4(p0, SX, SY), s1 = shear4(d1, SX, SY), s2 = shear4(d2, SX, SY);
+    __m256d e0 = _mm256_add_pd(_mm256_sub_pd(_mm256_mul_pd(_mm256_sub_pd(s2.y, s1.y), p.x),
+                                             _mm256_mul_pd(_mm256_sub_pd(s2.x, s1.x), p.y)),
+                               cross_z4(s1, s2));
+    __m256d e1 = cross_z4(s2, p);
+    __m256d e2 = cross_z4(p, s1);
     // det < 0: all four negated (a sign flip, exact).
     const __m256d flip = _mm256_and_pd(_mm256_cmp_pd(det, zero, _CMP_LT_OQ), sign);
     e0 = _mm256_xor_pd(e0, flip);

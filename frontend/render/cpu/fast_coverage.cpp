@@ -113,29 +113,40 @@ struct CoordinateMagnitude {
     return f.fma(nx, s, f.fma(ny, s, nz));
 }
 
-// The oracle's edge values (covers_hit): everything relative to v0, with
-// d1 = v1 - v0, d2 = v2 - v0, n = d1 x d2 and q = (sx, sy, 1) x v0,
-//   e0 = (d2 - d1) . q + n . (sx, sy, 1),   e1 = -d2 . q,   e2 = d1 . q,
-// every difference, product and sum rounded (GLM's cross, bc_dot3's order).
-// Equal to (V_a x V_b) . (sx, sy, 1) in exact arithmetic, so the bound is on
-// the oracle's distance from that value. Edge k is opposite vertex k.
+// The oracle's edge values (covers_hit) with v[0] as its pivot: d1 = v1 - v0,
+// d2 = v2 - v0, then in the frame sheared by the sample the pivot's offset
+// p = (x0 - sx w0, y0 - sy w0) and the edges a_i = d_i.x - sx d_i.w,
+// b_i = d_i.y - sy d_i.w:
+//   e1 = a2 p.y - b2 p.x,   e2 = p.x b1 - p.y a1,
+//   e0 = (b2 - b1) p.x - (a2 - a1) p.y + (a1 b2 - b1 a2),
+// every difference, product and sum rounded. Equal to (V_a x V_b) . (sx, sy, 1)
+// in exact arithmetic, so the bound is on the oracle's distance from that
+// value. Edge k is opposite vertex k.
 [[gnu::always_inline]] inline Bound oracle_edge(const VertexBounds v[3], int k, Bound s, const Rounding& r) {
     auto sub = [&](const VertexBounds& a, const VertexBounds& b) {
         return VertexBounds{r.add(a.x, b.x), r.add(a.y, b.y), r.add(a.w, b.w)};
     };
-    auto cross = [&](const VertexBounds& a, const VertexBounds& b) {
-        auto component = [&](Bound p, Bound q, Bound u, Bound o) { return r.add(r.mul(p, q), r.mul(u, o)); };
-        return VertexBounds{component(a.y, b.w, b.y, a.w), component(a.w, b.x, b.w, a.x), component(a.x, b.y, b.x, a.y)};
-    };
-    auto dot = [&](const VertexBounds& a, const VertexBounds& b) {
-        return r.add(r.add(r.mul(a.x, b.x), r.mul(a.y, b.y)), r.mul(a.w, b.w));
-    };
-    const VertexBounds ray{s, s, Bound{1.0, 0.0}};
+    auto sheared = [&](Bound c, Bound w) { return r.add(c, r.mul(s, w)); };
+    auto cross_z = [&](Bound ax, Bound ay, Bound bx, Bound by) { return r.add(r.mul(ax, by), r.mul(ay, bx)); };
     const VertexBounds d1 = sub(v[1], v[0]), d2 = sub(v[2], v[0]);
-    const VertexBounds q = cross(ray, v[0]);
-    if (k == 1) return dot(d2, q);
-    if (k == 2) return dot(d1, q);
-    return r.add(dot(sub(d2, d1), q), dot(cross(d1, d2), ray));
+    const Bound px = sheared(v[0].x, v[0].w), py = sheared(v[0].y, v[0].w);
+    const Bound a1 = sheared(d1.x, d1.w), b1 = sheared(d1.y, d1.w);
+    const Bound a2 = sheared(d2.x, d2.w), b2 = sheared(d2.y, d2.w);
+    if (k == 1) return cross_z(a2, b2, px, py);
+    if (k == 2) return cross_z(px, py, a1, b1);
+    return r.add(cross_z(r.add(a2, a1), r.add(b2, b1), px, py), cross_z(a1, b1, a2, b2));
+}
+
+// The oracle's error on edge k whichever vertex it pivots on (it picks the
+// smallest per sample, bc_oracle_pivot): with pivot p it sees the vertices
+// from v[p] on, and edge k as its edge k - p.
+inline double oracle_edge_error(const VertexBounds v[3], int k, Bound s, const Rounding& r) {
+    double e = 0.0;
+    for (int p = 0; p < 3; ++p) {
+        const VertexBounds from_pivot[3] = {v[p], v[(p + 1) % 3], v[(p + 2) % 3]};
+        e = std::max(e, oracle_edge(from_pivot, (k - p + 3) % 3, s, r).e);
+    }
+    return e;
 }
 
 // Rounds a non-negative double up to a float no smaller than it.
@@ -363,8 +374,8 @@ CoverageSetup make_coverage_setup(const typename kernel<Real>::MovingTriangle& t
     for (int k = 0; k < 3; ++k) {
         const int a = (k + 1) % 3, b = (k + 2) % 3;
         const Bound fe = fast_edge(fast[a], fast[b], s_fast);
-        const Bound oe = oracle_edge(oracle, k, s_oracle, r);
-        setup.band[k] = round_up_to_float((fe.e + oe.e) * slack);
+        const double oe = oracle_edge_error(oracle, k, s_oracle, r);
+        setup.band[k] = round_up_to_float((fe.e + oe) * slack);
         setup.usable = setup.usable && fe.m < float_safe && std::isfinite(setup.band[k]);
     }
     if (setup.usable) {

@@ -19,39 +19,83 @@ BC_FN real bc_det_terms(vec3 a0, vec3 a1, vec3 a2) {
            a0.z * (a1.x * a2.y + a2.x * a1.y);
 }
 
+// Which vertex covers_hit works relative to: the smallest in the L1
+// norm, the lowest index on a tie (so v0 for most triangles). Relative to a
+// vertex far larger than another, the difference to the small one rounds to
+// minus the large one and the small vertex is lost (docs/kernel.md, "The
+// oracle's conditioning"); relative to the smallest, every difference keeps
+// both ends. Chosen per sample from the sheared vertices, since a vertex
+// that is small at one shutter end or lens corner need not be at another.
+BC_FN int bc_oracle_pivot(vec3 v0, vec3 v1, vec3 v2) {
+    real m0 = abs(v0.x) + abs(v0.y) + abs(v0.z);
+    real m1 = abs(v1.x) + abs(v1.y) + abs(v1.z);
+    real m2 = abs(v2.x) + abs(v2.y) + abs(v2.z);
+    int pivot = 0;
+    if (m1 < m0) {
+        pivot = 1;
+        m0 = m1;
+    }
+    if (m2 < m0) pivot = 2;
+    return pivot;
+}
+
 BC_FN bool covers_hit(BC_IN(MovingTriangle) tri, vec2 s, vec2 uv, real t, real near, BC_OUT(real) depth,
                       BC_OUT(vec3) barycentric) {
     depth = real(0);
     barycentric = vec3(real(0));
-    vec3 v0 = vertex_at(tri, 0, t, uv);
-    vec3 v1 = vertex_at(tri, 1, t, uv);
-    vec3 v2 = vertex_at(tri, 2, t, uv);
-    vec3 ray = vec3(s.x, s.y, real(1));
-    // Everything relative to v0 (docs/kernel.md, "The oracle's
-    // conditioning"): with d1 = v1 - v0,
-    // d2 = v2 - v0, n = d1 x d2 and q = ray x v0, in exact arithmetic
-    //   e1 = (v2 x v0) . ray = -d2 . q,   e2 = (v0 x v1) . ray = d1 . q,
-    //   e0 = (v1 x v2) . ray = (d2 - d1) . q + n . ray,   det = v0 . n.
-    // q cancels to the ray's offset from v0, so an edge lands within about
-    // eps |s| of where it is, whatever the triangle's size; the products of
-    // absolute vertices placed a short edge within eps (1 + |s|)^3 / length.
+    vec3 a0 = vertex_at(tri, 0, t, uv);
+    vec3 a1 = vertex_at(tri, 1, t, uv);
+    vec3 a2 = vertex_at(tri, 2, t, uv);
+    // The vertices in cyclic order from the pivot: (v0, v1, v2) is
+    // (a_p, a_p+1, a_p+2), which keeps det's sign and maps edge j to edge p+j.
+    int pivot = bc_oracle_pivot(a0, a1, a2);
+    vec3 v0 = a0;
+    vec3 v1 = a1;
+    vec3 v2 = a2;
+    if (pivot == 1) {
+        v0 = a1;
+        v1 = a2;
+        v2 = a0;
+    } else if (pivot == 2) {
+        v0 = a2;
+        v1 = a0;
+        v2 = a1;
+    }
+    // Everything relative to the pivot v0 (docs/kernel.md, "The oracle's
+    // conditioning"): d1 = v1 - v0, d2 = v2 - v0, n = d1 x d2, det M = v0 . n,
+    // whose rounding is relative to the triangle's size (bc_det_terms).
+    // Where det lies within that rounding the triangle is seen edge-on
+    // through the eye and its sign is unknown; with the wrong sign the edge
+    // tests would accept the triangle's image behind the eye, a line far
+    // beyond it that no bound contains. Such a triangle covers nothing.
+    // Rejects NaN too.
     vec3 d1 = v1 - v0;
     vec3 d2 = v2 - v0;
     vec3 n = cross(d1, d2);
-    // det M, the facing: its rounding is relative to the triangle's size.
-    // Where it lies within that rounding the triangle is seen edge-on through
-    // the eye and its sign is unknown; with the wrong sign the edge tests
-    // would accept the triangle's image behind the eye, a line far beyond
-    // it that no bound contains. Such a triangle covers nothing. Rejects
-    // NaN too.
     real det = bc_dot3(v0, n);
     real det_error = real(32) * bc_epsilon() * bc_det_terms(abs(v0), abs(d1), abs(d2));
     if (!(abs(det) > det_error)) return false;
-    vec3 q = cross(ray, v0);
-    vec3 d21 = d2 - d1;
-    real e0 = bc_dot3(d21, q) + bc_dot3(n, ray);
-    real e1 = -bc_dot3(d2, q);
-    real e2 = bc_dot3(d1, q);
+    // The edge values e_j = (v_j+1 x v_j+2) . (s, 1) in the frame sheared so
+    // that the sample's ray is the w axis, (x, y, w) -> (x - s.x w, y - s.y w,
+    // w): a shear of determinant 1 mapping (s, 1) to (0, 0, 1), so
+    // e_j = (v'_j+1 x v'_j+2).z exactly. With the pivot's offset from the ray
+    // p = (x0 - s.x w0, y0 - s.y w0) and the sheared edges
+    // a_i = d_i.x - s.x d_i.w, b_i = d_i.y - s.y d_i.w:
+    //   e1 = a2 p.y - b2 p.x,   e2 = p.x b1 - p.y a1,
+    //   e0 = (b2 - b1) p.x - (a2 - a1) p.y + (a1 b2 - b1 a2).
+    // p is the ray's offset from v0 and the a, b as small as the triangle, so
+    // an edge lands within a few eps |s| of where it is whatever the
+    // triangle's size or tilt (unsheared, a tilted triangle's d.w times
+    // s.x y0 - s.y x0 placed it within eps |s|^2 |d.w| / |d|).
+    real px = v0.x - s.x * v0.z;
+    real py = v0.y - s.y * v0.z;
+    real sa1 = d1.x - s.x * d1.z;
+    real sb1 = d1.y - s.y * d1.z;
+    real sa2 = d2.x - s.x * d2.z;
+    real sb2 = d2.y - s.y * d2.z;
+    real e0 = (sb2 - sb1) * px - (sa2 - sa1) * py + (sa1 * sb2 - sb1 * sa2);
+    real e1 = sa2 * py - sb2 * px;
+    real e2 = px * sb1 - py * sa1;
     if (det < real(0)) {
         e0 = -e0;
         e1 = -e1;
@@ -62,7 +106,11 @@ BC_FN bool covers_hit(BC_IN(MovingTriangle) tri, vec2 s, vec2 uv, real t, real n
     real sum = e0 + e1 + e2;
     if (!(sum > real(0))) return false;
     depth = det / sum;
-    barycentric = vec3(e0 / sum, e1 / sum, e2 / sum);
+    // Edge value j belongs to vertex pivot + j.
+    vec3 b = vec3(e0 / sum, e1 / sum, e2 / sum);
+    barycentric = b;
+    if (pivot == 1) barycentric = vec3(b.z, b.x, b.y);
+    else if (pivot == 2) barycentric = vec3(b.y, b.z, b.x);
     return depth >= near;
 }
 
