@@ -232,7 +232,8 @@ inline CoversCondition covers_condition(const kernel<float>::MovingTriangle& tri
     // first; the edges in the frame sheared by the sample), each value with
     // the scale of its rounding error to first order (in units of the
     // roundoff): what it inherits from its operands plus its own rounding. A
-    // vertex inherits a[i] (vertex_at's sums). Only the smallest margin is
+    // vertex inherits a[i] (vertex_at's sums); beyond bc_shear_limit the
+    // edges unsheared, as covers_hit takes them. Only the smallest margin is
     // kept, so the edges' order is moot.
     const int pivot = Kd::bc_oracle_pivot(v[0], v[1], v[2]);
     std::rotate(v, v + pivot, v + 3);
@@ -270,8 +271,21 @@ inline CoversCondition covers_condition(const kernel<float>::MovingTriangle& tri
     const Term a2 = sheared(d2.x, d2_err.x, d2.z, d2_err.z, sx), b2 = sheared(d2.y, d2_err.y, d2.z, d2_err.z, sy);
     const Term edge[3] = {add(sub(mul(sub(b2, b1), px), mul(sub(a2, a1), py)), sub(mul(a1, b2), mul(b1, a2))),
                           sub(mul(a2, py), mul(b2, px)), sub(mul(px, b1), mul(py, a1))};
-    const double e[3] = {edge[0].v, edge[1].v, edge[2].v};
-    const double terms[3] = {edge[0].err, edge[1].err, edge[2].err};
+    double e[3] = {edge[0].v, edge[1].v, edge[2].v};
+    double terms[3] = {edge[0].err, edge[1].err, edge[2].err};
+    if (!(std::max(std::abs(s_f.x), std::abs(s_f.y)) <= kernel<float>::bc_shear_limit())) {
+        // Unsheared: q = (s, 1) x V0, e0 = (d2 - d1) . q + n . (s, 1), e1 = -d2 . q, e2 = d1 . q.
+        const Kd::vec3 ray(double(s_f.x), double(s_f.y), 1.0), ray_abs = glm::abs(ray);
+        const Kd::vec3 d21 = d2 - d1, d21_abs = glm::abs(d21), d21_err = d21_abs + d1_err + d2_err;
+        const Kd::vec3 q = glm::cross(ray, v[0]), q_abs = glm::abs(q);
+        const Kd::vec3 q_err = cross_terms(ray_abs, a[0]) + cross_terms(ray_abs, v0_abs);
+        e[0] = glm::dot(d21, q) + glm::dot(n, ray);
+        e[1] = -glm::dot(d2, q);
+        e[2] = glm::dot(d1, q);
+        terms[0] = dot_error(d21_abs, d21_err, q_abs, q_err) + dot_error(n_abs, n_err, ray_abs, Kd::vec3(0.0));
+        terms[1] = dot_error(d2_abs, d2_err, q_abs, q_err);
+        terms[2] = dot_error(d1_abs, d1_err, q_abs, q_err);
+    }
     double margin = 1e300, e_sum = 0.0, e_terms = 0.0;
     for (int i = 0; i < 3; ++i) {
         margin = std::min(margin, std::abs(e[i]) / std::max(terms[i], 1e-300));

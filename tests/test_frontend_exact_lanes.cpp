@@ -107,3 +107,50 @@ TEST_CASE("four-lane exact test: edge-on, behind the eye, NaN and near-plane lan
     tri.p[5] = tri.p[2];
     CHECK(frontend::covers4(tri, sx, sy, u, v, t, 1.0, depth) == 0u);
 }
+
+// covers_hit takes its edges sheared up to bc_shear_limit (2^42 in double)
+// and unsheared beyond: lanes on both sides in one group, against covers.
+// A triangle near the eye seen along rays far off-screen (screen positions
+// up to 2^60), tilted so that the two forms round differently.
+TEST_CASE("four-lane exact test: lanes on both sides of the shear limit") {
+    const double limit = kerneld::bc_shear_limit();
+    Rng rng(0x5ea7);
+    std::uint64_t covered = 0, straddling = 0, disagreements = 0;
+    for (int c = 0; c < 4000; ++c) {
+        // A triangle whose projection reaches near the limit's screen positions: vertices with tiny w.
+        kerneld::MovingTriangle tri{};
+        const double w = std::ldexp(1.0, -40 - rng.below(8));
+        for (int i = 0; i < 3; ++i) {
+            tri.p[i] = kerneld::vec3(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), w * rng.uniform(0.5, 4.0));
+            tri.p[i + 3] = tri.p[i] + kerneld::vec3(rng.uniform(-0.1, 0.1), rng.uniform(-0.1, 0.1), 0.0);
+        }
+        double sx[4], sy[4], u[4] = {0, 0, 0, 0}, v[4] = {0, 0, 0, 0}, t[4];
+        int beyond = 0;
+        for (int i = 0; i < 4; ++i) {
+            t[i] = rng.uniform();
+            // A point of the triangle at t, projected: covered or on its edges, near the limit.
+            const double b0 = rng.uniform(), b1 = rng.uniform() * (1.0 - b0);
+            const kerneld::vec3 q = kerneld::vertex_at(tri, 0, t[i], kerneld::vec2(0.0)) * b0 +
+                                    kerneld::vertex_at(tri, 1, t[i], kerneld::vec2(0.0)) * b1 +
+                                    kerneld::vertex_at(tri, 2, t[i], kerneld::vec2(0.0)) * (1.0 - b0 - b1);
+            sx[i] = q.x / q.z;
+            sy[i] = q.y / q.z;
+            beyond += std::max(std::abs(sx[i]), std::abs(sy[i])) > limit;
+        }
+        straddling += beyond > 0 && beyond < 4;
+        double depth[4], scalar_depth[4];
+        const std::uint32_t lanes = frontend::covers4(tri, sx, sy, u, v, t, 0.0, depth);
+        const std::uint32_t scalar = frontend::covers4_scalar(tri, sx, sy, u, v, t, 0.0, scalar_depth);
+        for (int i = 0; i < 4; ++i) {
+            double z = 0.0;
+            const bool hit = kerneld::covers(tri, kerneld::vec2(sx[i], sy[i]), kerneld::vec2(u[i], v[i]), t[i], 0.0, z);
+            covered += hit;
+            if (((lanes >> i) & 1u) != hit || ((scalar >> i) & 1u) != hit) ++disagreements;
+            if (hit && (!same_bits(depth[i], z) || !same_bits(scalar_depth[i], z))) ++disagreements;
+        }
+    }
+    MESSAGE(covered, " covered lanes, ", straddling, " groups straddling the limit");
+    CHECK(disagreements == 0);
+    CHECK(straddling > 100);
+    CHECK(covered > 1000);
+}

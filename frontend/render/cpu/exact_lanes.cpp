@@ -88,6 +88,32 @@ __attribute__((target("avx"))) inline __m256d cross_z4(const Vertex4& a, const V
     return _mm256_sub_pd(_mm256_mul_pd(a.x, b.y), _mm256_mul_pd(a.y, b.x));
 }
 
+struct Edges4 {
+    __m256d e0, e1, e2;
+};
+
+// covers_hit's edge values in the frame sheared by the sample: the pivot's
+// offset from the ray p and the edges (a, b), then e0, e1, e2 in its order.
+__attribute__((target("avx"))) inline Edges4 sheared_edges4(const Vertex4& p0, const Vertex4& d1, const Vertex4& d2,
+                                                            __m256d sx, __m256d sy) {
+    const Vertex4 p = shear4(p0, sx, sy), s1 = shear4(d1, sx, sy), s2 = shear4(d2, sx, sy);
+    return Edges4{_mm256_add_pd(_mm256_sub_pd(_mm256_mul_pd(_mm256_sub_pd(s2.y, s1.y), p.x),
+                                              _mm256_mul_pd(_mm256_sub_pd(s2.x, s1.x), p.y)),
+                                cross_z4(s1, s2)),
+                  cross_z4(s2, p), cross_z4(p, s1)};
+}
+
+// Beyond bc_shear_limit: q = ray x p0, e0 = (d2 - d1) . q + n . ray,
+// e1 = -d2 . q, e2 = d1 . q.
+__attribute__((target("avx"))) inline Edges4 unsheared_edges4(const Vertex4& p0, const Vertex4& d1, const Vertex4& d2,
+                                                              const Vertex4& n, __m256d sx, __m256d sy, __m256d one) {
+    const Vertex4 ray{sx, sy, one};
+    const Vertex4 q = cross4(ray, p0);
+    const Vertex4 d21{_mm256_sub_pd(d2.x, d1.x), _mm256_sub_pd(d2.y, d1.y), _mm256_sub_pd(d2.w, d1.w)};
+    return Edges4{_mm256_add_pd(dot4(d21, q.x, q.y, q.w), dot4(n, sx, sy, one)),
+                  _mm256_xor_pd(dot4(d2, q.x, q.y, q.w), _mm256_set1_pd(-0.0)), dot4(d1, q.x, q.y, q.w)};
+}
+
 // covers_hit's verdict and depth on four lanes. Where covers returns early
 // (seen edge-on within rounding or NaN, an edge value negative, the sum not
 // positive) the lane's mask is cleared instead; the values computed on such
@@ -127,13 +153,20 @@ __attribute__((target("avx"))) std::uint32_t covers4_avx(const kerneld::MovingTr
                                         _mm256_mul_pd(a0.w, pair4(a1.x, a2.y, a2.x, a1.y)));
     const __m256d bound = _mm256_mul_pd(_mm256_set1_pd(32.0 * kerneld::bc_epsilon()), terms);
     __m256d ok = _mm256_cmp_pd(_mm256_andnot_pd(sign, det), bound, _CMP_GT_OQ);
-    // Sheared: the pivot's offset from the ray (px, py) and the edges (a, b).
-    const Vertex4 p = shear4(p0, SX, SY), s1 = shear4(d1, SX, SY), s2 = shear4(d2, SX, SY);
-    __m256d e0 = _mm256_add_pd(_mm256_sub_pd(_mm256_mul_pd(_mm256_sub_pd(s2.y, s1.y), p.x),
-                                             _mm256_mul_pd(_mm256_sub_pd(s2.x, s1.x), p.y)),
-                               cross_z4(s1, s2));
-    __m256d e1 = cross_z4(s2, p);
-    __m256d e2 = cross_z4(p, s1);
+    // The edges sheared where max(|sx|, |sy|) <= bc_shear_limit, else
+    // unsheared; both (and a blend) only for a group that straddles it.
+    // (max_pd(a, b) is a > b ? a : b; this order gives glm::max(|sx|, |sy|)'s NaN answer.)
+    const __m256d reach = _mm256_max_pd(_mm256_andnot_pd(sign, SY), _mm256_andnot_pd(sign, SX));
+    const __m256d sheared = _mm256_cmp_pd(reach, _mm256_set1_pd(kerneld::bc_shear_limit()), _CMP_LE_OQ);
+    const int sheared_lanes = _mm256_movemask_pd(sheared);
+    Edges4 e{};
+    if (sheared_lanes != 0) e = sheared_edges4(p0, d1, d2, SX, SY);
+    if (sheared_lanes != 0xF) {
+        const Edges4 far = unsheared_edges4(p0, d1, d2, n, SX, SY, one);
+        e = Edges4{_mm256_blendv_pd(far.e0, e.e0, sheared), _mm256_blendv_pd(far.e1, e.e1, sheared),
+                   _mm256_blendv_pd(far.e2, e.e2, sheared)};
+    }
+    __m256d e0 = e.e0, e1 = e.e1, e2 = e.e2;
     // det < 0: all four negated (a sign flip, exact).
     const __m256d flip = _mm256_and_pd(_mm256_cmp_pd(det, zero, _CMP_LT_OQ), sign);
     e0 = _mm256_xor_pd(e0, flip);

@@ -122,7 +122,7 @@ struct CoordinateMagnitude {
 // every difference, product and sum rounded. Equal to (V_a x V_b) . (sx, sy, 1)
 // in exact arithmetic, so the bound is on the oracle's distance from that
 // value. Edge k is opposite vertex k.
-[[gnu::always_inline]] inline Bound oracle_edge(const VertexBounds v[3], int k, Bound s, const Rounding& r) {
+[[gnu::always_inline]] inline Bound oracle_edge_sheared(const VertexBounds v[3], int k, Bound s, const Rounding& r) {
     auto sub = [&](const VertexBounds& a, const VertexBounds& b) {
         return VertexBounds{r.add(a.x, b.x), r.add(a.y, b.y), r.add(a.w, b.w)};
     };
@@ -137,14 +137,38 @@ struct CoordinateMagnitude {
     return r.add(cross_z(r.add(a2, a1), r.add(b2, b1), px, py), cross_z(a1, b1, a2, b2));
 }
 
+// Beyond bc_shear_limit (|sx| or |sy|) the oracle's edges unsheared: with
+// q = (sx, sy, 1) x v0 and n = d1 x d2,
+//   e0 = (d2 - d1) . q + n . (sx, sy, 1),   e1 = -d2 . q,   e2 = d1 . q.
+[[gnu::always_inline]] inline Bound oracle_edge_unsheared(const VertexBounds v[3], int k, Bound s, const Rounding& r) {
+    auto sub = [&](const VertexBounds& a, const VertexBounds& b) {
+        return VertexBounds{r.add(a.x, b.x), r.add(a.y, b.y), r.add(a.w, b.w)};
+    };
+    auto cross = [&](const VertexBounds& a, const VertexBounds& b) {
+        auto component = [&](Bound p, Bound q, Bound u, Bound o) { return r.add(r.mul(p, q), r.mul(u, o)); };
+        return VertexBounds{component(a.y, b.w, b.y, a.w), component(a.w, b.x, b.w, a.x), component(a.x, b.y, b.x, a.y)};
+    };
+    auto dot = [&](const VertexBounds& a, const VertexBounds& b) {
+        return r.add(r.add(r.mul(a.x, b.x), r.mul(a.y, b.y)), r.mul(a.w, b.w));
+    };
+    const VertexBounds ray{s, s, Bound{1.0, 0.0}};
+    const VertexBounds d1 = sub(v[1], v[0]), d2 = sub(v[2], v[0]);
+    const VertexBounds q = cross(ray, v[0]);
+    if (k == 1) return dot(d2, q);
+    if (k == 2) return dot(d1, q);
+    return r.add(dot(sub(d2, d1), q), dot(cross(d1, d2), ray));
+}
+
 // The oracle's error on edge k whichever vertex it pivots on (it picks the
-// smallest per sample, bc_oracle_pivot): with pivot p it sees the vertices
-// from v[p] on, and edge k as its edge k - p.
+// smallest per sample, bc_oracle_pivot: with pivot p it sees the vertices
+// from v[p] on, and edge k as its edge k - p) and whichever form its edges
+// take (sheared or not, by the sample's |s|).
 inline double oracle_edge_error(const VertexBounds v[3], int k, Bound s, const Rounding& r) {
     double e = 0.0;
     for (int p = 0; p < 3; ++p) {
         const VertexBounds from_pivot[3] = {v[p], v[(p + 1) % 3], v[(p + 2) % 3]};
-        e = std::max(e, oracle_edge(from_pivot, (k - p + 3) % 3, s, r).e);
+        const int edge = (k - p + 3) % 3;
+        e = std::max({e, oracle_edge_sheared(from_pivot, edge, s, r).e, oracle_edge_unsheared(from_pivot, edge, s, r).e});
     }
     return e;
 }

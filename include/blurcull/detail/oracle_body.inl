@@ -39,6 +39,11 @@ BC_FN int bc_oracle_pivot(vec3 v0, vec3 v1, vec3 v2) {
     return pivot;
 }
 
+// The largest |s.x|, |s.y| at which covers_hit takes its edges in the
+// sheared frame: 1 / (1024 eps), 8,192 in float (every screen and guard band,
+// and motion thousands of screen widths out), 2^42 in double.
+BC_FN real bc_shear_limit() { return real(1) / (real(1024) * bc_epsilon()); }
+
 BC_FN bool covers_hit(BC_IN(MovingTriangle) tri, vec2 s, vec2 uv, real t, real near, BC_OUT(real) depth,
                       BC_OUT(vec3) barycentric) {
     depth = real(0);
@@ -86,16 +91,32 @@ BC_FN bool covers_hit(BC_IN(MovingTriangle) tri, vec2 s, vec2 uv, real t, real n
     // p is the ray's offset from v0 and the a, b as small as the triangle, so
     // an edge lands within a few eps |s| of where it is whatever the
     // triangle's size or tilt (unsheared, a tilted triangle's d.w times
-    // s.x y0 - s.y x0 placed it within eps |s|^2 |d.w| / |d|).
-    real px = v0.x - s.x * v0.z;
-    real py = v0.y - s.y * v0.z;
-    real sa1 = d1.x - s.x * d1.z;
-    real sb1 = d1.y - s.y * d1.z;
-    real sa2 = d2.x - s.x * d2.z;
-    real sb2 = d2.y - s.y * d2.z;
-    real e0 = (sb2 - sb1) * px - (sa2 - sa1) * py + (sa1 * sb2 - sb1 * sa2);
-    real e1 = sa2 * py - sb2 * px;
-    real e2 = px * sb1 - py * sa1;
+    // s.x y0 - s.y x0 placed it within eps |s|^2 |d.w| / |d|). Beyond
+    // bc_shear_limit the sheared products outgrow what they measure (their
+    // cancellation is relative eps |s| |d.w| / |d|), and the unsheared form
+    // with q = (s, 1) x v0 is the better conditioned:
+    //   e1 = -d2 . q,   e2 = d1 . q,   e0 = (d2 - d1) . q + n . (s, 1).
+    real e0;
+    real e1;
+    real e2;
+    if (max(abs(s.x), abs(s.y)) <= bc_shear_limit()) {
+        real px = v0.x - s.x * v0.z;
+        real py = v0.y - s.y * v0.z;
+        real sa1 = d1.x - s.x * d1.z;
+        real sb1 = d1.y - s.y * d1.z;
+        real sa2 = d2.x - s.x * d2.z;
+        real sb2 = d2.y - s.y * d2.z;
+        e0 = (sb2 - sb1) * px - (sa2 - sa1) * py + (sa1 * sb2 - sb1 * sa2);
+        e1 = sa2 * py - sb2 * px;
+        e2 = px * sb1 - py * sa1;
+    } else {
+        vec3 ray = vec3(s.x, s.y, real(1));
+        vec3 q = cross(ray, v0);
+        vec3 d21 = d2 - d1;
+        e0 = bc_dot3(d21, q) + bc_dot3(n, ray);
+        e1 = -bc_dot3(d2, q);
+        e2 = bc_dot3(d1, q);
+    }
     if (det < real(0)) {
         e0 = -e0;
         e1 = -e1;
