@@ -434,7 +434,7 @@ void check_property_families(double millions) {
 }
 
 // 10 million covered samples per family (each judged by all six methods) at
-// scale 1, CI's Release run: about 13 minutes on one core (docs/kernel.md,
+// scale 1, CI's Release run: about 12 minutes on one core (docs/kernel.md,
 // "Under the GPU arithmetic model").
 TEST_CASE("gpu arithmetic: every cull method conservative against the GPU's own covers, property families") {
     check_property_families(10.0);
