@@ -24,8 +24,8 @@ BC_FN real bc_det_terms(vec3 a0, vec3 a1, vec3 a2) {
 // vertex far larger than another, the difference to the small one rounds to
 // minus the large one and the small vertex is lost (docs/kernel.md, "The
 // oracle's conditioning"); relative to the smallest, every difference keeps
-// both ends. Chosen per sample from the sheared vertices, since a vertex
-// that is small at one shutter end or lens corner need not be at another.
+// both ends. Chosen per sample from the vertices at its time and lens
+// position, since a vertex small at one shutter end need not be at the other.
 BC_FN int bc_oracle_pivot(vec3 v0, vec3 v1, vec3 v2) {
     real m0 = abs(v0.x) + abs(v0.y) + abs(v0.z);
     real m1 = abs(v1.x) + abs(v1.y) + abs(v1.z);
