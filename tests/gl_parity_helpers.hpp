@@ -249,31 +249,35 @@ inline CoversCondition covers_condition(const kernel<float>::MovingTriangle& tri
     const Kd::vec3 d1_err = d1_abs + a[0] + a[1], d2_err = d2_abs + a[0] + a[2];
     const Kd::vec3 n = glm::cross(d1, d2), n_abs = glm::abs(n);
     const Kd::vec3 n_err = cross_terms(d1_err, d2_abs) + cross_terms(d1_abs, d2_err) + cross_terms(d1_abs, d2_abs);
-    // A value and its error scale; products and differences as covers_hit rounds them.
-    struct Term {
-        double v, err;
-    };
-    auto mul = [](Term x, Term y) {
-        const double p = x.v * y.v;
-        return Term{p, x.err * std::abs(y.v) + std::abs(x.v) * y.err + std::abs(p)};
-    };
-    auto sub = [](Term x, Term y) {
-        const double d = x.v - y.v;
-        return Term{d, x.err + y.err + std::abs(d)};
-    };
-    auto add = [&](Term x, Term y) { return sub(x, Term{-y.v, y.err}); };
-    const Term sx{double(s_f.x), 0.0}, sy{double(s_f.y), 0.0};
-    auto sheared = [&](double c, double c_err, double w, double w_err, Term s_axis) {
-        return sub(Term{c, c_err}, mul(s_axis, Term{w, w_err}));
-    };
-    const Term px = sheared(v[0].x, a[0].x, v[0].z, a[0].z, sx), py = sheared(v[0].y, a[0].y, v[0].z, a[0].z, sy);
-    const Term a1 = sheared(d1.x, d1_err.x, d1.z, d1_err.z, sx), b1 = sheared(d1.y, d1_err.y, d1.z, d1_err.z, sy);
-    const Term a2 = sheared(d2.x, d2_err.x, d2.z, d2_err.z, sx), b2 = sheared(d2.y, d2_err.y, d2.z, d2_err.z, sy);
-    const Term edge[3] = {add(sub(mul(sub(b2, b1), px), mul(sub(a2, a1), py)), sub(mul(a1, b2), mul(b1, a2))),
-                          sub(mul(a2, py), mul(b2, px)), sub(mul(px, b1), mul(py, a1))};
-    double e[3] = {edge[0].v, edge[1].v, edge[2].v};
-    double terms[3] = {edge[0].err, edge[1].err, edge[2].err};
-    if (!(std::max(std::abs(s_f.x), std::abs(s_f.y)) <= kernel<float>::bc_shear_limit())) {
+    double e[3], terms[3];
+    if (std::max(std::abs(s_f.x), std::abs(s_f.y)) <= kernel<float>::bc_shear_limit()) {
+        // Sheared: a value and its error scale; products and differences as covers_hit rounds them.
+        struct Term {
+            double v, err;
+        };
+        auto mul = [](Term x, Term y) {
+            const double p = x.v * y.v;
+            return Term{p, x.err * std::abs(y.v) + std::abs(x.v) * y.err + std::abs(p)};
+        };
+        auto sub = [](Term x, Term y) {
+            const double d = x.v - y.v;
+            return Term{d, x.err + y.err + std::abs(d)};
+        };
+        auto add = [&](Term x, Term y) { return sub(x, Term{-y.v, y.err}); };
+        const Term sx{double(s_f.x), 0.0}, sy{double(s_f.y), 0.0};
+        auto sheared = [&](double c, double c_err, double w, double w_err, Term s_axis) {
+            return sub(Term{c, c_err}, mul(s_axis, Term{w, w_err}));
+        };
+        const Term px = sheared(v[0].x, a[0].x, v[0].z, a[0].z, sx), py = sheared(v[0].y, a[0].y, v[0].z, a[0].z, sy);
+        const Term a1 = sheared(d1.x, d1_err.x, d1.z, d1_err.z, sx), b1 = sheared(d1.y, d1_err.y, d1.z, d1_err.z, sy);
+        const Term a2 = sheared(d2.x, d2_err.x, d2.z, d2_err.z, sx), b2 = sheared(d2.y, d2_err.y, d2.z, d2_err.z, sy);
+        const Term edge[3] = {add(sub(mul(sub(b2, b1), px), mul(sub(a2, a1), py)), sub(mul(a1, b2), mul(b1, a2))),
+                              sub(mul(a2, py), mul(b2, px)), sub(mul(px, b1), mul(py, a1))};
+        for (int i = 0; i < 3; ++i) {
+            e[i] = edge[i].v;
+            terms[i] = edge[i].err;
+        }
+    } else {
         // Unsheared: q = (s, 1) x V0, e0 = (d2 - d1) . q + n . (s, 1), e1 = -d2 . q, e2 = d1 . q.
         const Kd::vec3 ray(double(s_f.x), double(s_f.y), 1.0), ray_abs = glm::abs(ray);
         const Kd::vec3 d21 = d2 - d1, d21_abs = glm::abs(d21), d21_err = d21_abs + d1_err + d2_err;

@@ -267,13 +267,23 @@ void set_mode(std::uint64_t config) {
     }
 }
 
+// A random point of the triangle in barycentrics (b0, b1), a quarter of them
+// on an edge, and where it is at (uv, t) in clip space.
+struct TrianglePoint {
+    double b0, b1;
+    explicit TrianglePoint(Rng& rng) : b0(rng.uniform()), b1(rng.uniform() * (1.0 - b0)) {
+        if (rng.chance(0.25)) b1 = 1.0 - b0;  // on an edge
+    }
+    Kd::vec3 at(const Kd::MovingTriangle& tri_d, Kd::vec2 uv, double t) const {
+        return Kd::vertex_at(tri_d, 0, t, uv) * b0 + Kd::vertex_at(tri_d, 1, t, uv) * b1 +
+               Kd::vertex_at(tri_d, 2, t, uv) * (1.0 - b0 - b1);
+    }
+};
+
 // A point of the (float-rounded) triangle at (uv, t), projected: samples on
 // and near the triangle, where the bounds are tightest.
 Kd::vec2 triangle_point(Rng& rng, const Kd::MovingTriangle& tri_d, Kd::vec2 uv, double t, Kd::vec2 fallback) {
-    double b0 = rng.uniform(), b1 = rng.uniform() * (1.0 - b0);
-    if (rng.chance(0.25)) b1 = 1.0 - b0;  // on an edge
-    Kd::vec3 q = Kd::vertex_at(tri_d, 0, t, uv) * b0 + Kd::vertex_at(tri_d, 1, t, uv) * b1 +
-                 Kd::vertex_at(tri_d, 2, t, uv) * (1.0 - b0 - b1);
+    const Kd::vec3 q = TrianglePoint(rng).at(tri_d, uv, t);
     if (q.z > 0.0 && std::isfinite(q.x / q.z) && std::isfinite(q.y / q.z)) return Kd::vec2(q.x / q.z, q.y / q.z);
     return fallback;
 }
@@ -286,13 +296,8 @@ Kd::vec2 triangle_point(Rng& rng, const Kd::MovingTriangle& tri_d, Kd::vec2 uv, 
 // about 1.5% of that family's samples were covered.
 Kd::vec2 crossing_point(Rng& rng, const Kd::MovingTriangle& tri_d, Kd::vec2 uv, Kd::vec2 lo, Kd::vec2 hi,
                         double& t, Kd::vec2 fallback) {
-    double b0 = rng.uniform(), b1 = rng.uniform() * (1.0 - b0);
-    if (rng.chance(0.25)) b1 = 1.0 - b0;  // on an edge
-    auto point = [&](double at) {
-        return Kd::vertex_at(tri_d, 0, at, uv) * b0 + Kd::vertex_at(tri_d, 1, at, uv) * b1 +
-               Kd::vertex_at(tri_d, 2, at, uv) * (1.0 - b0 - b1);
-    };
-    const Kd::vec3 q0 = point(0.0), q1 = point(1.0);
+    const TrianglePoint point(rng);
+    const Kd::vec3 q0 = point.at(tri_d, uv, 0.0), q1 = point.at(tri_d, uv, 1.0);
     if (!(q0.z > 0.0 && q1.z > 0.0)) return fallback;
     const int axis = std::abs(q1.x / q1.z - q0.x / q0.z) >= std::abs(q1.y / q1.z - q0.y / q0.z) ? 0 : 1;
     const double target = rng.uniform(lo[axis], hi[axis]);
@@ -302,7 +307,7 @@ Kd::vec2 crossing_point(Rng& rng, const Kd::MovingTriangle& tri_d, Kd::vec2 uv, 
     if (!(std::abs(denominator) > 0.0)) return fallback;
     const double at = (target * q0.z - q0[axis]) / denominator;
     if (!(at >= 0.0 && at <= 1.0)) return fallback;
-    const Kd::vec3 q = point(at);
+    const Kd::vec3 q = point.at(tri_d, uv, at);
     if (!(q.z > 0.0)) return fallback;
     t = at;
     return Kd::vec2(q.x / q.z, q.y / q.z);

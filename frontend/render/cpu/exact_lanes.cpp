@@ -66,6 +66,11 @@ __attribute__((target("avx"))) inline __m256d pair4(__m256d p, __m256d q, __m256
     return _mm256_add_pd(_mm256_mul_pd(p, q), _mm256_mul_pd(r, s));
 }
 
+// a - b.
+__attribute__((target("avx"))) inline Vertex4 sub4(const Vertex4& a, const Vertex4& b) {
+    return Vertex4{_mm256_sub_pd(a.x, b.x), _mm256_sub_pd(a.y, b.y), _mm256_sub_pd(a.w, b.w)};
+}
+
 // |x| + |y| + |w| (sign: -0.0 on every lane), as bc_oracle_pivot sums it.
 __attribute__((target("avx"))) inline __m256d l1_norm4(const Vertex4& a, __m256d sign) {
     return _mm256_add_pd(_mm256_add_pd(_mm256_andnot_pd(sign, a.x), _mm256_andnot_pd(sign, a.y)),
@@ -109,7 +114,7 @@ __attribute__((target("avx"))) inline Edges4 unsheared_edges4(const Vertex4& p0,
                                                               const Vertex4& n, __m256d sx, __m256d sy, __m256d one) {
     const Vertex4 ray{sx, sy, one};
     const Vertex4 q = cross4(ray, p0);
-    const Vertex4 d21{_mm256_sub_pd(d2.x, d1.x), _mm256_sub_pd(d2.y, d1.y), _mm256_sub_pd(d2.w, d1.w)};
+    const Vertex4 d21 = sub4(d2, d1);
     return Edges4{_mm256_add_pd(dot4(d21, q.x, q.y, q.w), dot4(n, sx, sy, one)),
                   _mm256_xor_pd(dot4(d2, q.x, q.y, q.w), _mm256_set1_pd(-0.0)), dot4(d1, q.x, q.y, q.w)};
 }
@@ -141,8 +146,7 @@ __attribute__((target("avx"))) std::uint32_t covers4_avx(const kerneld::MovingTr
     const Vertex4 p0 = select4(select4(v0, v1, pivot1), v2, pivot2);
     const Vertex4 p1 = select4(select4(v1, v2, pivot1), v0, pivot2);
     const Vertex4 p2 = select4(select4(v2, v0, pivot1), v1, pivot2);
-    const Vertex4 d1{_mm256_sub_pd(p1.x, p0.x), _mm256_sub_pd(p1.y, p0.y), _mm256_sub_pd(p1.w, p0.w)};
-    const Vertex4 d2{_mm256_sub_pd(p2.x, p0.x), _mm256_sub_pd(p2.y, p0.y), _mm256_sub_pd(p2.w, p0.w)};
+    const Vertex4 d1 = sub4(p1, p0), d2 = sub4(p2, p0);
     const Vertex4 n = cross4(d1, d2);
     __m256d det = dot4(p0, n.x, n.y, n.w);
     const Vertex4 a0{_mm256_andnot_pd(sign, p0.x), _mm256_andnot_pd(sign, p0.y), _mm256_andnot_pd(sign, p0.w)};

@@ -113,6 +113,11 @@ struct CoordinateMagnitude {
     return f.fma(nx, s, f.fma(ny, s, nz));
 }
 
+// a - b, each coordinate rounded (the oracle's vertex differences).
+inline VertexBounds vertex_difference(const VertexBounds& a, const VertexBounds& b, const Rounding& r) {
+    return VertexBounds{r.add(a.x, b.x), r.add(a.y, b.y), r.add(a.w, b.w)};
+}
+
 // The oracle's edge values (covers_hit) with v[0] as its pivot: d1 = v1 - v0,
 // d2 = v2 - v0, then in the frame sheared by the sample the pivot's offset
 // p = (x0 - sx w0, y0 - sy w0) and the edges a_i = d_i.x - sx d_i.w,
@@ -123,12 +128,9 @@ struct CoordinateMagnitude {
 // in exact arithmetic, so the bound is on the oracle's distance from that
 // value. Edge k is opposite vertex k.
 [[gnu::always_inline]] inline Bound oracle_edge_sheared(const VertexBounds v[3], int k, Bound s, const Rounding& r) {
-    auto sub = [&](const VertexBounds& a, const VertexBounds& b) {
-        return VertexBounds{r.add(a.x, b.x), r.add(a.y, b.y), r.add(a.w, b.w)};
-    };
     auto sheared = [&](Bound c, Bound w) { return r.add(c, r.mul(s, w)); };
     auto cross_z = [&](Bound ax, Bound ay, Bound bx, Bound by) { return r.add(r.mul(ax, by), r.mul(ay, bx)); };
-    const VertexBounds d1 = sub(v[1], v[0]), d2 = sub(v[2], v[0]);
+    const VertexBounds d1 = vertex_difference(v[1], v[0], r), d2 = vertex_difference(v[2], v[0], r);
     const Bound px = sheared(v[0].x, v[0].w), py = sheared(v[0].y, v[0].w);
     const Bound a1 = sheared(d1.x, d1.w), b1 = sheared(d1.y, d1.w);
     const Bound a2 = sheared(d2.x, d2.w), b2 = sheared(d2.y, d2.w);
@@ -141,9 +143,6 @@ struct CoordinateMagnitude {
 // q = (sx, sy, 1) x v0 and n = d1 x d2,
 //   e0 = (d2 - d1) . q + n . (sx, sy, 1),   e1 = -d2 . q,   e2 = d1 . q.
 [[gnu::always_inline]] inline Bound oracle_edge_unsheared(const VertexBounds v[3], int k, Bound s, const Rounding& r) {
-    auto sub = [&](const VertexBounds& a, const VertexBounds& b) {
-        return VertexBounds{r.add(a.x, b.x), r.add(a.y, b.y), r.add(a.w, b.w)};
-    };
     auto cross = [&](const VertexBounds& a, const VertexBounds& b) {
         auto component = [&](Bound p, Bound q, Bound u, Bound o) { return r.add(r.mul(p, q), r.mul(u, o)); };
         return VertexBounds{component(a.y, b.w, b.y, a.w), component(a.w, b.x, b.w, a.x), component(a.x, b.y, b.x, a.y)};
@@ -152,11 +151,11 @@ struct CoordinateMagnitude {
         return r.add(r.add(r.mul(a.x, b.x), r.mul(a.y, b.y)), r.mul(a.w, b.w));
     };
     const VertexBounds ray{s, s, Bound{1.0, 0.0}};
-    const VertexBounds d1 = sub(v[1], v[0]), d2 = sub(v[2], v[0]);
+    const VertexBounds d1 = vertex_difference(v[1], v[0], r), d2 = vertex_difference(v[2], v[0], r);
     const VertexBounds q = cross(ray, v[0]);
     if (k == 1) return dot(d2, q);
     if (k == 2) return dot(d1, q);
-    return r.add(dot(sub(d2, d1), q), dot(cross(d1, d2), ray));
+    return r.add(dot(vertex_difference(d2, d1, r), q), dot(cross(d1, d2), ray));
 }
 
 // The oracle's error on edge k whichever vertex it pivots on (it picks the
