@@ -15,23 +15,26 @@ namespace blurcull::frontend::test {
 
 inline constexpr float mirror_z = -5.0f;
 
-// A quad in the plane z facing -z (its winding normal), from (x0, y0) to (x1, y1).
-inline void add_facing_quad(Scene& scene, float x0, float y0, float x1, float y1, float z, std::uint32_t material) {
-    add_quad(scene, {x0, y0, z}, {x0, y1, z}, {x1, y1, z}, {x1, y0, z}, {0, 0, 0}, material);
+// A quad in the plane z facing -z (its winding normal), from (x0, y0) to
+// (x1, y1), moving by `motion` over the shutter.
+inline void add_facing_quad(Scene& scene, float x0, float y0, float x1, float y1, float z, std::uint32_t material,
+                            glm::vec3 motion = glm::vec3(0.0f)) {
+    add_quad(scene, {x0, y0, z}, {x0, y1, z}, {x1, y1, z}, {x1, y0, z}, motion, material);
 }
 
 // Two coloured quads behind the camera (z = 2 and 4, the nearer hiding part
 // of the farther) seen only in a plane mirror at z = -5 that fills the
 // screen; a camera at the origin looking down -z, focused on the mirror, so
-// the reflections at depth 12 and 14 are blurred.
-inline Scene plane_mirror_scene(float lens_radius) {
+// the reflections at depth 12 and 14 are blurred. With `quad_motion` the
+// quads move by it over the shutter (the mirror stands still).
+inline Scene plane_mirror_scene(float lens_radius, glm::vec3 quad_motion = glm::vec3(0.0f)) {
     Scene scene;
     scene.name = "plane-mirror";
     scene.materials = {Material{{1.0f, 1.0f, 1.0f}, "mirror", MaterialKind::mirror},
                        Material{{0.9f, 0.2f, 0.1f}, "red"}, Material{{0.1f, 0.8f, 0.2f}, "green"}};
     add_quad(scene, {-40, -40, mirror_z}, {40, -40, mirror_z}, {40, 40, mirror_z}, {-40, 40, mirror_z}, {0, 0, 0}, 0);
-    add_facing_quad(scene, -1.5f, -1.0f, 0.3f, 0.8f, 2.0f, 1);
-    add_facing_quad(scene, -0.4f, -0.6f, 2.0f, 1.6f, 4.0f, 2);
+    add_facing_quad(scene, -1.5f, -1.0f, 0.3f, 0.8f, 2.0f, 1, quad_motion);
+    add_facing_quad(scene, -0.4f, -0.6f, 2.0f, 1.6f, 4.0f, 2, quad_motion);
     scene.camera.yfov = 0.8f;
     scene.camera.znear = 0.1f;
     scene.camera.lens_radius = lens_radius;
@@ -42,9 +45,10 @@ inline Scene plane_mirror_scene(float lens_radius) {
 
 // The same view without the mirror: the quads reflected in the plane z = -5
 // ((x, y, z) -> (x, y, 2 m - z), the light with them), which is what the
-// mirror shows. Winding reverses under a reflection; shading is two-sided.
-inline Scene mirrored_scene(float lens_radius) {
-    Scene scene = plane_mirror_scene(lens_radius);
+// mirror shows (moving as their mirror images do). Winding reverses under a
+// reflection; shading is two-sided.
+inline Scene mirrored_scene(float lens_radius, glm::vec3 quad_motion = glm::vec3(0.0f)) {
+    Scene scene = plane_mirror_scene(lens_radius, quad_motion);
     Scene mirrored = scene;
     mirrored.position_open.clear();
     mirrored.position_close.clear();
@@ -52,11 +56,10 @@ inline Scene mirrored_scene(float lens_radius) {
     mirrored.triangle_material.clear();
     for (std::size_t t = 2; t < scene.triangles.size(); ++t) {
         const auto base = static_cast<std::uint32_t>(mirrored.position_open.size());
+        auto mirror = [](glm::vec3 p) { return glm::vec3(p.x, p.y, 2.0f * mirror_z - p.z); };
         for (int k = 0; k < 3; ++k) {
-            glm::vec3 p = scene.position_open[scene.triangles[t][k]];
-            p.z = 2.0f * mirror_z - p.z;
-            mirrored.position_open.push_back(p);
-            mirrored.position_close.push_back(p);
+            mirrored.position_open.push_back(mirror(scene.position_open[scene.triangles[t][k]]));
+            mirrored.position_close.push_back(mirror(scene.position_close[scene.triangles[t][k]]));
         }
         mirrored.triangles.push_back({base, base + 2, base + 1});
         mirrored.triangle_material.push_back(scene.triangle_material[t]);

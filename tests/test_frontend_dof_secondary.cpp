@@ -51,6 +51,51 @@ TEST_CASE("dof-secondary: a plane mirror shows the analytically mirrored quads")
     }
 }
 
+TEST_CASE("dof-secondary: motion seen in a mirror, by shutter slices") {
+    // The quads behind the camera move 1.5 units sideways over the shutter:
+    // the mirror shows them blurred as the mirrored quads seen directly are
+    // (the stochastic rasterizer's exact motion blur).
+    const glm::vec3 motion(1.5f, 0.0f, 0.0f);
+    const float lens_radius = 0.05f;
+    const RenderSettings settings = quiet_settings(64, 48, 16);
+    const Scene scene = plane_mirror_scene(lens_radius, motion);
+    const Image expected = render_cpu(mirrored_scene(lens_radius, motion), settings).image;
+
+    // An exact bounce sees the scene at its own ray's time: the reference, to rounding.
+    SecondaryOptions exact = small_options();
+    exact.bounces = SecondaryBounces::exact;
+    SecondaryStats exact_stats;
+    const ImageError e_exact = compare(render_dof_secondary(scene, settings, exact, &exact_stats).image, expected);
+    MESSAGE("exact bounces: RMSE " << e_exact.rmse << ", " << e_exact.pixels_off << " pixels off");
+    CHECK(exact_stats.time_slices == 1);
+    CHECK(e_exact.rmse < 0.003);
+
+    // The image-space bounce sees the middle of its slice: the error falls
+    // as the slices grow (1: the quads sharp at mid-shutter).
+    double previous = 1.0;
+    for (int slices : {1, 2, 4, 16}) {
+        CAPTURE(slices);
+        SecondaryOptions options = small_options();
+        options.time_slices = slices;
+        SecondaryStats stats;
+        const ImageError e = compare(render_dof_secondary(scene, settings, options, &stats).image, expected);
+        MESSAGE(slices << " slices: " << stats.clusters << " clusters, RMSE " << e.rmse << ", " << e.pixels_off
+                       << " pixels off");
+        CHECK(stats.time_slices == slices);
+        CHECK(stats.rays_image_space == stats.rays);
+        CHECK(stats.clusters >= slices);  // each slice its own clusters
+        CHECK(e.rmse < previous);
+        previous = e.rmse;
+    }
+    CHECK(previous < 0.008);
+
+    // auto: the slices for a moving scene, 1 for the same scene standing still.
+    SecondaryStats auto_stats;
+    render_dof_secondary(scene, quiet_settings(16, 12, 4), small_options(), &auto_stats);
+    CHECK(auto_stats.time_slices == auto_time_slices_moving);
+    CHECK(bounce_time_slices(plane_mirror_scene(lens_radius), small_options()) == 1);
+}
+
 TEST_CASE("dof-secondary: the primary-only image sees the environment in the mirror") {
     const RenderSettings settings = quiet_settings(32, 24, 4);
     SecondaryOptions options = small_options();
@@ -162,6 +207,11 @@ TEST_CASE("dof-secondary: options out of range are refused in one line") {
     o = {};
     o.lens_parts = 2;
     CHECK(refused(o, "lens parts"));
+    o = {};
+    o.time_slices = 65;
+    CHECK(refused(o, "time slices"));
+    o.time_slices = -1;
+    CHECK(refused(o, "time slices"));
 }
 
 TEST_CASE("dof-secondary: lens parts") {

@@ -1,6 +1,7 @@
 #include "app/secondary_flags.hpp"
 
 #include <stdexcept>
+#include <string>
 
 namespace blurcull::frontend {
 
@@ -24,6 +25,11 @@ void SecondaryFlags::add_options(CLI::App& app) {
                        "dof-secondary: image-space (the method), exact (every bounce against every triangle: the "
                        "reference) or environment (the primary-only image)")
             ->check(CLI::IsMember({"image-space", "exact", "environment"}))->capture_default_str(),
+        app.add_option("--bounce-time-slices", time_slices,
+                       "dof-secondary: shutter slices, each bounced in the scene at its middle (1 to 64), or auto "
+                       "(1 for a scene that does not move, else " +
+                           std::to_string(auto_time_slices_moving) + ")")
+            ->check(CLI::IsMember({"auto"}) | CLI::Range(1, 64))->capture_default_str(),
     };
 }
 
@@ -32,6 +38,7 @@ SecondaryOptions SecondaryFlags::secondary_options() const {
     options.bounces = secondary_bounces == "exact"         ? SecondaryBounces::exact
                       : secondary_bounces == "environment" ? SecondaryBounces::environment_only
                                                            : SecondaryBounces::image_space;
+    options.time_slices = time_slices == "auto" ? 0 : std::stoi(time_slices);
     return options;
 }
 

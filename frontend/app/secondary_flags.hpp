@@ -1,7 +1,8 @@
 // The dof-secondary flags (--secondary-layers, --clusters-per-facet,
-// --secondary-fov, --layer-size, --lens-parts, --secondary-bounces) that
-// `blurcull render` and `blurcull view` share: declared, parsed and refused
-// for the other methods in one place (docs/secondary-rays.md, "The renderer").
+// --secondary-fov, --layer-size, --lens-parts, --secondary-bounces,
+// --bounce-time-slices) that `blurcull render` and `blurcull view` share:
+// declared, parsed and refused for the other methods in one place
+// (docs/secondary-rays.md, "The renderer").
 #pragma once
 
 #include "render/common/render_method.hpp"
@@ -17,6 +18,7 @@ namespace blurcull::frontend {
 struct SecondaryFlags {
     SecondaryOptions dof_secondary;                   // the flags' values (bounces: see secondary_bounces)
     std::string secondary_bounces = "image-space";    // image-space, exact or environment
+    std::string time_slices = "auto";                 // --bounce-time-slices: auto or 1 .. 64
     std::vector<CLI::Option*> dof_secondary_options;  // only --method dof-secondary takes them
 
     // Adds the flags with their ranges and the paper's defaults.

@@ -32,7 +32,8 @@ struct BounceContext {
     const Scene& scene;
     const SecondaryOptions& options;
     const std::vector<SecondaryRay>& rays;
-    const WorldTriangles& world;
+    const WorldTriangles& world;  // the scene at the rays' slice of the shutter (the layers' snapshot)
+    bool moving;                  // the scene moves: an exact bounce sees it at its ray's own time
     const std::vector<glm::vec3>& colours;
     float tan_half_fov;
     float min_near;
@@ -44,13 +45,17 @@ struct BounceContext {
     ClusterBouncer* bouncer;            // not null: the whole image-space bounce there
 };
 
-// What one ray sees when traced against every triangle.
+// What one ray sees when traced against every triangle where they are at
+// the ray's time (as the Embree reference bounces).
 glm::vec3 exact_radiance(const BounceContext& c, const SecondaryRay& ray, SecondaryStats& stats) {
     ++stats.rays_exact;
-    const ExactHit hit = trace_exact(c.world, ray.origin, ray.direction, c.offset);
+    const ExactHit hit = c.moving ? trace_exact_at(c.scene, ray.time, ray.origin, ray.direction, c.offset)
+                                  : trace_exact(c.world, ray.origin, ray.direction, c.offset);
     if (!hit.hit) return environment_radiance(c.scene, ray.direction);
     ++stats.rays_hit;
-    return bounce_hit_radiance(c.scene, c.colours, hit.triangle, ray.direction, c.world.normals[hit.triangle]);
+    const glm::vec3 normal =
+        c.moving ? unit_normal(triangle_at(c.scene, hit.triangle, ray.time)) : c.world.normals[hit.triangle];
+    return bounce_hit_radiance(c.scene, c.colours, hit.triangle, ray.direction, normal);
 }
 
 // The cluster's virtual view: along the mean direction, else along the facet
@@ -266,12 +271,13 @@ std::vector<glm::vec3> bounce_all(const BounceContext& c, int threads, Secondary
     cluster_options.wanted_clusters = static_cast<std::uint32_t>(c.options.wanted_clusters);
     cluster_options.max_per_facet = static_cast<std::uint32_t>(c.options.clusters_per_facet);
     const Clustering<float> clustering = cluster_reflector_pixels<float>(positions, directions, cluster_options);
-    stats.clusters = static_cast<int>(clustering.clusters.size());
+    const int clusters = static_cast<int>(clustering.clusters.size());
+    stats.clusters += clusters;
     std::vector<std::vector<std::uint32_t>> members(clustering.clusters.size());
     for (std::size_t r = 0; r < c.rays.size(); ++r)
         members[static_cast<std::size_t>(clustering.cluster_of[r])].push_back(static_cast<std::uint32_t>(r));
     run_parallel_items(
-        threads, stats.clusters, [] { return SecondaryStats{}; },
+        threads, clusters, [] { return SecondaryStats{}; },
         [&](SecondaryStats& local, int j) {
             bounce_cluster(c, clustering.clusters[static_cast<std::size_t>(j)], members[static_cast<std::size_t>(j)],
                            radiance, local);
@@ -280,7 +286,25 @@ std::vector<glm::vec3> bounce_all(const BounceContext& c, int threads, Secondary
     return radiance;
 }
 
+// The rays of each shutter slice, in ray order: slice s holds the times in
+// [s / slices, (s + 1) / slices), the last one 1 too.
+std::vector<std::vector<std::uint32_t>> rays_by_time_slice(const std::vector<SecondaryRay>& rays, int slices) {
+    std::vector<std::vector<std::uint32_t>> out(static_cast<std::size_t>(slices));
+    for (std::size_t r = 0; r < rays.size(); ++r) {
+        const float scaled = rays[r].time * float(slices);
+        const int slice = scaled >= 0.0f ? std::min(slices - 1, static_cast<int>(scaled)) : 0;  // NaN: 0
+        out[static_cast<std::size_t>(slice)].push_back(static_cast<std::uint32_t>(r));
+    }
+    return out;
+}
+
 }  // namespace
+
+int bounce_time_slices(const Scene& scene, const SecondaryOptions& options) {
+    if (options.bounces != SecondaryBounces::image_space) return 1;  // exact bounces take each ray's own time
+    if (options.time_slices > 0) return options.time_slices;
+    return scene_moves(scene) ? auto_time_slices_moving : 1;
+}
 
 std::vector<LayerBounceHit> bounce_in_layers(const kernelf::LayerView& view, const ClusterLayers& layers,
                                              float thickness, const ClusterRays& rays, const LayerTracer* tracer) {
@@ -344,17 +368,40 @@ RenderResult render_dof_secondary(const Scene& scene, const RenderSettings& sett
     // The bouncer runs the image-space bounce only (exact and environment
     // bounces stay on the host).
     ClusterBouncer* const resident = options.bounces == SecondaryBounces::image_space ? bouncer : nullptr;
-    const BounceContext context{scene, options, primary.rays, world, colours,
-                                std::tan(0.5f * options.fov_degrees * 3.14159265358979f / 180.0f),
-                                1e-3f * diagonal, options.thickness_fraction * diagonal, 1e-4f * diagonal,
-                                settings.spp, tracer, layer_builder, resident};
-    if (resident != nullptr) resident->begin(world);
+    const bool moving = scene_moves(scene);
+    const float tan_half_fov = std::tan(0.5f * options.fov_degrees * 3.14159265358979f / 180.0f);
+    auto context_for = [&](const std::vector<SecondaryRay>& rays, const WorldTriangles& at) {
+        return BounceContext{scene, options, rays, at, moving, colours, tan_half_fov, 1e-3f * diagonal,
+                             options.thickness_fraction * diagonal, 1e-4f * diagonal, settings.spp, tracer,
+                             layer_builder, resident};
+    };
     SecondaryStats stats;
     stats.reflector_samples = primary.reflector_samples;
     stats.rays = primary.rays.size();
+    stats.time_slices = bounce_time_slices(scene, options);
     const int threads =
         tracer != nullptr || layer_builder != nullptr || bouncer != nullptr ? 1 : render_threads(settings);
-    const std::vector<glm::vec3> radiance = bounce_all(context, threads, stats);
+    std::vector<glm::vec3> radiance;
+    if (stats.time_slices == 1) {
+        if (resident != nullptr) resident->begin(world);
+        radiance = bounce_all(context_for(primary.rays, world), threads, stats);
+    } else {
+        // Each slice of the shutter: its rays, clustered and bounced in the
+        // scene at the slice's middle.
+        radiance.assign(primary.rays.size(), glm::vec3(0.0f));
+        const std::vector<std::vector<std::uint32_t>> slices = rays_by_time_slice(primary.rays, stats.time_slices);
+        for (std::size_t slice = 0; slice < slices.size(); ++slice) {
+            if (slices[slice].empty()) continue;
+            std::vector<SecondaryRay> rays;
+            rays.reserve(slices[slice].size());
+            for (std::uint32_t r : slices[slice]) rays.push_back(primary.rays[r]);
+            const WorldTriangles at =
+                world_triangles(scene, (float(slice) + 0.5f) / float(stats.time_slices));
+            if (resident != nullptr) resident->begin(at);
+            const std::vector<glm::vec3> seen = bounce_all(context_for(rays, at), threads, stats);
+            for (std::size_t i = 0; i < rays.size(); ++i) radiance[slices[slice][i]] = seen[i];
+        }
+    }
     for (std::size_t r = 0; r < primary.rays.size(); ++r)
         primary.sample_colour[primary.rays[r].sample] += primary.rays[r].weight * radiance[r];
     result.stats.ms_per_phase.emplace_back("bounce", ms_since(phase));
@@ -376,6 +423,7 @@ RenderResult render_dof_secondary(const Scene& scene, const RenderSettings& sett
                        {"rays_hit", double(stats.rays_hit)},
                        {"trace_steps", double(stats.trace_steps)},
                        {"clusters", double(stats.clusters)},
+                       {"bounce_time_slices", double(stats.time_slices)},
                        {"clusters_refit_on_normal", double(stats.clusters_refit_on_normal)},
                        {"clusters_split", double(stats.clusters_split)},
                        {"clusters_unusable", double(stats.clusters_unusable)},

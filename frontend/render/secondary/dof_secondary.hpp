@@ -28,7 +28,8 @@ struct SecondaryStats {
     std::uint64_t rays_exact = 0;          // traced against the triangles (fallback or the exact mode)
     std::uint64_t rays_hit = 0;            // of all rays, those that found a surface
     std::uint64_t trace_steps = 0;         // texels visited by the image-space traces
-    int clusters = 0;
+    int clusters = 0;                      // summed over the time slices
+    int time_slices = 1;                   // of the shutter, each bounced in the scene at its middle
     int clusters_refit_on_normal = 0;      // mean axis left a ray outside: fitted along the facet normal
     int clusters_split = 0;                // still some ray outside (FOV < 74.76 deg): those rays traced exactly
     int clusters_unusable = 0;             // empty or non-finite fit: every ray traced exactly
@@ -100,9 +101,19 @@ std::vector<kernelf::LayerHit> trace_layers_on_host(const kernelf::LayerView& vi
                                                     int layers, float thickness,
                                                     const std::vector<kernelf::LayerSegment>& segments);
 
+// The shutter slices the image-space bounce of `scene` takes: options'
+// time_slices, or for 0 (auto) auto_time_slices_moving when the scene moves
+// in world space and 1 when it does not; 1 for the exact and environment
+// bounces (an exact bounce sees the scene at its own ray's time).
+int bounce_time_slices(const Scene& scene, const SecondaryOptions& options);
+
 // Renders `scene` with settings.spp samples per pixel (the stochastic
 // rasterizer's samples and culling) and one bounce on every mirror and
-// dielectric sample. The bounced rays see the scene at mid-shutter (t = 0.5).
+// dielectric sample. A bounced ray sees the scene at the middle of its
+// sample's time slice (bounce_time_slices; with one, at mid-shutter): the
+// rays of each slice are clustered and get layers of their own; an exact
+// bounce (the mode, or the fallback of a ray no view holds) sees it at the
+// ray's own time.
 // A bounced ray that hits a surface gets its flat shade(); one that leaves
 // the scene (or hits nothing in its cluster's layers) the environment.
 // Deterministic for any thread count. With `primary` the primary samples come

@@ -5,38 +5,17 @@
 
 namespace blurcull::frontend {
 
-WorldTriangles world_triangles(const Scene& scene, float time) {
-    WorldTriangles out;
-    out.vertices.resize(scene.triangles.size());
-    out.normals.resize(scene.triangles.size());
-    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-    for (std::size_t t = 0; t < scene.triangles.size(); ++t) {
-        const glm::uvec3& tri = scene.triangles[t];
-        for (int k = 0; k < 3; ++k) {
-            const std::uint32_t v = tri[k];
-            const glm::vec3 p = glm::mix(scene.position_open[v], scene.position_close[v], time);
-            out.vertices[t][static_cast<std::size_t>(k)] = p;
-            lo = glm::min(lo, p);
-            hi = glm::max(hi, p);
-        }
-        const auto& p = out.vertices[t];
-        const glm::vec3 n = glm::cross(p[1] - p[0], p[2] - p[0]);
-        const float length = glm::length(n);
-        out.normals[t] = length > 0.0f && std::isfinite(length) ? n / length : glm::vec3(0.0f);
-    }
-    if (!scene.triangles.empty()) {
-        out.box_min = lo;
-        out.box_max = hi;
-    }
-    return out;
-}
+namespace {
 
-ExactHit trace_exact(const WorldTriangles& triangles, glm::vec3 origin, glm::vec3 direction, float s_min) {
+// The nearest of `count` triangles along origin + s direction, s > s_min,
+// triangle t's vertices from vertices(t): Moller-Trumbore in double.
+template <typename Vertices>
+ExactHit nearest_hit(std::size_t count, const Vertices& vertices, glm::vec3 origin, glm::vec3 direction, float s_min) {
     ExactHit best;
     const glm::dvec3 o(origin), d(direction);
     double nearest = std::numeric_limits<double>::infinity();
-    for (std::size_t t = 0; t < triangles.vertices.size(); ++t) {
-        const auto& p = triangles.vertices[t];
+    for (std::size_t t = 0; t < count; ++t) {
+        const std::array<glm::vec3, 3> p = vertices(t);
         const glm::dvec3 v0(p[0]), e1 = glm::dvec3(p[1]) - v0, e2 = glm::dvec3(p[2]) - v0;
         const glm::dvec3 pv = glm::cross(d, e2);
         const double det = glm::dot(e1, pv);
@@ -57,6 +36,54 @@ ExactHit trace_exact(const WorldTriangles& triangles, glm::vec3 origin, glm::vec
         }
     }
     return best;
+}
+
+}  // namespace
+
+std::array<glm::vec3, 3> triangle_at(const Scene& scene, std::size_t triangle, float time) {
+    const glm::uvec3& tri = scene.triangles[triangle];
+    std::array<glm::vec3, 3> p;
+    for (int k = 0; k < 3; ++k)
+        p[static_cast<std::size_t>(k)] = glm::mix(scene.position_open[tri[k]], scene.position_close[tri[k]], time);
+    return p;
+}
+
+glm::vec3 unit_normal(const std::array<glm::vec3, 3>& p) {
+    const glm::vec3 n = glm::cross(p[1] - p[0], p[2] - p[0]);
+    const float length = glm::length(n);
+    return length > 0.0f && std::isfinite(length) ? n / length : glm::vec3(0.0f);
+}
+
+bool scene_moves(const Scene& scene) { return scene.position_open != scene.position_close; }
+
+WorldTriangles world_triangles(const Scene& scene, float time) {
+    WorldTriangles out;
+    out.vertices.resize(scene.triangles.size());
+    out.normals.resize(scene.triangles.size());
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (std::size_t t = 0; t < scene.triangles.size(); ++t) {
+        out.vertices[t] = triangle_at(scene, t, time);
+        for (const glm::vec3& p : out.vertices[t]) {
+            lo = glm::min(lo, p);
+            hi = glm::max(hi, p);
+        }
+        out.normals[t] = unit_normal(out.vertices[t]);
+    }
+    if (!scene.triangles.empty()) {
+        out.box_min = lo;
+        out.box_max = hi;
+    }
+    return out;
+}
+
+ExactHit trace_exact(const WorldTriangles& triangles, glm::vec3 origin, glm::vec3 direction, float s_min) {
+    return nearest_hit(
+        triangles.vertices.size(), [&](std::size_t t) { return triangles.vertices[t]; }, origin, direction, s_min);
+}
+
+ExactHit trace_exact_at(const Scene& scene, float time, glm::vec3 origin, glm::vec3 direction, float s_min) {
+    return nearest_hit(
+        scene.triangles.size(), [&](std::size_t t) { return triangle_at(scene, t, time); }, origin, direction, s_min);
 }
 
 }  // namespace blurcull::frontend

@@ -41,7 +41,15 @@ struct SecondaryOptions {
     bool cull_in_front = true;
     // How the bounced rays are traced (image_space: the method).
     SecondaryBounces bounces = SecondaryBounces::image_space;
+    // Shutter slices of the image-space bounce, 1 .. 64, or 0 for auto
+    // (bounce_time_slices): a bounced ray sees the scene at the middle of
+    // its sample's slice, each slice with its own clusters and layers.
+    int time_slices = 0;
 };
+
+// The slices `auto` gives a scene that moves in world space (one that does
+// not, or whose camera alone moves, gets 1: its layers hold every time).
+inline constexpr int auto_time_slices_moving = 4;
 
 // Throws std::invalid_argument with one line naming the setting when an
 // option is out of range.
@@ -60,6 +68,8 @@ inline void validate_secondary_options(const SecondaryOptions& options) {
     if (options.wanted_clusters < 1) fail("wanted clusters must be >= 1");
     if (!(options.thickness_fraction > 0.0f && options.thickness_fraction < 1.0f))
         fail("thickness fraction must be in (0, 1)");
+    if (options.time_slices < 0 || options.time_slices > 64)
+        fail("time slices must be in [1, 64] (or 0: auto), got " + std::to_string(options.time_slices));
 }
 
 }  // namespace blurcull::frontend

@@ -67,22 +67,22 @@ SurfaceHit sample_hit(const Scene& scene, const CameraModel& model, const glm::d
 
 // The rays a reflector sample spawns (one for a mirror, up to two for a dielectric).
 void spawn_rays(const Material& material, const SurfaceHit& hit, std::uint32_t sample, std::uint32_t part,
-                std::uint32_t triangle, std::vector<SecondaryRay>& rays) {
+                std::uint32_t triangle, float time, std::vector<SecondaryRay>& rays) {
     using namespace optics;
     if (material.kind == MaterialKind::mirror) {
         const glm::vec3 r = glm::normalize(bc_mirror_direction(hit.incident, hit.normal));
-        rays.push_back({hit.point, r, glm::vec3(1.0f), sample, part, triangle});
+        rays.push_back({hit.point, r, glm::vec3(1.0f), sample, part, triangle, time});
         return;
     }
     const float reflectance = bc_dielectric_reflectance(hit.incident, hit.normal, material.ior);
     if (reflectance > 0.0f) {
         const glm::vec3 r = glm::normalize(bc_mirror_direction(hit.incident, hit.normal));
-        rays.push_back({hit.point, r, glm::vec3(reflectance), sample, part, triangle});
+        rays.push_back({hit.point, r, glm::vec3(reflectance), sample, part, triangle, time});
     }
     const glm::vec3 t = bc_refract_direction(hit.incident, hit.normal, material.ior);
     if (reflectance < 1.0f && glm::dot(t, t) > 0.0f)
         rays.push_back(
-            {hit.point, glm::normalize(t), glm::vec3(1.0f - reflectance), sample, part, triangle});
+            {hit.point, glm::normalize(t), glm::vec3(1.0f - reflectance), sample, part, triangle, time});
 }
 
 }  // namespace
@@ -134,7 +134,7 @@ PrimaryResolve resolve_primary(const Scene& scene, const CameraModel& model, con
                                                   model.sample_ndc(px, py, s.offset), s.lens, s.time);
                 // A degenerate hit (grazing to the rounding) sees the environment straight on.
                 if (!hit.valid) continue;
-                spawn_rays(material, hit, k, lens_part_of(s.lens, lens_parts), id, row.rays);
+                spawn_rays(material, hit, k, lens_part_of(s.lens, lens_parts), id, s.time, row.rays);
             }
         }
     };

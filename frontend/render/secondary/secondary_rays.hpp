@@ -24,6 +24,7 @@ struct SecondaryRay {
     std::uint32_t sample = 0;   // the sample it belongs to: (py * width + px) * spp + j
     std::uint32_t lens_part = 0;  // the part of the lens the sample's (u, v) is in
     std::uint32_t triangle = 0;   // the reflector triangle the sample hit
+    float time = 0.5f;            // the sample's shutter time, in [0, 1]
 };
 
 struct PrimaryResolve {
