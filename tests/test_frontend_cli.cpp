@@ -307,7 +307,7 @@ TEST_CASE("blurcull scenes lists every built-in scene with a description; --vers
         CHECK(line.size() - description >= 20);  // a sentence, not a word
     }
     CHECK(names == std::vector<std::string>{"hand", "car", "dragonfly", "forest", "mirror-sphere", "water",
-                                            "curved-mirror", "forest-10m"});
+                                            "curved-mirror", "mirror-motion", "forest-10m"});
     CHECK(scenes.out.find("mirror-sphere  a mirror sphere") != std::string::npos);
     for (const std::string& name : names) {
         // The scale scene: gigabytes in the cpu backend; test_frontend_scenes builds it.

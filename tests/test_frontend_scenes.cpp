@@ -130,7 +130,7 @@ TEST_CASE("built-in scenes: the catalogue lists every scene once, its descriptio
         CHECK(std::abs(triangles / 1000.0 - thousands) <= 1.0);
     }
     CHECK(names == expected);
-    CHECK(expected.size() == 8);
+    CHECK(expected.size() == 9);
 }
 
 TEST_CASE("built-in scenes: forest-10m is the forest's walk at 10 million triangles") {
@@ -339,7 +339,7 @@ TEST_CASE("built-in scenes: the camera frames the subject for the aspect") {
 
 TEST_CASE("built-in scenes: bad names and options are one-line SceneErrors") {
     CHECK(error_of([] { make_builtin_scene("x", SceneOptions{}); }) ==
-          "unknown scene 'x' (known: hand, car, dragonfly, forest, mirror-sphere, water, curved-mirror, forest-10m)");
+          "unknown scene 'x' (known: hand, car, dragonfly, forest, mirror-sphere, water, curved-mirror, mirror-motion, forest-10m)");
     CHECK(error_of([] { make_builtin_scene("hand", SceneOptions{-1.0f, 1.0f}); }).find("blur scale") !=
           std::string::npos);
     CHECK(error_of([] { make_builtin_scene("hand", SceneOptions{1.0f, 0.0f}); }).find("aspect") !=
@@ -657,7 +657,7 @@ TEST_CASE("load_scene: upper-case extensions load the file; other extensions are
     CHECK(error_of([] { load_scene("scenes/car.OBJ"); }) ==
           "scenes/car.OBJ: unsupported scene file type (expected .gltf or .glb)");
     CHECK(error_of([] { load_scene("nowhere"); }) ==
-          "unknown scene 'nowhere' (known: hand, car, dragonfly, forest, mirror-sphere, water, curved-mirror, forest-10m)");
+          "unknown scene 'nowhere' (known: hand, car, dragonfly, forest, mirror-sphere, water, curved-mirror, mirror-motion, forest-10m)");
 }
 
 TEST_CASE("load_scene: settings over the scene's own, validated once at the end") {

@@ -88,7 +88,8 @@ constexpr glm::vec3 kGreen(0.0f, 1.0f, 0.0f);
 // Scenes
 
 TEST_CASE("secondary-ray scenes: names, validity, determinism, specular materials, sky, blur scale") {
-    REQUIRE(secondary_scene_names() == std::vector<std::string>{"mirror-sphere", "water", "curved-mirror"});
+    REQUIRE(secondary_scene_names() ==
+            std::vector<std::string>{"mirror-sphere", "water", "curved-mirror", "mirror-motion"});
     // The thesis scenes' list (and so their images) is unchanged.
     CHECK(builtin_scene_names() == std::vector<std::string>{"hand", "car", "dragonfly", "forest"});
     for (const std::string& name : secondary_scene_names()) {
@@ -111,11 +112,14 @@ TEST_CASE("secondary-ray scenes: names, validity, determinism, specular material
         const Scene twice = make_builtin_scene(name, SceneOptions{2.0f, 4.0f / 3.0f});
         CHECK(twice.camera.lens_radius == doctest::Approx(2.0f * scene.camera.lens_radius));
         CHECK(twice.triangles == scene.triangles);
-        CHECK(make_builtin_scene(name, SceneOptions{0.0f, 4.0f / 3.0f}).camera.lens_radius == 0.0f);
+        const Scene still = make_builtin_scene(name, SceneOptions{0.0f, 4.0f / 3.0f});
+        CHECK(still.camera.lens_radius == 0.0f);
         CHECK(scene.camera.lens_radius > 0.0f);
+        // Defocus only, but for mirror-motion's objects, whose motion scales with the blur too.
         const SceneStats stats = describe(scene);
-        CHECK_FALSE(stats.object_motion);
+        CHECK(stats.object_motion == (name == "mirror-motion"));
         CHECK_FALSE(stats.camera_motion);
+        CHECK_FALSE(describe(still).object_motion);
     }
     CHECK(make_builtin_scene("water", SceneOptions{}).materials[2].ior == doctest::Approx(1.33f));
 }

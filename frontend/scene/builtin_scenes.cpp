@@ -20,6 +20,7 @@ Scene build_scene(const std::string& name, const SceneOptions& options) {
     if (name == "mirror-sphere") return make_mirror_sphere(options.blur_scale, options.aspect);
     if (name == "water") return make_water(options.blur_scale, options.aspect);
     if (name == "curved-mirror") return make_curved_mirror(options.blur_scale, options.aspect);
+    if (name == "mirror-motion") return make_mirror_motion(options.blur_scale, options.aspect);
     std::string known;
     for (const std::string& candidate : builtin_scene_names()) known += (known.empty() ? "" : ", ") + candidate;
     for (const std::string& candidate : secondary_scene_names()) known += ", " + candidate;
@@ -54,6 +55,9 @@ constexpr SceneEntry kScenes[] = {
     {"curved-mirror", SceneKind::secondary,
      "a chessboard before flat and convex mirrors (JCST 2013 Fig. 6); defocus; with --method dof-secondary "
      "(12k triangles)"},
+    {"mirror-motion", SceneKind::secondary,
+     "objects crossing before a flat mirror and behind the camera; object motion and defocus; motion in the mirror "
+     "with --method dof-secondary (8k triangles)"},
     {"forest-10m", SceneKind::large,
      "the forest's walk through 15,600 of its trees, out to 390 m; camera motion and defocus; a GPU scale test, "
      "several GB of memory (10000k triangles)"},

@@ -33,9 +33,11 @@ Scene make_builtin_scene(const std::string& name, const SceneOptions& options);
 std::vector<std::string> builtin_scene_names();
 
 // The built-in secondary-ray scenes, made by make_builtin_scene like the
-// others: "mirror-sphere", "water", "curved-mirror" (scene/builtin/
-// secondary_scenes.hpp, docs/secondary-rays.md "Scenes"). They have mirror
-// or dielectric materials and the sky environment; static, defocus only.
+// others: "mirror-sphere", "water", "curved-mirror", "mirror-motion"
+// (scene/builtin/secondary_scenes.hpp, docs/secondary-rays.md "Scenes").
+// They have mirror or dielectric materials and the sky environment; the
+// first three are static with defocus only, mirror-motion has object motion
+// too.
 std::vector<std::string> secondary_scene_names();
 
 // The built-in scale tests: "forest-10m" (the forest's trees and walk at 10

@@ -1,6 +1,6 @@
-// The three built-in secondary-ray scenes (mirror-sphere.cpp, water.cpp,
-// curved_mirror.cpp) and what they share: the specular materials, the sky,
-// the framing. docs/secondary-rays.md, "Scenes".
+// The four built-in secondary-ray scenes (mirror_sphere.cpp, water.cpp,
+// curved_mirror.cpp, mirror_motion.cpp) and what they share: the specular
+// materials, the sky, the framing. docs/secondary-rays.md, "Scenes".
 #pragma once
 
 #include "scene/scene.hpp"
@@ -46,5 +46,9 @@ Scene make_water(float blur, float aspect);
 // ~12k triangles, static, defocus: a chessboard before three mirrors of
 // different curvature (flat, gently and strongly convex), JCST 2013 Fig. 6.
 Scene make_curved_mirror(float blur, float aspect);
+// ~8k triangles, object motion and defocus: a flat mirror before a
+// chessboard, objects crossing it in front and behind the camera (the
+// motion seen in a mirror; --bounce-time-slices).
+Scene make_mirror_motion(float blur, float aspect);
 
 }  // namespace blurcull::frontend::builtin
