@@ -3,7 +3,9 @@
 # each built-in secondary-ray scene by the Embree one-bounce reference, by
 # dof-secondary (CPU build) with the paper's defaults, and by the primary-only
 # image; then one parameter at a time (clusters per facet, field of view,
-# layer size, lens parts) on mirror-sphere and curved-mirror. Prints one line
+# layer size, lens parts) on mirror-sphere and curved-mirror; then the motion
+# seen in a mirror: mirror-motion by 1 to 16 shutter slices
+# (--bounce-time-slices) and by the exact bounce. Prints one line
 # per render: scene, variant, ms_total, the bounce phase, RMSE and PSNR
 # against Embree (8-bit PNGs). Usage:
 #   bench/dof_secondary_table.sh build/frontend/blurcull out_folder [size] [spp]
@@ -34,3 +36,8 @@ for scene in mirror-sphere curved-mirror; do
     for parts in 1 16; do run $scene parts$parts cpu --method dof-secondary --lens-parts $parts; done
     run $scene layers4 cpu --method dof-secondary --secondary-layers 4
 done
+run mirror-motion embree embree
+for slices in 1 2 4 8 16; do
+    run mirror-motion slices$slices cpu --method dof-secondary --bounce-time-slices $slices
+done
+run mirror-motion exact cpu --method dof-secondary --secondary-bounces exact

@@ -75,7 +75,7 @@ scene_runs() {
     render "$scene" gl-readback "$sz" "$n" "$run" --backend gl --method dof-secondary --layer-images gl-readback
   done
 }
-for scene in mirror-sphere water curved-mirror; do scene_runs "$scene" "$size" "$spp"; done
+for scene in mirror-sphere water curved-mirror mirror-motion; do scene_runs "$scene" "$size" "$spp"; done
 [ "$kind" = hardware ] && scene_runs water 800x600 100
 
 python3 - "$csv" <<'PY' | tee -a "$summary"
