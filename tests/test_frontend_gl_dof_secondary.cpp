@@ -6,9 +6,10 @@
 //    run the kernel's text in float, llvmpipe rounding like the host;
 //    measured: identical).
 // 2. GL layers (render/gl/gl_layer_images.hpp) against the host's layers of
-//    the same cluster views, every cluster of both scenes: the GL rasterizer
-//    decides which texel centres a triangle covers (8 subpixel bits), the
-//    depth there is the host's formula (layer_raster_shared.h). Asserted:
+//    the same cluster views, every cluster of both scenes, by both scans:
+//    the GL rasterizer decides which texel centres a triangle covers (8
+//    subpixel bits), or the compute scan by the host's own test; the depth
+//    there is the host's formula (layer_raster_shared.h). Asserted:
 //    a triangle stored at a texel by both has the same depth bit for bit
 //    but where the two rasterizers gave the texel centre to different
 //    triangles of a near-clipped triangle's fan (within 1/64 texel of their
@@ -22,6 +23,8 @@
 //    DepthPyramid of the GL layers bit for bit. Also with 1 layer on the
 //    sphere (full lists): the dropped counts differ by at most the edge
 //    entries, and an entry behind the other build's full list is excused.
+//    The compute scan on an IEEE-exact GL: no entry in one build only, no
+//    depth differs, the same dropped count.
 // 3. The whole GL build (GL layers) against the CPU build: RMSE below 0.002
 //    and at most 0.5 % of the pixels off by more than 0.05. Why: the images
 //    can differ only where a ray's trace reads an edge texel that one
@@ -32,7 +35,8 @@
 // 4. The GPU-resident bounce (clipping, traces and surfaces on the GPU)
 //    against the host's on the same GL layers: the same hits per ray (the
 //    test case below says how exactly).
-// 5. The primary pass on the compute pipeline: the fragment pipeline's image.
+// 5. The primary pass and the layers on the compute pipeline: the fragment
+//    pipeline's image.
 // 6. More rays than one row of work groups (over 4.19 million).
 //
 // No GL context (no Mesa): fails when CI=true, else skips with a message.
@@ -225,13 +229,17 @@ std::vector<std::pair<Scene, SecondaryOptions>> layer_cases() {
 TEST_CASE("dof-secondary: GL layers and pyramid against the host's, every cluster") {
     std::optional<blurcull::gl::HeadlessContext> context = context_or_skip();
     if (!context) return;
+    const bool exact = !probe_arithmetic(*context).tolerant();
     GlRenderer rasterizer;
     const GlDofSecondary passes(rasterizer, *context);
-    const LayerBuilder gl_builder = passes.layer_builder();
     const RenderSettings settings = quiet_settings(48, 36, 8);
+    for (const GlLayerRaster raster : {GlLayerRaster::graphics, GlLayerRaster::compute})
     for (const auto& [scene, options] : layer_cases()) {
+        const std::string raster_name = raster == GlLayerRaster::compute ? "compute" : "graphics";
+        CAPTURE(raster_name);
         CAPTURE(scene.name);
         CAPTURE(options.layers);
+        const LayerBuilder gl_builder = passes.layer_builder(raster);
         LayerAgreement agreement;
         const LayerBuilder both = [&](const WorldTriangles& world, const kernelf::LayerView& view, int layers,
                                       const ClusterCulls& culls, LayerStats& stats) {
@@ -246,7 +254,7 @@ TEST_CASE("dof-secondary: GL layers and pyramid against the host's, every cluste
         const LayerTracer tracer = passes.layer_tracer();
         SecondaryStats stats;
         render_dof_secondary(scene, settings, options, &stats, &tracer, &primary, &both);
-        MESSAGE(scene.name << ": " << agreement.clusters << " clusters, fragments host " << agreement.host_fragments
+        MESSAGE(scene.name << ", " << raster_name << ": " << agreement.clusters << " clusters, fragments host " << agreement.host_fragments
                            << " gl " << agreement.gl_fragments << "; entries in both " << agreement.entries_both
                            << " (depth differs " << agreement.depth_differs << ", at edge distance "
                            << agreement.worst_depth_edge_distance << ", relative " << agreement.worst_depth_relative
@@ -277,6 +285,13 @@ TEST_CASE("dof-secondary: GL layers and pyramid against the host's, every cluste
         const double dropped_gap = std::abs(double(agreement.host_dropped) - double(agreement.gl_dropped));
         CHECK(dropped_gap <= double(agreement.only_one));
         if (options.layers == 1) CHECK(agreement.host_dropped > 1000);
+        // The compute scan runs the host's coverage test on the image points:
+        // with the host's arithmetic, the host's entries exactly.
+        if (raster == GlLayerRaster::compute && exact) {
+            CHECK(agreement.only_one == 0);
+            CHECK(agreement.depth_differs == 0);
+            CHECK(agreement.gl_dropped == agreement.host_dropped);
+        }
     }
 }
 
@@ -411,12 +426,14 @@ TEST_CASE("dof-secondary: the GPU-resident bounce gives the host's hits on the s
 }
 
 // 5. The primary pass on the compute pipeline (GlOptions::pipeline compute,
-//    `--gl-pipeline compute`, what --backend auto picks on a hardware GPU):
-//    the compute pipeline keeps the fragment pipeline's winner per sample
-//    (tests/test_frontend_gl_compute.cpp), so the bounced rays, and the
-//    image, are the same: on an IEEE-exact GL bit for bit (asserted max 0);
-//    elsewhere within test 3's tolerance.
-TEST_CASE("dof-secondary: the primary pass on the compute pipeline gives the fragment pipeline's image") {
+//    `--gl-pipeline compute`, what --backend auto picks on a hardware GPU),
+//    which also scans the layers in compute (GlLayerRaster::compute): the
+//    compute pipeline keeps the fragment pipeline's winner per sample
+//    (tests/test_frontend_gl_compute.cpp) and the compute scan the GL
+//    rasterizer's layers (test 2), so the bounced rays, and the image, are
+//    the same: on an IEEE-exact GL bit for bit (asserted max 0); elsewhere
+//    within test 3's tolerance.
+TEST_CASE("dof-secondary: the compute pipeline (primary pass and layers) gives the fragment pipeline's image") {
     std::optional<blurcull::gl::HeadlessContext> context = context_or_skip();
     if (!context) return;
     const ArithmeticProbe probe = probe_arithmetic(*context);

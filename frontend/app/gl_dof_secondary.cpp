@@ -36,8 +36,9 @@ void add_counts(LayerStats& stats, const GlLayerCounts& counts) {
 // read-back, which waits for all of the cluster's GPU work).
 class GlClusterBouncer final : public ClusterBouncer {
 public:
-    GlClusterBouncer(const gl::HeadlessContext& context, const GlLayerBuilder& builder, const GlLayerTracer& tracer)
-        : context_(&context), builder_(&builder), tracer_(&tracer) {}
+    GlClusterBouncer(const gl::HeadlessContext& context, const GlLayerBuilder& builder, const GlLayerTracer& tracer,
+                     GlLayerRaster raster)
+        : context_(&context), builder_(&builder), tracer_(&tracer), raster_(raster) {}
     GlClusterBouncer(const GlClusterBouncer&) = delete;
     GlClusterBouncer& operator=(const GlClusterBouncer&) = delete;
     // The timers' queries are deleted on the current context: this one's.
@@ -66,7 +67,7 @@ public:
         const GlLayerInput input{&triangles.vertices, &triangles.normals, &culls.own, &culls.origins,
                                  culls.normal_threshold};
         timers_->begin(layers_phase);
-        builder_->build_resident(view, layers, input);
+        builder_->build_resident(view, layers, input, raster_);
         timers_->end(layers_phase);
         timers_->begin(trace_phase);
         std::vector<LayerBounceHit> hits =
@@ -81,6 +82,7 @@ private:
     const gl::HeadlessContext* context_;
     const GlLayerBuilder* builder_;
     const GlLayerTracer* tracer_;
+    GlLayerRaster raster_;
     mutable std::optional<GlPhaseTimers> timers_;  // made by begin(), on the context; read by add_phases
 };
 
@@ -119,29 +121,32 @@ LayerTracer GlDofSecondary::layer_tracer() const {
     };
 }
 
-LayerBuilder GlDofSecondary::layer_builder() const {
-    return [this](const WorldTriangles& world, const kernelf::LayerView& view, int layers, const ClusterCulls& culls,
-                  LayerStats& stats) {
+LayerBuilder GlDofSecondary::layer_builder(GlLayerRaster raster) const {
+    return [this, raster](const WorldTriangles& world, const kernelf::LayerView& view, int layers,
+                          const ClusterCulls& culls, LayerStats& stats) {
         trace_context_->make_current();
         const GlLayerInput input{&world.vertices, &world.normals, &culls.own, &culls.origins, culls.normal_threshold};
-        return to_cluster_layers(builder_.build(view, layers, input), stats);
+        return to_cluster_layers(builder_.build(view, layers, input, raster), stats);
     };
 }
 
-std::unique_ptr<ClusterBouncer> GlDofSecondary::cluster_bouncer() const {
-    return std::make_unique<GlClusterBouncer>(*trace_context_, builder_, tracer_);
+std::unique_ptr<ClusterBouncer> GlDofSecondary::cluster_bouncer(GlLayerRaster raster) const {
+    return std::make_unique<GlClusterBouncer>(*trace_context_, builder_, tracer_, raster);
 }
 
 RenderResult GlDofSecondary::render(const Scene& scene, const RenderSettings& settings, const GlOptions& gl_options,
                                     const SecondaryOptions& options, SecondaryStats* stats,
                                     LayerImagesOn layers_on) const {
     const PrimaryPass primary = primary_pass(scene, gl_options);
+    // The layers scanned as the primary samples are: in compute with the compute pipeline.
+    const GlLayerRaster raster =
+        gl_options.pipeline == GlPipeline::compute ? GlLayerRaster::compute : GlLayerRaster::graphics;
     if (layers_on == LayerImagesOn::gl) {
-        const std::unique_ptr<ClusterBouncer> bouncer = cluster_bouncer();
+        const std::unique_ptr<ClusterBouncer> bouncer = cluster_bouncer(raster);
         return render_dof_secondary(scene, settings, options, stats, nullptr, &primary, nullptr, bouncer.get());
     }
     const LayerTracer tracer = layer_tracer();
-    const LayerBuilder builder = layer_builder();
+    const LayerBuilder builder = layer_builder(raster);
     return render_dof_secondary(scene, settings, options, stats, &tracer, &primary,
                                 layers_on == LayerImagesOn::gl_readback ? &builder : nullptr);
 }

@@ -1,6 +1,7 @@
 // --method dof-secondary on the gl backend: the GL rasterizer's per-sample
 // winners as the primary pass, then per cluster the layered images and
-// pyramid peeled by the GL rasterizer (GlLayerBuilder), the groups' interval
+// pyramid (GlLayerBuilder: scanned by the GL rasterizer, or in compute with
+// the compute pipeline), the groups' interval
 // clipping, the image-space traces and the hits' surfaces in compute passes
 // (GlLayerTracer::bounce) on the layers where they were built: only each
 // ray's surface comes back. Handed to render_dof_secondary (clustering,
@@ -35,8 +36,9 @@ public:
 
     // render_dof_secondary of `scene` with the GL passes, the layers built
     // where `layers_on` says; `gl_options` are the rasterizer's (sample ids
-    // are kept whatever they say). Throws as render_dof_secondary and
-    // GlRenderer::render do.
+    // are kept whatever they say), and with its compute pipeline the layers
+    // are scanned in compute too (GlLayerRaster::compute), else by the GL
+    // rasterizer. Throws as render_dof_secondary and GlRenderer::render do.
     RenderResult render(const Scene& scene, const RenderSettings& settings, const GlOptions& gl_options,
                         const SecondaryOptions& options, SecondaryStats* stats = nullptr,
                         LayerImagesOn layers_on = LayerImagesOn::gl) const;
@@ -48,8 +50,8 @@ public:
     // layer_builder reads each cluster's GL layers back for the host's bounce.
     PrimaryPass primary_pass(const Scene& scene, const GlOptions& gl_options) const;
     LayerTracer layer_tracer() const;
-    LayerBuilder layer_builder() const;
-    std::unique_ptr<ClusterBouncer> cluster_bouncer() const;
+    LayerBuilder layer_builder(GlLayerRaster raster = GlLayerRaster::graphics) const;
+    std::unique_ptr<ClusterBouncer> cluster_bouncer(GlLayerRaster raster = GlLayerRaster::graphics) const;
 
 private:
     GlRenderer* rasterizer_;

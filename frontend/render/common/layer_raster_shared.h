@@ -15,9 +15,15 @@
 #include <glm/glm.hpp>
 
 namespace blurcull::frontend::layer_raster {
+using glm::bvec3;
+using glm::ivec4;
 using glm::vec2;
 using glm::vec3;
+using glm::ceil;
+using glm::clamp;
+using glm::floor;
 using glm::max;
+using glm::min;
 using LayerView = kernelf::LayerView;
 inline float bc_dot3(vec3 a, vec3 b) { return kernelf::bc_dot3(a, b); }
 inline vec2 bc_layer_image(const LayerView& v, float x, float y, float z) { return kernelf::bc_layer_image(v, x, y, z); }
@@ -56,6 +62,33 @@ BC_RASTER_FN vec3 bc_raster_image_point(BC_RASTER_VIEW v, vec3 p) {
 BC_RASTER_FN float bc_raster_edge(vec2 p, vec2 q, vec2 r) {
     BC_RASTER_PRECISE float e = (q.x - p.x) * (r.y - p.y) - (q.y - p.y) * (r.x - p.x);
     return e;
+}
+
+// The texels (x0, y0, x1, y1) whose centres the image triangle's bounding
+// box may hold, clamped to the size x size image: none when x0 > x1 or
+// y0 > y1. Clamped as floats, so no conversion overflows.
+BC_RASTER_FN ivec4 bc_raster_texel_box(vec3 a, vec3 b, vec3 c, int size) {
+    float last = float(size - 1);
+    float x0 = clamp(floor(min(min(a.x, b.x), c.x) - 0.5f), 0.0f, float(size));
+    float x1 = clamp(ceil(max(max(a.x, b.x), c.x) - 0.5f), -1.0f, last);
+    float y0 = clamp(floor(min(min(a.y, b.y), c.y) - 0.5f), 0.0f, float(size));
+    float y1 = clamp(ceil(max(max(a.y, b.y), c.y) - 0.5f), -1.0f, last);
+    return ivec4(int(x0), int(y0), int(x1), int(y1));
+}
+
+// Whether the edge from a to b owns the texel centres on it: a top or left
+// edge of the counter-clockwise triangle (the top-left rule, so a centre on
+// an edge two triangles share is covered once).
+BC_RASTER_FN bool bc_raster_owns_edge(vec2 a, vec2 b) { return (a.y == b.y && b.x < a.x) || b.y > a.y; }
+
+// Whether the counter-clockwise image triangle (a, b, c) covers `centre`;
+// owns: bc_raster_owns_edge of its edges bc, ca and ab.
+BC_RASTER_FN bool bc_raster_covers(vec2 a, vec2 b, vec2 c, bvec3 owns, vec2 centre) {
+    float wa = bc_raster_edge(b, c, centre);
+    float wb = bc_raster_edge(c, a, centre);
+    float wc = bc_raster_edge(a, b, centre);
+    if (wa < 0.0f || wb < 0.0f || wc < 0.0f) return false;
+    return !((wa == 0.0f && !owns.x) || (wb == 0.0f && !owns.y) || (wc == 0.0f && !owns.z));
 }
 
 // The view depth at image point `centre` of the counter-clockwise image

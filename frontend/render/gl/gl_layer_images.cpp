@@ -1,6 +1,7 @@
 #include "render/gl/gl_layer_images.hpp"
 
 #include "render/gl/gl_layer_shared.h"
+#include "render/gl/gl_render_targets.hpp"
 #include "render/gl/gpu_layout_shared.h"
 #include "render/gl/shader_stages.hpp"
 
@@ -15,8 +16,9 @@ namespace {
 
 // The kernel's GLSL, the bindings, the rasterizing arithmetic shared with
 // the host, the passes' std430 structs, then the main.
-gl::ShaderStage layer_stage(GLenum type, std::string_view main_name) {
-    return gl::shader_stage(type, main_name, gl::Prelude::layers);
+gl::ShaderStage layer_stage(GLenum type, std::string_view main_name,
+                            gl::Prelude prelude = gl::Prelude::layers) {
+    return gl::shader_stage(type, main_name, prelude);
 }
 
 // SSBO bindings of the passes (gpu_layout_shared.h): each also the index of
@@ -65,7 +67,7 @@ std::vector<int> level_sizes(int size) {
 }  // namespace
 
 struct GlLayerBuilder::Passes {
-    gl::Program setup, draw, cluster_depth, pyramid;
+    gl::Program setup, draw, raster, cluster_depth, pyramid;
     gl::VertexArray vertex_array;
     // The buffers, by binding (Binding), kept from one cluster to the next.
     std::array<std::optional<gl::Buffer>, BC_GL_LAYER_BINDINGS> buffers;
@@ -85,6 +87,7 @@ struct GlLayerBuilder::Passes {
     GlLayerCounts counts(const gl::Functions& f) const;
     void make_fans(const gl::Functions& f, std::size_t triangles, std::size_t origins);
     void draw_fans(const gl::Functions& f, int size);
+    void raster_fans(const gl::Functions& f, std::size_t triangles);
     void make_pyramid(const gl::Functions& f, int size);
     GlClusterLayers read_back(const gl::Functions& f, int size, int layers, std::size_t pyramid_floats) const;
 };
@@ -138,7 +141,7 @@ void GlLayerBuilder::Passes::upload(const gl::Functions& f, const kernelf::Layer
 }
 
 // The cluster's depth map and the fans, with the draws' indirect command
-// (no culled triangle drawn, and no wait for the count).
+// (no wait for their count: the draws and the compute scan read it).
 void GlLayerBuilder::Passes::make_fans(const gl::Functions& f, std::size_t triangles, std::size_t origins) {
     if (origins > 0) {
         f.UseProgram(cluster_depth.id());
@@ -148,11 +151,30 @@ void GlLayerBuilder::Passes::make_fans(const gl::Functions& f, std::size_t trian
         f.UseProgram(setup.id());
         f.DispatchCompute(groups_of(triangles, 64), 1, 1);
     }
-    f.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    f.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
-// The two draws: depths into the k-buffer, then their triangles; each of
-// the fans the setup pass counted into the counts buffer's draw command.
+// The two scans of the fans in compute (GlLayerRaster::compute): depths
+// into the k-buffer, then their triangles. A work group per fan the setup pass can write (two per scene
+// triangle), in rows of at most 65,535 groups (GL's least maximum); those
+// past the fans written return at once.
+void GlLayerBuilder::Passes::raster_fans(const gl::Functions& f, std::size_t triangles) {
+    const std::size_t fans = 2 * triangles;
+    if (fans == 0) return;
+    const std::size_t row = std::min<std::size_t>(fans, 65535);
+    const GLuint rows = groups_of(fans, row);
+    f.UseProgram(raster.id());
+    const GLint peel_pass = f.GetUniformLocation(raster.id(), "peel_pass");
+    for (int peel = 0; peel < 2; ++peel) {
+        f.Uniform1i(peel_pass, peel);
+        f.DispatchCompute(static_cast<GLuint>(row), rows, 1);
+        f.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+}
+
+// The two scans of the fans on the GL rasterizer (GlLayerRaster::graphics):
+// depths into the k-buffer, then their triangles; each of the fans the setup
+// pass counted into the counts buffer's draw command.
 void GlLayerBuilder::Passes::draw_fans(const gl::Functions& f, int size) {
     const gl::Texture target(f, GL_TEXTURE_2D, GL_R8, size, size);  // never written: the shader has no output
     const gl::Framebuffer framebuffer(f);
@@ -229,8 +251,11 @@ GlLayerBuilder::GlLayerBuilder(const gl::HeadlessContext& context)
       gl_(&context.gl()),
       passes_(std::make_unique<Passes>(Passes{
           gl::Program(context.gl(), {layer_stage(GL_COMPUTE_SHADER, "render_layers_setup.comp")}),
-          gl::Program(context.gl(), {layer_stage(GL_VERTEX_SHADER, "render_layers.vert"),
-                                     layer_stage(GL_FRAGMENT_SHADER, "render_layers.frag")}),
+          gl::Program(context.gl(),
+                      {layer_stage(GL_VERTEX_SHADER, "render_layers.vert"),
+                       layer_stage(GL_FRAGMENT_SHADER, "render_layers.frag", gl::Prelude::layer_fragments)}),
+          gl::Program(context.gl(),
+                      {layer_stage(GL_COMPUTE_SHADER, "render_layers_raster.comp", gl::Prelude::layer_fragments)}),
           gl::Program(context.gl(), {layer_stage(GL_COMPUTE_SHADER, "render_layers_cluster_depth.comp")}),
           gl::Program(context.gl(), {layer_stage(GL_COMPUTE_SHADER, "render_layers_pyramid.comp")}),
           gl::VertexArray(context.gl()), {}})) {}
@@ -247,29 +272,43 @@ std::size_t pyramid_floats_of(int size) {
     return floats;
 }
 
-void check_layer_limits(const gl::Functions& f, int size, int layers) {
-    GLint max_texture = 0, max_viewport[2] = {0, 0};
-    f.GetIntegerv(GL_MAX_TEXTURE_SIZE, &max_texture);
-    f.GetIntegerv(GL_MAX_VIEWPORT_DIMS, max_viewport);
-    if (size < 2 || size > std::min({max_texture, max_viewport[0], max_viewport[1]}))
-        throw gl::GlError("gl: layer size " + std::to_string(size) + " is below 2 or exceeds the context's limits");
+// The layers' buffers ([layer][y][x] words) must fit a storage block, and
+// the GL rasterizer's viewport and target the image.
+void check_layer_limits(const gl::Functions& f, int size, int layers, GlLayerRaster raster) {
     if (layers < 1 || layers > BC_LAYERS_MAX) throw gl::GlError("gl: " + std::to_string(layers) + " layers, not 1 to 8");
+    const auto limit = static_cast<std::size_t>(static_cast<unsigned>(get_integer(f, GL_MAX_SHADER_STORAGE_BLOCK_SIZE)));
+    const std::size_t bytes = static_cast<std::size_t>(size) * static_cast<std::size_t>(size) *
+                              static_cast<std::size_t>(layers) * sizeof(std::uint32_t);
+    int raster_limit = size;
+    if (raster == GlLayerRaster::graphics) {
+        GLint max_viewport[2] = {0, 0};
+        f.GetIntegerv(GL_MAX_VIEWPORT_DIMS, max_viewport);
+        raster_limit = std::min({get_integer(f, GL_MAX_TEXTURE_SIZE), max_viewport[0], max_viewport[1]});
+    }
+    if (size < 2 || size > raster_limit || bytes > limit)
+        throw gl::GlError("gl: layer size " + std::to_string(size) + " with " + std::to_string(layers) +
+                          " layers is below 2 texels or exceeds the context's limits (" + std::to_string(bytes >> 20) +
+                          " MiB a buffer, at most " + std::to_string(limit >> 20) + ")");
 }
 
 }  // namespace
 
 void GlLayerBuilder::make_layers(const kernelf::LayerView& view, int layers, const GlLayerInput& input,
-                                 bool with_triangles) const {
+                                 bool with_triangles, GlLayerRaster raster) const {
     const gl::Functions& f = *gl_;
-    check_layer_limits(f, view.size, layers);
+    check_layer_limits(f, view.size, layers, raster);
     passes_->upload(f, view, layers, input, pyramid_floats_of(view.size), with_triangles);
     passes_->make_fans(f, input.vertices->size(), input.origins != nullptr ? input.origins->size() : 0);
-    passes_->draw_fans(f, view.size);
+    if (raster == GlLayerRaster::compute)
+        passes_->raster_fans(f, input.vertices->size());
+    else
+        passes_->draw_fans(f, view.size);
     passes_->make_pyramid(f, view.size);
 }
 
-GlClusterLayers GlLayerBuilder::build(const kernelf::LayerView& view, int layers, const GlLayerInput& input) const {
-    make_layers(view, layers, input, true);
+GlClusterLayers GlLayerBuilder::build(const kernelf::LayerView& view, int layers, const GlLayerInput& input,
+                                      GlLayerRaster raster) const {
+    make_layers(view, layers, input, true, raster);
     return passes_->read_back(*gl_, view.size, layers, pyramid_floats_of(view.size));
 }
 
@@ -278,8 +317,9 @@ void GlLayerBuilder::upload_triangles(const std::vector<std::array<glm::vec3, 3>
     passes_->upload_triangles(*gl_, vertices, normals);
 }
 
-void GlLayerBuilder::build_resident(const kernelf::LayerView& view, int layers, const GlLayerInput& input) const {
-    make_layers(view, layers, input, false);
+void GlLayerBuilder::build_resident(const kernelf::LayerView& view, int layers, const GlLayerInput& input,
+                                    GlLayerRaster raster) const {
+    make_layers(view, layers, input, false, raster);
 }
 
 GlLayerCounts GlLayerBuilder::read_counts() const { return passes_->counts(*gl_); }

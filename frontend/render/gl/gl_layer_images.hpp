@@ -1,9 +1,10 @@
 // The GL build of dof-secondary's layered images and min/max depth pyramid
 // (docs/secondary-rays.md, "What the gl backend runs"): per cluster, a
 // compute pass clips and projects the scene's triangles into the virtual
-// view, the GL rasterizer draws them twice into a k-buffer (per texel the
-// `layers` nearest depths by an atomicMin cascade, then their triangles),
-// and a compute pass per level builds the pyramid. The paper's three culls
+// view, the GL rasterizer or a compute scan (GlLayerRaster) takes them twice
+// into a k-buffer (per texel the `layers` nearest depths by an atomicMin
+// cascade, then their triangles), and a compute pass per level builds the
+// pyramid. The paper's three culls
 // are applied on the GPU: near plane by clipping, the cluster's own triangles
 // and the depths not beyond its nearest ray origin in the texel, and the
 // normal cone. Same arithmetic as the host's build (layer_raster_shared.h);
@@ -45,6 +46,15 @@ struct GlLayerInput {
     float normal_threshold = 2.0f;                    // cull n . forward above this
 };
 
+// What finds the texel centres each projected triangle covers. compute: a
+// work group per triangle runs the host scan's coverage test
+// (layer_raster_shared.h), so the same texels as the host on any GPU, on
+// every multiprocessor (an H200 runs its graphics stages on 4 of 132);
+// graphics: the GL rasterizer (llvmpipe's is many times faster than its
+// compute; a GPU's snaps to its own fixed point, so an edge texel may
+// differ from the host's). The same layers on an IEEE-exact GL.
+enum class GlLayerRaster { graphics, compute };
+
 class GlLayerBuilder {
 public:
     // On `context` (kept alive by the caller; made current here, and by its
@@ -59,7 +69,8 @@ public:
     // The layered image of `view` (view.size^2 texels, 1 <= layers <= 8)
     // with the culls of `input`, and its pyramid. Throws gl::GlError when GL
     // reports an error or the image exceeds the context's limits.
-    GlClusterLayers build(const kernelf::LayerView& view, int layers, const GlLayerInput& input) const;
+    GlClusterLayers build(const kernelf::LayerView& view, int layers, const GlLayerInput& input,
+                          GlLayerRaster raster = GlLayerRaster::graphics) const;
 
     // The GPU-resident build (GlClusterBouncer): the scene's triangles
     // uploaded once per render, then per cluster build_resident, which is
@@ -72,7 +83,8 @@ public:
     // build().
     void upload_triangles(const std::vector<std::array<glm::vec3, 3>>& vertices,
                           const std::vector<glm::vec3>& normals) const;
-    void build_resident(const kernelf::LayerView& view, int layers, const GlLayerInput& input) const;
+    void build_resident(const kernelf::LayerView& view, int layers, const GlLayerInput& input,
+                        GlLayerRaster raster = GlLayerRaster::graphics) const;
     GlLayerCounts read_counts() const;
     const gl::Buffer& depth_buffer() const;     // [layer][y][x] float bits, +infinity for none
     const gl::Buffer& triangle_buffer() const;  // [layer][y][x] scene triangle, ~0 for none
@@ -82,7 +94,8 @@ public:
 
 private:
     // The passes up to the pyramid (build's and build_resident's).
-    void make_layers(const kernelf::LayerView& view, int layers, const GlLayerInput& input, bool with_triangles) const;
+    void make_layers(const kernelf::LayerView& view, int layers, const GlLayerInput& input, bool with_triangles,
+                     GlLayerRaster raster) const;
 
     const gl::HeadlessContext* context_;
     const gl::Functions* gl_;

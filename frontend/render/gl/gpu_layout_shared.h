@@ -104,7 +104,7 @@ using uint = std::uint32_t;
 #define BC_GL_TRACE_SEGMENTS_BINDING 1  // Segments: 10 floats per ray
 #define BC_GL_TRACE_VIEW_BINDING 2      // View: the cluster's view
 #define BC_GL_TRACE_HITS_BINDING 3      // Hits: 8 words per ray
-// ... and the GPU-resident bounce's (gl_cluster_bounce.cpp; render_secondary_clip.comp and the trace pass):
+// ... and the GPU-resident bounce's (gl_layer_trace.cpp; render_secondary_clip.comp and the trace pass):
 #define BC_GL_TRACE_TRIANGLE_IDS_BINDING 4  // TriangleIds: the layers' triangles (GlLayerBuilder's)
 #define BC_GL_TRACE_PYRAMID_BINDING 5       // Pyramid: the layers' min/max levels (GlLayerBuilder's)
 #define BC_GL_TRACE_RAYS_BINDING 6          // Rays: per ray its start and direction (vec4 each)

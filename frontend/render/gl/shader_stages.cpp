@@ -28,9 +28,11 @@ ShaderStage shader_stage(GLenum type, std::string_view main_name, Prelude prelud
             }
             break;
         case Prelude::layers:
+        case Prelude::layer_fragments:
             add("gpu_layout_shared.h");
             add("layer_raster_shared.h");
             add("gl_layer_shared.h");
+            if (prelude == Prelude::layer_fragments) add("render_layers_fragment.glsl");
             break;
         case Prelude::secondary:
             add("gpu_layout_shared.h");

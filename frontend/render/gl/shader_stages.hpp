@@ -27,9 +27,11 @@ enum class Prelude {
     // gpu_layout_shared.h (for its bindings), layer_raster_shared.h and
     // gl_layer_shared.h: dof-secondary's layer passes (gl_layer_images.cpp).
     layers,
+    // layers', then render_layers_fragment.glsl: the two scans of the layer
+    // passes that store fragments (render_layers.frag, render_layers_raster.comp).
+    layer_fragments,
     // gpu_layout_shared.h, bounce_shared.h and render_secondary_common.glsl:
-    // dof-secondary's clip and trace passes (gl_layer_trace.cpp,
-    // gl_cluster_bounce.cpp).
+    // dof-secondary's clip and trace passes (gl_layer_trace.cpp).
     secondary,
 };
 

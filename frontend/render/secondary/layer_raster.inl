@@ -26,33 +26,24 @@ inline int clip_near(const std::array<glm::vec3, 3>& in, float near, std::array<
     return count;
 }
 
-// An edge owns the texel centres on it when it is a top or left edge of the
-// counter-clockwise triangle.
-inline bool owns_edge(glm::vec2 a, glm::vec2 b) { return (a.y == b.y && b.x < a.x) || b.y > a.y; }
-
+// Every texel centre the image triangle (image x, image y, depth) covers,
+// with its depth there: the scan of render_layers_raster.comp.
 template <class Fragment>
 void scan_triangle(int size, glm::vec3 a, glm::vec3 b, glm::vec3 c, const Fragment& fragment) {
-    // (image x, image y, depth); orient counter-clockwise.
-    float area = layer_raster::bc_raster_edge(glm::vec2(a), glm::vec2(b), glm::vec2(c));
+    using namespace layer_raster;
+    float area = bc_raster_edge(glm::vec2(a), glm::vec2(b), glm::vec2(c));
     if (!(std::abs(area) > 0.0f)) return;
-    if (area < 0.0f) {
+    if (area < 0.0f) {  // orient counter-clockwise
         std::swap(b, c);
         area = -area;
     }
-    const int x0 = std::max(0, static_cast<int>(std::floor(std::min({a.x, b.x, c.x}) - 0.5f)));
-    const int x1 = std::min(size - 1, static_cast<int>(std::ceil(std::max({a.x, b.x, c.x}) - 0.5f)));
-    const int y0 = std::max(0, static_cast<int>(std::floor(std::min({a.y, b.y, c.y}) - 0.5f)));
-    const int y1 = std::min(size - 1, static_cast<int>(std::ceil(std::max({a.y, b.y, c.y}) - 0.5f)));
+    const glm::ivec4 box = bc_raster_texel_box(a, b, c, size);
     const glm::vec2 pa(a), pb(b), pc(c);
-    const bool own_ab = owns_edge(pa, pb), own_bc = owns_edge(pb, pc), own_ca = owns_edge(pc, pa);
-    const auto edge = layer_raster::bc_raster_edge;
-    for (int y = y0; y <= y1; ++y) {
-        for (int x = x0; x <= x1; ++x) {
+    const glm::bvec3 owns(bc_raster_owns_edge(pb, pc), bc_raster_owns_edge(pc, pa), bc_raster_owns_edge(pa, pb));
+    for (int y = box.y; y <= box.w; ++y) {
+        for (int x = box.x; x <= box.z; ++x) {
             const glm::vec2 centre(float(x) + 0.5f, float(y) + 0.5f);
-            const float wa = edge(pb, pc, centre), wb = edge(pc, pa, centre), wc = edge(pa, pb, centre);
-            if (wa < 0.0f || wb < 0.0f || wc < 0.0f) continue;
-            if ((wa == 0.0f && !own_bc) || (wb == 0.0f && !own_ca) || (wc == 0.0f && !own_ab)) continue;
-            fragment(x, y, layer_raster::bc_raster_depth(a, b, c, area, centre));
+            if (bc_raster_covers(pa, pb, pc, owns, centre)) fragment(x, y, bc_raster_depth(a, b, c, area, centre));
         }
     }
 }

@@ -1,4 +1,4 @@
-// dof-secondary's interval clipping on the GPU (gl_cluster_bounce.cpp): one
+// dof-secondary's interval clipping on the GPU (gl_layer_trace.cpp): one
 // invocation per group of rays clipped together (one pixel's samples in one
 // lens part). Each ray's segment starts clipped to the view only; then, for
 // BC_BOUNCE_CLIP_ROUNDS rounds, the union of the group's footprints is

@@ -1,0 +1,66 @@
+// dof-secondary's GL layers, passes 2 and 3 in compute (gl_layer_images.cpp,
+// GlLayerRaster::compute): a work group per fan triangle of the setup pass
+// scans the texel centres of its box with the host's coverage test and depth
+// (layer_raster_shared.h: the texels the host's scan covers, on any GPU,
+// where the GL rasterizer snaps to its own fixed point), its 64 invocations
+// taking the box's texels in turn, each covered one to layer_fragment
+// (render_layers_fragment.glsl). The fans are dispatched as rows of work
+// groups (at most 65,535 a row); groups past the setup pass's fan count
+// return.
+layout(local_size_x = 64) in;
+layout(std430, binding = BC_GL_LAYER_FANS_BINDING) readonly buffer Fans { LayerFan fans[]; };
+
+// The group's counts, added to the buffer's once (one atomic per group, not per fragment).
+shared uint group_fragments;
+shared uint group_in_front;
+shared uint group_dropped;
+
+void main() {
+    if (gl_LocalInvocationIndex == 0u) {
+        group_fragments = 0u;
+        group_in_front = 0u;
+        group_dropped = 0u;
+    }
+    barrier();
+    uint f = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
+    if (f < counts[BC_LAYER_COUNT_FANS]) {  // the same for the whole group
+        LayerFan fan = fans[f];
+        vec3 a = fan.a.xyz;
+        vec3 b = fan.b.xyz;
+        vec3 c = fan.c.xyz;
+        float area = bc_raster_edge(a.xy, b.xy, c.xy);
+        if (abs(area) > 0.0) {
+            if (area < 0.0) {  // orient counter-clockwise
+                vec3 swap = b;
+                b = c;
+                c = swap;
+                area = -area;
+            }
+            ivec4 box = bc_raster_texel_box(a, b, c, pass.sizes.x);
+            bvec3 owns = bvec3(bc_raster_owns_edge(b.xy, c.xy), bc_raster_owns_edge(c.xy, a.xy),
+                               bc_raster_owns_edge(a.xy, b.xy));
+            int width = box.z - box.x + 1;
+            int height = box.w - box.y + 1;
+            if (width > 0 && height > 0) {
+                uint texels = uint(width) * uint(height);
+                for (uint i = gl_LocalInvocationIndex; i < texels; i += gl_WorkGroupSize.x) {
+                    ivec2 texel = ivec2(box.x + int(i % uint(width)), box.y + int(i / uint(width)));
+                    vec2 centre = vec2(texel) + vec2(0.5);
+                    if (!bc_raster_covers(a.xy, b.xy, c.xy, owns, centre)) continue;
+                    uint done = layer_fragment(texel, bc_raster_depth(a, b, c, area, centre), fan.info.x,
+                                               fan.info.y != 0);
+                    if (peel_pass != 0) continue;
+                    atomicAdd(group_fragments, 1u);
+                    if (done == BC_LAYER_FRAGMENT_CULLED_IN_FRONT) atomicAdd(group_in_front, 1u);
+                    if (done == BC_LAYER_FRAGMENT_DROPPED) atomicAdd(group_dropped, 1u);
+                }
+            }
+        }
+    }
+    barrier();
+    if (gl_LocalInvocationIndex == 0u && peel_pass == 0) {
+        if (group_fragments > 0u) atomicAdd(counts[BC_LAYER_COUNT_FRAGMENTS], group_fragments);
+        if (group_in_front > 0u) atomicAdd(counts[BC_LAYER_COUNT_CULLED_IN_FRONT], group_in_front);
+        if (group_dropped > 0u) atomicAdd(counts[BC_LAYER_COUNT_DROPPED], group_dropped);
+    }
+}
