@@ -7,9 +7,11 @@
 # with every thread, on the built-in secondary-ray scenes, in one run; then
 # the JCST configuration (water, 800x600, 100 spp) beside the paper's 196 ms
 # on a GTX 285. Prints per render the whole time, the primary pass and the
-# bounce phase (host clock: wall time, GL work included), on hardware GL the
+# resolve and bounce phases (host clock: wall time, GL work included), of the
+# bounce the host's own steps (clustering, views, shading), on hardware GL the
 # resident bounce's GPU time (gpu_bounce_layers + gpu_bounce_trace, timer
-# queries), and the PSNR against embree. docs/secondary-rays.md, "What the gl backend runs".
+# queries), and the PSNR against embree. The gl-compute variant scans the
+# layers in compute as well (GlLayerRaster::compute), gl on the GL rasterizer. docs/secondary-rays.md, "What the gl backend runs".
 #
 # Build and pack here, then run from the bundle on the device:
 #   cmake --build build
@@ -38,7 +40,7 @@ say "gl: $renderer ($kind)"
 say "cpus: $(nproc); size $size, spp $spp, runs $runs, seed 1, sampler sobol"
 [ "$kind" = software ] && say "SOFTWARE GL (llvmpipe on the CPU): a smoke run, not GPU figures"
 
-echo "scene,variant,size,spp,run,ms_total,ms_primary,ms_bounce,gpu_bounce_layers,gpu_bounce_trace,psnr_db" >"$csv"
+echo "scene,variant,size,spp,run,ms_total,ms_primary,ms_resolve,ms_bounce,host_clustering,host_views,host_shading,gpu_bounce_layers,gpu_bounce_trace,psnr_db" >"$csv"
 failed=0
 # One render: scene variant size spp run args...; appends a csv line.
 render() {
@@ -58,11 +60,13 @@ import json, sys
 scene, variant, size, spp, run, psnr, path = sys.argv[1:8]
 d = json.load(open(path))
 p = d.get("ms_per_phase", {})
-own = ("resolve", "bounce", "compile")
+own = ("resolve", "bounce", "compile")  # and the wall_ / gpu_ parts of bounce
 primary = sum(v for k, v in p.items() if k not in own and not k.startswith(("gpu_", "wall_")))
 gpu = lambda k: "%.2f" % p[k] if k in p else ""
 print(",".join([scene, variant, size, spp, run, "%.1f" % d["ms_total"], "%.1f" % primary,
-                "%.1f" % p.get("bounce", 0.0), gpu("gpu_bounce_layers"), gpu("gpu_bounce_trace"), psnr]))
+                "%.1f" % p.get("resolve", 0.0), "%.1f" % p.get("bounce", 0.0), gpu("wall_bounce_clustering"),
+                gpu("wall_bounce_views"), gpu("wall_bounce_shading"), gpu("gpu_bounce_layers"),
+                gpu("gpu_bounce_trace"), psnr]))
 PY
 }
 # Every variant of one scene and size, embree first (the reference image).
@@ -82,7 +86,7 @@ python3 - "$csv" <<'PY' | tee -a "$summary"
 import csv, statistics, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
 keys = sorted({(r["scene"], r["size"], r["spp"]) for r in rows}, key=lambda k: (k[1], k[0]))
-print("scene size spp | variant: median ms total / primary / bounce (GPU time of the resident bounce), PSNR against embree | bounce gl-readback / gl")
+print("scene size spp | variant: median ms total / primary / resolve / bounce (of it on the host: clustering + views + shading; GPU time of the resident bounce), PSNR against embree | bounce gl-readback / gl")
 for key in keys:
     line, bounce = [], {}
     for variant in ("embree", "gl", "gl-compute", "gl-readback"):
@@ -92,10 +96,15 @@ for key in keys:
         med = lambda f: statistics.median(float(r[f]) for r in rs)
         bounce[variant] = med("ms_bounce")
         gpu = [float(r["gpu_bounce_layers"]) + float(r["gpu_bounce_trace"]) for r in rs if r["gpu_bounce_layers"]]
+        host = [sum(float(r[k]) for k in ("host_clustering", "host_views", "host_shading")) for r in rs
+                if r["host_clustering"]]
         psnr = rs[-1]["psnr_db"]
-        line.append(("%s %.0f / %.0f / %.0f%s %s" % (variant, med("ms_total"), med("ms_primary"), med("ms_bounce"),
-                                                     " (GPU %.1f)" % statistics.median(gpu) if gpu else "",
-                                                     psnr + " dB" if psnr not in ("", "-") else "")).strip())
+        notes = ", ".join((["host %.0f" % statistics.median(host)] if host else []) +
+                          (["GPU %.1f" % statistics.median(gpu)] if gpu else []))
+        line.append(("%s %.0f / %.0f / %.0f / %.0f%s %s" % (variant, med("ms_total"), med("ms_primary"),
+                                                          med("ms_resolve"), med("ms_bounce"),
+                                                          " (%s)" % notes if notes else "",
+                                                          psnr + " dB" if psnr not in ("", "-") else "")).strip())
     ratio = "%.2fx" % (bounce["gl-readback"] / bounce["gl"]) if bounce.get("gl") else "-"
     print("%s %s %s | %s | %s" % (key[0], key[1], key[2], "; ".join(line), ratio))
 PY

@@ -187,6 +187,7 @@ float far_plane(const WorldTriangles& world, const K::LayerView& view) {
 // traces of its rays (or their exact fallback).
 void bounce_cluster(const BounceContext& c, const Cluster<float>& cluster, std::vector<std::uint32_t> members,
                     std::vector<glm::vec3>& radiance, SecondaryStats& stats) {
+    const Clock::time_point views_start = Clock::now();
     const K::VirtualView fitted = fit_cluster_view(c, cluster, members, stats);
     if ((fitted.flags & ~BC_VIEW_DIRECTION_OUTSIDE) != 0) {
         ++stats.clusters_unusable;
@@ -208,6 +209,7 @@ void bounce_cluster(const BounceContext& c, const Cluster<float>& cluster, std::
     }
     const ClusterCulls culls = cluster_culls(c, view, members);
     const ClusterRays rays = cluster_rays(c, members);
+    stats.views_ms += ms_since(views_start);
     std::vector<LayerBounceHit> hits;
     const Clock::time_point build_start = Clock::now();
     if (c.bouncer != nullptr) {
@@ -220,7 +222,9 @@ void bounce_cluster(const BounceContext& c, const Cluster<float>& cluster, std::
         stats.layer_build_ms += ms_since(build_start);
         hits = bounce_in_layers(view, built, c.thickness, rays, c.tracer);
     }
+    const Clock::time_point shading_start = Clock::now();
     shade_hits(c, members, hits, radiance, stats);
+    stats.shading_ms += ms_since(shading_start);
 }
 
 void add_stats(SecondaryStats& into, const SecondaryStats& from) {
@@ -237,6 +241,9 @@ void add_stats(SecondaryStats& into, const SecondaryStats& from) {
     into.layers.culled_normal += from.layers.culled_normal;
     into.layers.dropped += from.layers.dropped;
     into.layer_build_ms += from.layer_build_ms;
+    into.clustering_ms += from.clustering_ms;
+    into.views_ms += from.views_ms;
+    into.shading_ms += from.shading_ms;
 }
 
 // Every ray's radiance by the options' bounce mode, in parallel over
@@ -270,7 +277,9 @@ std::vector<glm::vec3> bounce_all(const BounceContext& c, int threads, Secondary
     ClusterOptions cluster_options;
     cluster_options.wanted_clusters = static_cast<std::uint32_t>(c.options.wanted_clusters);
     cluster_options.max_per_facet = static_cast<std::uint32_t>(c.options.clusters_per_facet);
+    const Clock::time_point clustering_start = Clock::now();
     const Clustering<float> clustering = cluster_reflector_pixels<float>(positions, directions, cluster_options);
+    stats.clustering_ms += ms_since(clustering_start);
     const int clusters = static_cast<int>(clustering.clusters.size());
     stats.clusters += clusters;
     std::vector<std::vector<std::uint32_t>> members(clustering.clusters.size());
@@ -405,6 +414,12 @@ RenderResult render_dof_secondary(const Scene& scene, const RenderSettings& sett
     for (std::size_t r = 0; r < primary.rays.size(); ++r)
         primary.sample_colour[primary.rays[r].sample] += primary.rays[r].weight * radiance[r];
     result.stats.ms_per_phase.emplace_back("bounce", ms_since(phase));
+    // Its host steps (SecondaryStats), then the bouncer's own.
+    if (options.bounces == SecondaryBounces::image_space) {
+        result.stats.ms_per_phase.emplace_back("wall_bounce_clustering", stats.clustering_ms);
+        result.stats.ms_per_phase.emplace_back("wall_bounce_views", stats.views_ms);
+        result.stats.ms_per_phase.emplace_back("wall_bounce_shading", stats.shading_ms);
+    }
     if (resident != nullptr) resident->add_phases(result.stats);
     result.image = resolve_samples(primary.sample_colour, settings.width, settings.height, settings.spp);
     result.stats.ms_total = ms_since(start);

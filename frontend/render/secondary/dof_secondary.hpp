@@ -36,6 +36,11 @@ struct SecondaryStats {
     LayerStats layers;                     // summed over the clusters
     double layer_build_ms = 0.0;           // building the layers and pyramids (with a ClusterBouncer: and the clipping,
                                            // traces and surfaces run with them), summed over the clusters
+    // The host's own steps of the bounce, summed over the clusters (wall
+    // time where they run one at a time, as on gl; CPU time over the
+    // threads on cpu): facet classification and k-means; each cluster's
+    // view, culls and ray groups; shading the hits.
+    double clustering_ms = 0.0, views_ms = 0.0, shading_ms = 0.0;
 };
 
 // Traces clipped segments through a cluster's layered depth images (depth
