@@ -353,23 +353,34 @@ TEST_CASE("dof-secondary: the GL build with GL layers against the CPU build") {
 namespace {
 
 // The GPU-resident bounce (GlDofSecondary::cluster_bouncer) beside the
-// host's bounce_in_layers on the same cluster's GL layers read back:
-// per ray, the same hit, trace steps and surface.
+// host's bounce_in_layers on the same cluster's GL layers read back (by a
+// builder of their own, so the resident batch's buffers and counts are left
+// alone): per ray, the same hit, trace steps and surface, every cluster's
+// hits in the order queued.
 struct ResidentAgainstHost final : ClusterBouncer {
     ClusterBouncer& resident;
     const LayerBuilder& read_back;
+    std::vector<LayerBounceHit> host;  // the batch's hits on the host, in the order queued
+    std::uint64_t host_fragments = 0;
     std::uint64_t rays = 0, hits = 0, hit_differs = 0, steps_differ = 0, surface_differs = 0;
     ResidentAgainstHost(ClusterBouncer& r, const LayerBuilder& b) : resident(r), read_back(b) {}
-    void begin(const WorldTriangles& triangles) override { resident.begin(triangles); }
-    std::vector<LayerBounceHit> bounce(const WorldTriangles& triangles, const kernelf::LayerView& view, int layers,
-                                       float thickness, const ClusterCulls& culls, const ClusterRays& cluster_rays,
-                                       LayerStats& stats) override {
+    void begin(const WorldTriangles& triangles, std::size_t max_rays) override {
+        resident.begin(triangles, max_rays);
+        host.clear();
+        host_fragments = 0;
+    }
+    void queue(const WorldTriangles& triangles, const kernelf::LayerView& view, int layers, float thickness,
+               const ClusterCulls& culls, const ClusterRays& cluster_rays) override {
         LayerStats host_stats;
         const ClusterLayers built = read_back(triangles, view, layers, culls, host_stats);
-        const std::vector<LayerBounceHit> host = bounce_in_layers(view, built, thickness, cluster_rays);
+        const std::vector<LayerBounceHit> cluster = bounce_in_layers(view, built, thickness, cluster_rays);
+        host.insert(host.end(), cluster.begin(), cluster.end());
+        host_fragments += host_stats.fragments;
+        resident.queue(triangles, view, layers, thickness, culls, cluster_rays);
+    }
+    std::vector<LayerBounceHit> finish(LayerStats& stats) override {
         const std::uint64_t fragments_before = stats.fragments;
-        std::vector<LayerBounceHit> got =
-            resident.bounce(triangles, view, layers, thickness, culls, cluster_rays, stats);
+        std::vector<LayerBounceHit> got = resident.finish(stats);
         REQUIRE(got.size() == host.size());
         for (std::size_t i = 0; i < got.size(); ++i) {
             ++rays;
@@ -378,7 +389,7 @@ struct ResidentAgainstHost final : ClusterBouncer {
             steps_differ += got[i].steps != host[i].steps ? 1 : 0;
             surface_differs += got[i].hit && host[i].hit && got[i].triangle != host[i].triangle ? 1 : 0;
         }
-        CHECK(stats.fragments - fragments_before == host_stats.fragments);  // the same layers
+        CHECK(stats.fragments - fragments_before == host_fragments);  // the same layers, counted over the batch
         return got;
     }
 };
@@ -400,8 +411,8 @@ TEST_CASE("dof-secondary: the GPU-resident bounce gives the host's hits on the s
     const ArithmeticProbe probe = probe_arithmetic(*context);
     MESSAGE("GL arithmetic: " << probe.describe());
     GlRenderer rasterizer;
-    const GlDofSecondary passes(rasterizer, *context);
-    const LayerBuilder read_back = passes.layer_builder();
+    const GlDofSecondary passes(rasterizer, *context), read_back_passes(rasterizer, *context);
+    const LayerBuilder read_back = read_back_passes.layer_builder();
     const RenderSettings settings = quiet_settings(48, 36, 8);
     for (const auto& [scene, options] : layer_cases()) {
         CAPTURE(scene.name);

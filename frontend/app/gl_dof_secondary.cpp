@@ -28,12 +28,13 @@ void add_counts(LayerStats& stats, const GlLayerCounts& counts) {
 }
 
 // ClusterBouncer on the GL passes: the layers built and left on the GPU,
-// then clipped, traced and the surfaces picked there.
+// then clipped, traced and the surfaces picked there, cluster after cluster
+// with nothing waited for until finish() reads every hit back.
 // Its phases: gpu_bounce_layers (the layers and pyramid) and
 // gpu_bounce_trace (clipping, traces and surfaces), on hardware GL only;
-// wall_bounce_layers (the host's time to issue the layer passes: nothing
-// waits for them) and wall_bounce_trace (from the rays' upload to the hits'
-// read-back, which waits for all of the cluster's GPU work).
+// wall_bounce_layers and wall_bounce_trace (the host's time to issue them:
+// nothing waits), wall_bounce_readback (finish(): waits for all of the
+// batch's GPU work, then reads the hits and counts).
 class GlClusterBouncer final : public ClusterBouncer {
 public:
     GlClusterBouncer(const gl::HeadlessContext& context, const GlLayerBuilder& builder, const GlLayerTracer& tracer,
@@ -48,21 +49,22 @@ public:
         timers_.reset();
     }
 
-    void begin(const WorldTriangles& triangles) override {
+    void begin(const WorldTriangles& triangles, std::size_t max_rays) override {
         context_->make_current();
         builder_->upload_triangles(triangles.vertices, triangles.normals);
+        tracer_->begin_bounces(max_rays);
+        queued_ = 0;
         if (!timers_)
-            timers_.emplace(context_->gl(), std::vector<std::string>{"bounce_layers", "bounce_trace"},
-                            !context_->software(), false);  // no wait between the layers and the traces
+            timers_.emplace(context_->gl(), std::vector<std::string>{"bounce_layers", "bounce_trace", "bounce_readback"},
+                            !context_->software(), false);  // no wait between the passes
     }
 
     void add_phases(RenderStats& stats) const override {
         if (timers_) timers_->add_to(stats);
     }
 
-    std::vector<LayerBounceHit> bounce(const WorldTriangles& triangles, const kernelf::LayerView& view, int layers,
-                                       float thickness, const ClusterCulls& culls, const ClusterRays& rays,
-                                       LayerStats& stats) override {
+    void queue(const WorldTriangles& triangles, const kernelf::LayerView& view, int layers, float thickness,
+               const ClusterCulls& culls, const ClusterRays& rays) override {
         context_->make_current();
         const GlLayerInput input{&triangles.vertices, &triangles.normals, &culls.own, &culls.origins,
                                  culls.normal_threshold};
@@ -70,19 +72,28 @@ public:
         builder_->build_resident(view, layers, input, raster_);
         timers_->end(layers_phase);
         timers_->begin(trace_phase);
-        std::vector<LayerBounceHit> hits =
-            tracer_->bounce(view, layers, thickness, *builder_, rays.starts, rays.directions, rays.group_ends);
+        tracer_->queue_bounce(view, layers, thickness, *builder_, rays.starts, rays.directions, rays.group_ends,
+                              queued_);
         timers_->end(trace_phase);
+        queued_ += rays.starts.size();
+    }
+
+    std::vector<LayerBounceHit> finish(LayerStats& stats) override {
+        context_->make_current();
+        timers_->begin(readback_phase);
+        std::vector<LayerBounceHit> hits = tracer_->finish_bounces(queued_);
         add_counts(stats, builder_->read_counts());  // the passes are done: no wait
+        timers_->end(readback_phase);
         return hits;
     }
 
 private:
-    enum Phase : std::size_t { layers_phase, trace_phase };
+    enum Phase : std::size_t { layers_phase, trace_phase, readback_phase };
     const gl::HeadlessContext* context_;
     const GlLayerBuilder* builder_;
     const GlLayerTracer* tracer_;
     GlLayerRaster raster_;
+    std::size_t queued_ = 0;  // rays queued since begin()
     mutable std::optional<GlPhaseTimers> timers_;  // made by begin(), on the context; read by add_phases
 };
 

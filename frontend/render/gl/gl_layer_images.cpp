@@ -85,12 +85,28 @@ struct GlLayerBuilder::Passes {
     void upload_triangles(const gl::Functions& f, const std::vector<std::array<glm::vec3, 3>>& vertices,
                           const std::vector<glm::vec3>& normals);
     GlLayerCounts counts(const gl::Functions& f) const;
+    void reset_counts(const gl::Functions& f);
+    void reset_cluster_counts();
     void make_fans(const gl::Functions& f, std::size_t triangles, std::size_t origins);
     void draw_fans(const gl::Functions& f, int size);
     void raster_fans(const gl::Functions& f, std::size_t triangles);
     void make_pyramid(const gl::Functions& f, int size);
     GlClusterLayers read_back(const gl::Functions& f, int size, int layers, std::size_t pyramid_floats) const;
 };
+
+// Every count to 0 (the counts buffer made where there is none).
+void GlLayerBuilder::Passes::reset_counts(const gl::Functions& f) {
+    const std::uint32_t zero[BC_LAYER_COUNTS] = {};
+    buffer(f, counts_binding, sizeof zero, zero);
+}
+
+// The counts of one cluster's passes: its fans, and the draws' command (its
+// one instance); the others add up over the clusters.
+void GlLayerBuilder::Passes::reset_cluster_counts() {
+    const std::uint32_t cluster[BC_LAYERS_COUNT_PER_CLUSTER] = {0, 0, 1, 0, 0};
+    at(counts_binding).write(cluster, sizeof cluster, BC_LAYER_COUNT_FANS * sizeof(std::uint32_t));
+    at(counts_binding).bind_base(counts_binding);
+}
 
 // The scene's triangles (world space) and unit normals into their buffer.
 void GlLayerBuilder::Passes::upload_triangles(const gl::Functions& f,
@@ -117,8 +133,6 @@ void GlLayerBuilder::Passes::upload(const gl::Functions& f, const kernelf::Layer
     std::vector<glm::vec4> origin_points(origins);
     for (std::size_t i = 0; i < origins; ++i) origin_points[i] = glm::vec4((*input.origins)[i], 0.0f);
     const gpu::LayerPass pass = pass_of(view, layers, triangles, origins, input.normal_threshold);
-    std::uint32_t zero_counts[BC_LAYER_COUNTS] = {};
-    zero_counts[BC_LAYER_COUNT_DRAW + 1] = 1;  // the indirect draw's one instance
     if (with_triangles) {
         upload_triangles(f, *input.vertices, *input.normals);
     } else {
@@ -130,7 +144,9 @@ void GlLayerBuilder::Passes::upload(const gl::Functions& f, const kernelf::Layer
     buffer(f, pass_binding, sizeof pass, &pass);
     buffer(f, own_binding, own_bits.size() * sizeof(std::uint32_t), own_bits.data());
     buffer(f, fans_binding, 2 * triangles * sizeof(gpu::LayerFan));
-    buffer(f, counts_binding, sizeof zero_counts, zero_counts);
+    // build_resident's counts add up from upload_triangles on; build's are its own.
+    if (with_triangles) reset_counts(f);
+    reset_cluster_counts();
     buffer(f, origins_binding, origin_points.size() * sizeof(glm::vec4), origin_points.data());
     buffer(f, pyramid_binding, pyramid_floats * sizeof(float));
     const std::size_t texels = plane * static_cast<std::size_t>(layers);
@@ -315,6 +331,7 @@ GlClusterLayers GlLayerBuilder::build(const kernelf::LayerView& view, int layers
 void GlLayerBuilder::upload_triangles(const std::vector<std::array<glm::vec3, 3>>& vertices,
                                       const std::vector<glm::vec3>& normals) const {
     passes_->upload_triangles(*gl_, vertices, normals);
+    passes_->reset_counts(*gl_);
 }
 
 void GlLayerBuilder::build_resident(const kernelf::LayerView& view, int layers, const GlLayerInput& input,

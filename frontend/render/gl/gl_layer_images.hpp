@@ -78,9 +78,9 @@ public:
     // upload_triangles (only their count is read from input.vertices) and
     // nothing read back, so the host does not wait for it: the layers'
     // depths, triangles (~0 for none) and pyramid stay in the buffers below
-    // until the next build, and read_counts gives its counts (call it after
-    // the passes that use the layers: it waits for them). Same throws as
-    // build().
+    // until the next build, and read_counts gives the counts summed over the
+    // builds since upload_triangles (call it after the passes that use the
+    // layers: it waits for them). Same throws as build().
     void upload_triangles(const std::vector<std::array<glm::vec3, 3>>& vertices,
                           const std::vector<glm::vec3>& normals) const;
     void build_resident(const kernelf::LayerView& view, int layers, const GlLayerInput& input,

@@ -29,6 +29,9 @@ using ivec4 = glm::ivec4;
 // the host draws the fans without reading their number back.
 #define BC_LAYER_COUNT_DRAW 6
 #define BC_LAYER_COUNTS 10
+// Slots FANS to the end are one cluster's (reset before each); those before
+// add up over a render's clusters on the GPU-resident path.
+#define BC_LAYERS_COUNT_PER_CLUSTER (BC_LAYER_COUNTS - BC_LAYER_COUNT_FANS)
 
 // The bits of +infinity: "no surface" in the layers, "no cluster point" in
 // the cluster's depth map. Positive floats order as their bits, so atomicMin

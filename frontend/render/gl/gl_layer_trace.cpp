@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <string>
 #include <string_view>
 
 namespace blurcull::frontend {
@@ -56,18 +57,16 @@ GlLayerTracer::GlLayerTracer(const gl::HeadlessContext& context)
 // The programs' and buffers' glDelete* act on the current context: this one's, with several alive.
 GlLayerTracer::~GlLayerTracer() { context_->make_current_for_release(); }
 
-std::vector<std::uint32_t> GlLayerTracer::run_trace(std::size_t count, bool pick_surface, const char* what) const {
+void GlLayerTracer::run_trace(std::size_t count, bool pick_surface, std::size_t hit_offset) const {
     const gl::Functions& f = *gl_;
     f.UseProgram(program_->id());
     f.Uniform1ui(f.GetUniformLocation(program_->id(), "count"), static_cast<GLuint>(count));
     f.Uniform1i(f.GetUniformLocation(program_->id(), "pick_surface"), pick_surface ? 1 : 0);
+    f.Uniform1ui(f.GetUniformLocation(program_->id(), "hit_offset"), static_cast<GLuint>(hit_offset));
     dispatch_items(f, count);
-    f.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    gl::check_gl(f, what);
-    std::vector<std::uint32_t> out(count * 8);
-    hits_->read(out.data(), out.size() * sizeof(std::uint32_t));
+    // Its hits for the read-back, its reads before the next cluster's layer passes write.
+    f.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     f.UseProgram(0);
-    return out;
 }
 
 std::vector<kernelf::LayerHit> GlLayerTracer::trace(const kernelf::LayerView& view, const std::vector<float>& depth,
@@ -89,7 +88,10 @@ std::vector<kernelf::LayerHit> GlLayerTracer::trace(const kernelf::LayerView& vi
     bind_storage(f, segments_, BC_GL_TRACE_SEGMENTS_BINDING, packed.size() * sizeof(float), packed.data());
     bind_storage(f, view_, BC_GL_TRACE_VIEW_BINDING, view_floats.size() * sizeof(float), view_floats.data());
     bind_storage(f, hits_, BC_GL_TRACE_HITS_BINDING, segments.size() * 8 * sizeof(std::uint32_t));
-    const std::vector<std::uint32_t> out = run_trace(segments.size(), false, "dof-secondary: the layer trace pass");
+    run_trace(segments.size(), false, 0);
+    gl::check_gl(f, "dof-secondary: the layer trace pass");
+    std::vector<std::uint32_t> out(segments.size() * 8);
+    hits_->read(out.data(), out.size() * sizeof(std::uint32_t));
     auto as_float = [](std::uint32_t bits) {
         float value;
         std::memcpy(&value, &bits, sizeof value);
@@ -108,12 +110,18 @@ std::vector<kernelf::LayerHit> GlLayerTracer::trace(const kernelf::LayerView& vi
     return hits;
 }
 
-std::vector<LayerBounceHit> GlLayerTracer::bounce(const kernelf::LayerView& view, int layers, float thickness,
-                                                const GlLayerBuilder& built, const std::vector<glm::vec3>& starts,
-                                                const std::vector<glm::vec3>& directions,
-                                                const std::vector<std::uint32_t>& group_ends) const {
-    std::vector<LayerBounceHit> hits(starts.size());
-    if (starts.empty() || group_ends.empty()) return hits;
+void GlLayerTracer::begin_bounces(std::size_t rays) const {
+    gl::reserve_storage(*gl_, bounce_hits_, rays * 2 * sizeof(std::uint32_t));
+}
+
+void GlLayerTracer::queue_bounce(const kernelf::LayerView& view, int layers, float thickness,
+                                 const GlLayerBuilder& built, const std::vector<glm::vec3>& starts,
+                                 const std::vector<glm::vec3>& directions,
+                                 const std::vector<std::uint32_t>& group_ends, std::size_t first) const {
+    if (starts.empty() || group_ends.empty()) return;
+    if (!bounce_hits_ || bounce_hits_->size() < (first + starts.size()) * 2 * sizeof(std::uint32_t))
+        throw gl::GlError("gl: queue_bounce past the " + std::to_string(bounce_hits_ ? bounce_hits_->size() / 8 : 0) +
+                          " hits begin_bounces made room for");
     const gl::Functions& f = *gl_;
     std::vector<glm::vec4> rays(2 * starts.size());
     for (std::size_t i = 0; i < starts.size(); ++i) {
@@ -125,7 +133,7 @@ std::vector<LayerBounceHit> GlLayerTracer::bounce(const kernelf::LayerView& view
     bind_storage(f, rays_, BC_GL_TRACE_RAYS_BINDING, rays.size() * sizeof(glm::vec4), rays.data());
     bind_storage(f, groups_, BC_GL_TRACE_GROUPS_BINDING, group_ends.size() * sizeof(std::uint32_t), group_ends.data());
     bind_storage(f, segments_, BC_GL_TRACE_SEGMENTS_BINDING, starts.size() * 10 * sizeof(float));
-    bind_storage(f, hits_, BC_GL_TRACE_HITS_BINDING, starts.size() * 8 * sizeof(std::uint32_t));
+    bounce_hits_->bind_base(BC_GL_TRACE_HITS_BINDING);
     built.depth_buffer().bind_base(BC_GL_TRACE_DEPTHS_BINDING);
     built.triangle_buffer().bind_base(BC_GL_TRACE_TRIANGLE_IDS_BINDING);
     built.pyramid_buffer().bind_base(BC_GL_TRACE_PYRAMID_BINDING);
@@ -134,11 +142,19 @@ std::vector<LayerBounceHit> GlLayerTracer::bounce(const kernelf::LayerView& view
     f.Uniform1ui(f.GetUniformLocation(clip_program_->id(), "groups"), groups);
     dispatch_items(f, groups);
     f.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    const std::vector<std::uint32_t> out = run_trace(starts.size(), true, "dof-secondary: the clip and trace passes");
-    for (std::size_t i = 0; i < hits.size(); ++i) {
-        hits[i].hit = out[i * 8] != 0u;
-        hits[i].steps = static_cast<int>(out[i * 8 + 2]);
-        hits[i].triangle = out[i * 8 + 7];
+    run_trace(starts.size(), true, first);
+}
+
+std::vector<LayerBounceHit> GlLayerTracer::finish_bounces(std::size_t rays) const {
+    std::vector<LayerBounceHit> hits(rays);
+    if (rays == 0) return hits;
+    gl::check_gl(*gl_, "dof-secondary: the clip and trace passes");
+    std::vector<std::uint32_t> out(rays * 2);
+    bounce_hits_->read(out.data(), out.size() * sizeof(std::uint32_t));
+    for (std::size_t i = 0; i < rays; ++i) {
+        hits[i].hit = (out[2 * i] & 1u) != 0u;
+        hits[i].steps = static_cast<int>(out[2 * i] >> 1u);
+        hits[i].triangle = out[2 * i + 1];
     }
     return hits;
 }

@@ -37,16 +37,22 @@ public:
     std::vector<kernelf::LayerHit> trace(const kernelf::LayerView& view, const std::vector<float>& depth, int layers,
                                          float thickness, const std::vector<kernelf::LayerSegment>& segments) const;
 
-    // The rays' bounce in the layers `built` made by its last
-    // build_resident for `view` (`layers` per texel): ray i starts at
-    // starts[i] along directions[i]; group g, rays [g ? group_ends[g - 1] :
-    // 0, group_ends[g]), is clipped together by the pyramid (the host's
-    // clip_group), then each ray is traced and its hit's surface picked
-    // (the host's hit_triangle); only the hits are read back.
-    std::vector<LayerBounceHit> bounce(const kernelf::LayerView& view, int layers, float thickness,
-                                    const GlLayerBuilder& built, const std::vector<glm::vec3>& starts,
-                                    const std::vector<glm::vec3>& directions,
-                                    const std::vector<std::uint32_t>& group_ends) const;
+    // The GPU-resident bounce of a render's clusters, none waiting for the
+    // last: begin_bounces makes room for `rays` hits; queue_bounce takes a
+    // cluster's rays in the layers `built` made by its last build_resident
+    // for `view` (`layers` per texel): ray i starts at starts[i] along
+    // directions[i]; group g, rays [g ? group_ends[g - 1] : 0,
+    // group_ends[g]), is clipped together by the pyramid (the host's
+    // clip_group), then each ray is traced and its hit's surface picked (the
+    // host's hit_triangle), its hit stored at first + i; finish_bounces reads
+    // the first `rays` hits back, waiting for the GPU once. The next
+    // build_resident may follow queue_bounce at once: GL runs the passes in
+    // order.
+    void begin_bounces(std::size_t rays) const;
+    void queue_bounce(const kernelf::LayerView& view, int layers, float thickness, const GlLayerBuilder& built,
+                      const std::vector<glm::vec3>& starts, const std::vector<glm::vec3>& directions,
+                      const std::vector<std::uint32_t>& group_ends, std::size_t first) const;
+    std::vector<LayerBounceHit> finish_bounces(std::size_t rays) const;
 
 private:
     const gl::HeadlessContext* context_;
@@ -54,13 +60,14 @@ private:
     std::unique_ptr<gl::Program> program_;
     std::unique_ptr<gl::Program> clip_program_;
     // The passes' buffers (trace's depths; view, rays, groups, segments,
-    // hits), kept from one cluster to the next.
-    mutable std::optional<gl::Buffer> depths_, view_, rays_, groups_, segments_, hits_;
+    // hits; the bounce's hits, 2 words a ray), kept from one cluster to the
+    // next.
+    mutable std::optional<gl::Buffer> depths_, view_, rays_, groups_, segments_, hits_, bounce_hits_;
 
-    // The trace pass over `count` segments in the bound buffers (hits_ at
-    // BC_GL_TRACE_HITS_BINDING), picking surfaces or not; its 8 words per
-    // ray read back. Throws gl::GlError naming `what`.
-    std::vector<std::uint32_t> run_trace(std::size_t count, bool pick_surface, const char* what) const;
+    // The trace pass over `count` segments in the bound buffers: trace()'s
+    // (8 words a ray at BC_GL_TRACE_HITS_BINDING, not picking surfaces), or
+    // the bounce's (picking them; hits from `hit_offset`).
+    void run_trace(std::size_t count, bool pick_surface, std::size_t hit_offset) const;
 };
 
 }  // namespace blurcull::frontend

@@ -17,13 +17,13 @@ namespace blurcull::frontend {
 
 class GlPhaseTimers {
 public:
-    // One query per name, on the current context (which must stay current
-    // for begin, end and the destructor); without `gpu_clock` none, and
-    // only the host's clock (for software GL, whose queries mean nothing).
-    // With `wait` end() waits for the phase's GPU work (the phases do not
-    // overlap, and the wall time includes the GPU's); without, a phase's
-    // query result is collected at its next begin() or at add_to, and its
-    // wall time is the host's time to issue it.
+    // Queries on the current context (which must stay current for begin,
+    // end, add_to and the destructor); without `gpu_clock` none, and only
+    // the host's clock (for software GL, whose queries mean nothing). With
+    // `wait` end() waits for the phase's GPU work (the phases do not
+    // overlap, and the wall time includes the GPU's); without, each run of
+    // a phase gets a query of its own, all read at add_to, so nothing waits
+    // before then, and its wall time is the host's time to issue it.
     GlPhaseTimers(const gl::Functions& gl, std::vector<std::string> names, bool gpu_clock = true, bool wait = true);
     GlPhaseTimers(const GlPhaseTimers&) = delete;
     GlPhaseTimers& operator=(const GlPhaseTimers&) = delete;
@@ -42,13 +42,14 @@ public:
     void add_to(RenderStats& stats);
 
 private:
-    void collect(std::size_t phase);  // a pending query's time, waited for
+    void collect(std::size_t phase);  // the phase's pending queries' times, waited for
 
     const gl::Functions* gl_;
     std::vector<std::string> names_;
-    std::vector<GLuint> ids_;
+    bool gpu_clock_;
+    std::vector<std::vector<GLuint>> pending_;  // per phase, queries begun and not read
+    std::vector<GLuint> spare_;                 // queries read, for the next begin
     std::vector<double> gpu_ms_, wall_ms_;
-    std::vector<char> pending_;  // a query ended but not read
     bool wait_;
     RenderClock::time_point started_ = RenderClock::now();
 };

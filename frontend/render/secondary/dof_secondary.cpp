@@ -155,8 +155,8 @@ ClusterRays cluster_rays(const BounceContext& c, std::vector<std::uint32_t>& mem
 }
 
 // The rays' radiance from their hits in the layers (the environment on a miss).
-void shade_hits(const BounceContext& c, const std::vector<std::uint32_t>& members,
-                const std::vector<LayerBounceHit>& hits, std::vector<glm::vec3>& radiance, SecondaryStats& stats) {
+void shade_hits(const BounceContext& c, const std::vector<std::uint32_t>& members, const LayerBounceHit* hits,
+                std::vector<glm::vec3>& radiance, SecondaryStats& stats) {
     for (std::size_t i = 0; i < members.size(); ++i) {
         const SecondaryRay& ray = c.rays[members[i]];
         const LayerBounceHit& hit = hits[i];
@@ -183,16 +183,26 @@ float far_plane(const WorldTriangles& world, const K::LayerView& view) {
     return far;
 }
 
-// One cluster: its view, its layers with the culls, its pyramid, and the
-// traces of its rays (or their exact fallback).
-void bounce_cluster(const BounceContext& c, const Cluster<float>& cluster, std::vector<std::uint32_t> members,
-                    std::vector<glm::vec3>& radiance, SecondaryStats& stats) {
+// A cluster ready for its layers: its view, culls and groups of rays, and
+// the rays they are (indices into the context's rays, in group order).
+struct PreparedCluster {
+    K::LayerView view{};
+    ClusterCulls culls;
+    ClusterRays rays;
+    std::vector<std::uint32_t> members;
+};
+
+// The cluster's view fitted, its culls and ray groups; the rays no view
+// holds traced against the scene (their radiance written). False when no ray
+// is left for the layers.
+bool prepare_cluster(const BounceContext& c, const Cluster<float>& cluster, std::vector<std::uint32_t> members,
+                     std::vector<glm::vec3>& radiance, SecondaryStats& stats, PreparedCluster& out) {
     const Clock::time_point views_start = Clock::now();
     const K::VirtualView fitted = fit_cluster_view(c, cluster, members, stats);
     if ((fitted.flags & ~BC_VIEW_DIRECTION_OUTSIDE) != 0) {
         ++stats.clusters_unusable;
         for (std::uint32_t r : members) radiance[r] = exact_radiance(c, c.rays[r], stats);
-        return;
+        return false;
     }
     K::LayerView view = K::layer_view_from(fitted, 1.0f, c.options.layer_size);
     view.far = far_plane(c.world, view);
@@ -205,26 +215,65 @@ void bounce_cluster(const BounceContext& c, const Cluster<float>& cluster, std::
         });
         for (auto it = outside; it != members.end(); ++it) radiance[*it] = exact_radiance(c, c.rays[*it], stats);
         members.erase(outside, members.end());
-        if (members.empty()) return;
+        if (members.empty()) return false;
     }
-    const ClusterCulls culls = cluster_culls(c, view, members);
-    const ClusterRays rays = cluster_rays(c, members);
+    out.view = view;
+    out.culls = cluster_culls(c, view, members);
+    out.rays = cluster_rays(c, members);
+    out.members = std::move(members);
     stats.views_ms += ms_since(views_start);
-    std::vector<LayerBounceHit> hits;
-    const Clock::time_point build_start = Clock::now();
-    if (c.bouncer != nullptr) {
-        hits = c.bouncer->bounce(c.world, view, c.options.layers, c.thickness, culls, rays, stats.layers);
-        stats.layer_build_ms += ms_since(build_start);  // with the clipping and traces that run with the layers
-    } else {
-        const ClusterLayers built =
-            c.layer_builder != nullptr ? (*c.layer_builder)(c.world, view, c.options.layers, culls, stats.layers)
-                                       : build_cluster_layers_on_host(c.world, view, c.options.layers, culls, stats.layers);
-        stats.layer_build_ms += ms_since(build_start);
-        hits = bounce_in_layers(view, built, c.thickness, rays, c.tracer);
-    }
+    return true;
+}
+
+// The prepared cluster's hits shaded into `radiance`.
+void shade_cluster(const BounceContext& c, const std::vector<std::uint32_t>& members, const LayerBounceHit* hits,
+                   std::vector<glm::vec3>& radiance, SecondaryStats& stats) {
     const Clock::time_point shading_start = Clock::now();
     shade_hits(c, members, hits, radiance, stats);
     stats.shading_ms += ms_since(shading_start);
+}
+
+// One cluster on the host (or with a LayerBuilder and LayerTracer): its
+// view, its layers with the culls, its pyramid, and the traces of its rays
+// (or their exact fallback).
+void bounce_cluster(const BounceContext& c, const Cluster<float>& cluster, std::vector<std::uint32_t> members,
+                    std::vector<glm::vec3>& radiance, SecondaryStats& stats) {
+    PreparedCluster p;
+    if (!prepare_cluster(c, cluster, std::move(members), radiance, stats, p)) return;
+    const Clock::time_point build_start = Clock::now();
+    const ClusterLayers built =
+        c.layer_builder != nullptr ? (*c.layer_builder)(c.world, p.view, c.options.layers, p.culls, stats.layers)
+                                   : build_cluster_layers_on_host(c.world, p.view, c.options.layers, p.culls, stats.layers);
+    stats.layer_build_ms += ms_since(build_start);
+    const std::vector<LayerBounceHit> hits = bounce_in_layers(p.view, built, c.thickness, p.rays, c.tracer);
+    shade_cluster(c, p.members, hits.data(), radiance, stats);
+}
+
+// Every cluster through the ClusterBouncer, one at a time on this thread:
+// each queued as soon as it is prepared (the host prepares the next while
+// the GPU builds and traces the last), the hits read once at the end.
+void bounce_clusters_resident(const BounceContext& c, const Clustering<float>& clustering,
+                              std::vector<std::vector<std::uint32_t>>& members, std::vector<glm::vec3>& radiance,
+                              SecondaryStats& stats) {
+    Clock::time_point start = Clock::now();
+    c.bouncer->begin(c.world, c.rays.size());
+    std::vector<std::vector<std::uint32_t>> queued;
+    for (std::size_t j = 0; j < clustering.clusters.size(); ++j) {
+        PreparedCluster p;
+        if (!prepare_cluster(c, clustering.clusters[j], std::move(members[j]), radiance, stats, p)) continue;
+        start = Clock::now();
+        c.bouncer->queue(c.world, p.view, c.options.layers, c.thickness, p.culls, p.rays);
+        stats.layer_build_ms += ms_since(start);
+        queued.push_back(std::move(p.members));
+    }
+    start = Clock::now();
+    const std::vector<LayerBounceHit> hits = c.bouncer->finish(stats.layers);
+    stats.layer_build_ms += ms_since(start);  // the layers, clipping and traces, waited for here
+    std::size_t first = 0;
+    for (const std::vector<std::uint32_t>& cluster_members : queued) {
+        shade_cluster(c, cluster_members, hits.data() + first, radiance, stats);
+        first += cluster_members.size();
+    }
 }
 
 void add_stats(SecondaryStats& into, const SecondaryStats& from) {
@@ -285,6 +334,10 @@ std::vector<glm::vec3> bounce_all(const BounceContext& c, int threads, Secondary
     std::vector<std::vector<std::uint32_t>> members(clustering.clusters.size());
     for (std::size_t r = 0; r < c.rays.size(); ++r)
         members[static_cast<std::size_t>(clustering.cluster_of[r])].push_back(static_cast<std::uint32_t>(r));
+    if (c.bouncer != nullptr) {
+        bounce_clusters_resident(c, clustering, members, radiance, stats);
+        return radiance;
+    }
     run_parallel_items(
         threads, clusters, [] { return SecondaryStats{}; },
         [&](SecondaryStats& local, int j) {
@@ -392,7 +445,6 @@ RenderResult render_dof_secondary(const Scene& scene, const RenderSettings& sett
         tracer != nullptr || layer_builder != nullptr || bouncer != nullptr ? 1 : render_threads(settings);
     std::vector<glm::vec3> radiance;
     if (stats.time_slices == 1) {
-        if (resident != nullptr) resident->begin(world);
         radiance = bounce_all(context_for(primary.rays, world), threads, stats);
     } else {
         // Each slice of the shutter: its rays, clustered and bounced in the
@@ -406,7 +458,6 @@ RenderResult render_dof_secondary(const Scene& scene, const RenderSettings& sett
             for (std::uint32_t r : slices[slice]) rays.push_back(primary.rays[r]);
             const WorldTriangles at =
                 world_triangles(scene, (float(slice) + 0.5f) / float(stats.time_slices));
-            if (resident != nullptr) resident->begin(at);
             const std::vector<glm::vec3> seen = bounce_all(context_for(rays, at), threads, stats);
             for (std::size_t i = 0; i < rays.size(); ++i) radiance[slices[slice][i]] = seen[i];
         }

@@ -14,6 +14,7 @@
 #include "render/secondary/secondary_options.hpp"
 #include "scene/scene.hpp"
 
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -77,15 +78,18 @@ struct ClusterRays {
 // A cluster's whole image-space bounce in one place: its layers with the
 // culls, their pyramid, each group's interval clipping, the traces and the
 // surface of each hit (render/gl's GlClusterBouncer: all on the GPU, only
-// the hits come back). begin() is called once per render with the scene's
-// triangles, bounce() once per cluster.
+// the hits come back). Per batch of clusters (a render's, or one time
+// slice's): begin() with the scene's triangles and the most rays the batch
+// queues, queue() once per cluster (nothing waits for its work), finish()
+// for every queued ray's hit, in the order queued.
 class ClusterBouncer {
 public:
     virtual ~ClusterBouncer() = default;
-    virtual void begin(const WorldTriangles& triangles) = 0;
-    virtual std::vector<LayerBounceHit> bounce(const WorldTriangles& triangles, const kernelf::LayerView& view,
-                                               int layers, float thickness, const ClusterCulls& culls,
-                                               const ClusterRays& rays, LayerStats& stats) = 0;
+    virtual void begin(const WorldTriangles& triangles, std::size_t max_rays) = 0;
+    virtual void queue(const WorldTriangles& triangles, const kernelf::LayerView& view, int layers, float thickness,
+                       const ClusterCulls& culls, const ClusterRays& rays) = 0;
+    // Adds the batch's layer counts to `stats`.
+    virtual std::vector<LayerBounceHit> finish(LayerStats& stats) = 0;
     // Its own phases (e.g. GPU time), added to the render's ms_per_phase
     // after the bounce phase.
     virtual void add_phases(RenderStats& /*stats*/) const {}

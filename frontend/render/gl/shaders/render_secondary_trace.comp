@@ -6,13 +6,16 @@
 // include/blurcull/layer_trace.hpp, reading this shader's buffer. Same
 // emitted text as the host, so the same hits. With pick_surface, the hit's
 // surface is picked from the layers' triangles as the host's hit_triangle
-// does (bounce_shared.h), so only it need come back.
+// does (bounce_shared.h), so only it need come back: two words per ray at
+// ray hit_offset + r of a render's bounce (the clusters' hits side by side,
+// read back once).
 layout(local_size_x = BC_TRACE_GROUP) in;
 layout(std430, binding = BC_GL_TRACE_DEPTHS_BINDING) readonly buffer Depths { float depth_in[]; };  // layer, y, x
-layout(std430, binding = BC_GL_TRACE_HITS_BINDING) writeonly buffer Hits { uint hit_out[]; };     // 8 per ray
+layout(std430, binding = BC_GL_TRACE_HITS_BINDING) writeonly buffer Hits { uint hit_out[]; };     // 8 per ray, or 2 with pick_surface
 layout(std430, binding = BC_GL_TRACE_TRIANGLE_IDS_BINDING) readonly buffer TriangleIds { uint triangle_in[]; };  // layer, y, x
 uniform uint count;
-uniform int pick_surface;  // 1: word 7 of a hit is its surface's triangle (TriangleIds bound)
+uniform int pick_surface;  // 1: the surface's triangle picked (TriangleIds bound), the hit in two words
+uniform uint hit_offset;   // with pick_surface: ray r's hit at hit_offset + r
 
 // The triangle stored at (layer, x, y); none (the k-buffer's ~0) reads as 0, the host's default.
 uint stored_triangle(int plane, int size, int layer, int x, int y) {
@@ -56,6 +59,12 @@ void main() {
         t = bc_layer_trace_step(v, seg, t, depths);
     }
     LayerHit h = t.hit;
+    if (pick_surface != 0) {
+        uint at = 2u * (hit_offset + r);
+        hit_out[at] = (uint(h.steps) << 1u) | (h.hit ? 1u : 0u);
+        hit_out[at + 1u] = h.hit ? hit_surface(v, h) : 0u;
+        return;
+    }
     uint out_at = 8u * r;
     hit_out[out_at] = h.hit ? 1u : 0u;
     hit_out[out_at + 1u] = uint(h.layer + 1);
@@ -64,5 +73,5 @@ void main() {
     hit_out[out_at + 4u] = floatBitsToUint(h.depth);
     hit_out[out_at + 5u] = floatBitsToUint(h.image.x);
     hit_out[out_at + 6u] = floatBitsToUint(h.image.y);
-    hit_out[out_at + 7u] = pick_surface != 0 && h.hit ? hit_surface(v, h) : 0u;
+    hit_out[out_at + 7u] = 0u;
 }
