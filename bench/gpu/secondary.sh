@@ -79,10 +79,12 @@ scene_runs() {
     render "$scene" gl-readback "$sz" "$n" "$run" --backend gl --method dof-secondary --layer-images gl-readback
   done
 }
-for scene in mirror-sphere water curved-mirror mirror-motion; do scene_runs "$scene" "$size" "$spp"; done
-[ "$kind" = hardware ] && scene_runs water 800x600 100
-
-python3 - "$csv" <<'PY' | tee -a "$summary"
+# The table of every scene measured so far, rebuilt after each (a run cut
+# off by its budget keeps the scenes it finished).
+table=$work/table.txt
+head_lines=$(wc -l <"$summary")
+summarize() {
+  python3 - "$csv" <<'PY' >"$table"
 import csv, statistics, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
 keys = sorted({(r["scene"], r["size"], r["spp"]) for r in rows}, key=lambda k: (k[1], k[0]))
@@ -105,8 +107,19 @@ for key in keys:
                                                           med("ms_resolve"), med("ms_bounce"),
                                                           " (%s)" % notes if notes else "",
                                                           psnr + " dB" if psnr not in ("", "-") else "")).strip())
-    ratio = "%.2fx" % (bounce["gl-readback"] / bounce["gl"]) if bounce.get("gl") else "-"
+    ratio = "%.2fx" % (bounce["gl-readback"] / bounce["gl"]) if bounce.get("gl") and "gl-readback" in bounce else "-"
     print("%s %s %s | %s | %s" % (key[0], key[1], key[2], "; ".join(line), ratio))
 PY
+  { head -n "$head_lines" "$summary"; cat "$table"; } >"$work/summary.new" && mv "$work/summary.new" "$summary"
+}
+for scene in mirror-sphere water curved-mirror mirror-motion; do
+  scene_runs "$scene" "$size" "$spp"
+  summarize
+done
+if [ "$kind" = hardware ]; then
+  scene_runs water 800x600 100
+  summarize
+fi
+cat "$table"
 [ "$kind" = hardware ] && say "JCST (water, 800x600, 100 spp): the paper's 196 ms on a GTX 285 (Xie et al. 2013)"
 exit $((failed > 0))
