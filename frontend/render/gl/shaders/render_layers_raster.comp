@@ -2,26 +2,20 @@
 // GlLayerRaster::compute): a work group per fan triangle of the setup pass
 // scans the texel centres of its box with the host's coverage test and depth
 // (layer_raster_shared.h: the texels the host's scan covers, on any GPU,
-// where the GL rasterizer snaps to its own fixed point), its 64 invocations
-// taking the box's texels in turn, each covered one to layer_fragment
-// (render_layers_fragment.glsl). The fans are dispatched as rows of work
-// groups (at most 65,535 a row); groups past the setup pass's fan count
-// return.
-layout(local_size_x = 64) in;
+// where the GL rasterizer snaps to its own fixed point), its 32 invocations
+// (a warp: most fans cover a few texels) taking the box's texels in turn,
+// each covered one to layer_fragment (render_layers_fragment.glsl). The
+// fans are dispatched as rows of work groups (at most 65,535 a row); groups
+// past the setup pass's fan count return.
+layout(local_size_x = 32) in;
 layout(std430, binding = BC_GL_LAYER_FANS_BINDING) readonly buffer Fans { LayerFan fans[]; };
 
-// The group's counts, added to the buffer's once (one atomic per group, not per fragment).
-shared uint group_fragments;
-shared uint group_in_front;
-shared uint group_dropped;
-
 void main() {
-    if (gl_LocalInvocationIndex == 0u) {
-        group_fragments = 0u;
-        group_in_front = 0u;
-        group_dropped = 0u;
-    }
-    barrier();
+    // The invocation's counts, added to the buffer's at its end (not an
+    // atomic per fragment; no barrier, which llvmpipe makes dear).
+    uint fragments = 0u;
+    uint in_front = 0u;
+    uint dropped = 0u;
     uint f = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
     if (f < counts[BC_LAYER_COUNT_FANS]) {  // the same for the whole group
         LayerFan fan = fans[f];
@@ -49,18 +43,15 @@ void main() {
                     if (!bc_raster_covers(a.xy, b.xy, c.xy, owns, centre)) continue;
                     uint done = layer_fragment(texel, bc_raster_depth(a, b, c, area, centre), fan.info.x,
                                                fan.info.y != 0);
-                    if (peel_pass != 0) continue;
-                    atomicAdd(group_fragments, 1u);
-                    if (done == BC_LAYER_FRAGMENT_CULLED_IN_FRONT) atomicAdd(group_in_front, 1u);
-                    if (done == BC_LAYER_FRAGMENT_DROPPED) atomicAdd(group_dropped, 1u);
+                    fragments += 1u;
+                    if (done == BC_LAYER_FRAGMENT_CULLED_IN_FRONT) in_front += 1u;
+                    if (done == BC_LAYER_FRAGMENT_DROPPED) dropped += 1u;
                 }
             }
         }
     }
-    barrier();
-    if (gl_LocalInvocationIndex == 0u && peel_pass == 0) {
-        if (group_fragments > 0u) atomicAdd(counts[BC_LAYER_COUNT_FRAGMENTS], group_fragments);
-        if (group_in_front > 0u) atomicAdd(counts[BC_LAYER_COUNT_CULLED_IN_FRONT], group_in_front);
-        if (group_dropped > 0u) atomicAdd(counts[BC_LAYER_COUNT_DROPPED], group_dropped);
-    }
+    if (peel_pass != 0) return;
+    if (fragments > 0u) atomicAdd(counts[BC_LAYER_COUNT_FRAGMENTS], fragments);
+    if (in_front > 0u) atomicAdd(counts[BC_LAYER_COUNT_CULLED_IN_FRONT], in_front);
+    if (dropped > 0u) atomicAdd(counts[BC_LAYER_COUNT_DROPPED], dropped);
 }
