@@ -140,7 +140,20 @@ void clip_group(const K::LayerView& view, const DepthPyramid& pyramid, float thi
 ClusterRays cluster_rays(const BounceContext& c, std::vector<std::uint32_t>& members) {
     const auto spp = static_cast<std::uint32_t>(c.spp);
     auto key = [&](std::uint32_t r) { return std::make_pair(c.rays[r].sample / spp, c.rays[r].lens_part); };
-    std::stable_sort(members.begin(), members.end(), [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
+    auto by_key = [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); };
+    auto pixel = [&](std::uint32_t r) { return c.rays[r].sample / spp; };
+    // Members come in ray order, so in pixel order (resolve_primary spawns
+    // the rays sample by sample): sorting each pixel's run by lens part is
+    // the whole stable sort, in O(n log spp).
+    if (std::is_sorted(members.begin(), members.end(), [&](std::uint32_t a, std::uint32_t b) { return pixel(a) < pixel(b); })) {
+        for (auto run = members.begin(); run != members.end();) {
+            const auto end = std::find_if(run, members.end(), [&](std::uint32_t r) { return pixel(r) != pixel(*run); });
+            std::stable_sort(run, end, by_key);
+            run = end;
+        }
+    } else {
+        std::stable_sort(members.begin(), members.end(), by_key);
+    }
     ClusterRays rays;
     rays.starts.reserve(members.size());
     rays.directions.reserve(members.size());
@@ -249,31 +262,58 @@ void bounce_cluster(const BounceContext& c, const Cluster<float>& cluster, std::
     shade_cluster(c, p.members, hits.data(), radiance, stats);
 }
 
-// Every cluster through the ClusterBouncer, one at a time on this thread:
-// each queued as soon as it is prepared (the host prepares the next while
-// the GPU builds and traces the last), the hits read once at the end.
+void add_stats(SecondaryStats& into, const SecondaryStats& from);
+
+// Every cluster through the ClusterBouncer, whose calls run on this thread
+// (its GL context's): the host prepares `threads` clusters at a time in
+// parallel and queues them in order (the GPU builds and traces them while
+// the host prepares the next), the hits are read once at the end and shaded
+// in parallel.
 void bounce_clusters_resident(const BounceContext& c, const Clustering<float>& clustering,
                               std::vector<std::vector<std::uint32_t>>& members, std::vector<glm::vec3>& radiance,
-                              SecondaryStats& stats) {
-    Clock::time_point start = Clock::now();
+                              int threads, SecondaryStats& stats) {
+    std::mutex merge;
+    auto done = [&](const SecondaryStats& local) {
+        std::lock_guard<std::mutex> lock(merge);
+        add_stats(stats, local);
+    };
     c.bouncer->begin(c.world, c.rays.size());
-    std::vector<std::vector<std::uint32_t>> queued;
-    for (std::size_t j = 0; j < clustering.clusters.size(); ++j) {
-        PreparedCluster p;
-        if (!prepare_cluster(c, clustering.clusters[j], std::move(members[j]), radiance, stats, p)) continue;
-        start = Clock::now();
-        c.bouncer->queue(c.world, p.view, c.options.layers, c.thickness, p.culls, p.rays);
-        stats.layer_build_ms += ms_since(start);
-        queued.push_back(std::move(p.members));
+    std::vector<std::vector<std::uint32_t>> queued;  // each queued cluster's rays, in the order of its hits
+    const int clusters = static_cast<int>(clustering.clusters.size());
+    const int window = std::max(1, threads);
+    for (int first = 0; first < clusters; first += window) {
+        const int count = std::min(window, clusters - first);
+        std::vector<PreparedCluster> prepared(static_cast<std::size_t>(count));
+        std::vector<char> ready(static_cast<std::size_t>(count), 0);
+        run_parallel_items(
+            threads, count, [] { return SecondaryStats{}; },
+            [&](SecondaryStats& local, int k) {
+                const auto j = static_cast<std::size_t>(first + k);
+                ready[static_cast<std::size_t>(k)] = prepare_cluster(c, clustering.clusters[j], std::move(members[j]),
+                                                                     radiance, local, prepared[static_cast<std::size_t>(k)]);
+            },
+            done);
+        for (int k = 0; k < count; ++k) {
+            if (!ready[static_cast<std::size_t>(k)]) continue;
+            PreparedCluster& p = prepared[static_cast<std::size_t>(k)];
+            const Clock::time_point start = Clock::now();
+            c.bouncer->queue(c.world, p.view, c.options.layers, c.thickness, p.culls, p.rays);
+            stats.layer_build_ms += ms_since(start);
+            queued.push_back(std::move(p.members));
+        }
     }
-    start = Clock::now();
+    const Clock::time_point start = Clock::now();
     const std::vector<LayerBounceHit> hits = c.bouncer->finish(stats.layers);
     stats.layer_build_ms += ms_since(start);  // the layers, clipping and traces, waited for here
-    std::size_t first = 0;
-    for (const std::vector<std::uint32_t>& cluster_members : queued) {
-        shade_cluster(c, cluster_members, hits.data() + first, radiance, stats);
-        first += cluster_members.size();
-    }
+    std::vector<std::size_t> first_hit(queued.size(), 0);
+    for (std::size_t k = 1; k < queued.size(); ++k) first_hit[k] = first_hit[k - 1] + queued[k - 1].size();
+    run_parallel_items(
+        threads, static_cast<int>(queued.size()), [] { return SecondaryStats{}; },
+        [&](SecondaryStats& local, int k) {
+            const auto at = static_cast<std::size_t>(k);
+            shade_cluster(c, queued[at], hits.data() + first_hit[at], radiance, local);
+        },
+        done);
 }
 
 void add_stats(SecondaryStats& into, const SecondaryStats& from) {
@@ -335,7 +375,7 @@ std::vector<glm::vec3> bounce_all(const BounceContext& c, int threads, Secondary
     for (std::size_t r = 0; r < c.rays.size(); ++r)
         members[static_cast<std::size_t>(clustering.cluster_of[r])].push_back(static_cast<std::uint32_t>(r));
     if (c.bouncer != nullptr) {
-        bounce_clusters_resident(c, clustering, members, radiance, stats);
+        bounce_clusters_resident(c, clustering, members, radiance, threads, stats);
         return radiance;
     }
     run_parallel_items(
@@ -441,8 +481,10 @@ RenderResult render_dof_secondary(const Scene& scene, const RenderSettings& sett
     stats.reflector_samples = primary.reflector_samples;
     stats.rays = primary.rays.size();
     stats.time_slices = bounce_time_slices(scene, options);
-    const int threads =
-        tracer != nullptr || layer_builder != nullptr || bouncer != nullptr ? 1 : render_threads(settings);
+    // A LayerTracer or LayerBuilder makes GL calls inside each cluster's
+    // work, so one thread; a ClusterBouncer's calls stay on this thread while
+    // the host's steps around them run on all.
+    const int threads = tracer != nullptr || layer_builder != nullptr ? 1 : render_threads(settings);
     std::vector<glm::vec3> radiance;
     if (stats.time_slices == 1) {
         radiance = bounce_all(context_for(primary.rays, world), threads, stats);
