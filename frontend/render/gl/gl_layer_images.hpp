@@ -37,7 +37,8 @@ struct GlClusterLayers {
     GlLayerCounts counts;
 };
 
-// The scene's triangles (world space, mid-shutter) and a cluster's culls.
+// The scene's triangles (world space, at the middle of the rays' shutter
+// slice) and a cluster's culls.
 struct GlLayerInput {
     const std::vector<std::array<glm::vec3, 3>>* vertices = nullptr;
     const std::vector<glm::vec3>* normals = nullptr;  // unit winding normals

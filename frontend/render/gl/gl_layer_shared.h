@@ -38,7 +38,8 @@ using ivec4 = glm::ivec4;
 // on the bits is a min on the depths.
 #define BC_LAYER_EMPTY 0x7F800000u
 
-// A triangle of the scene in world space at mid-shutter and its unit winding normal.
+// A triangle of the scene in world space (at the middle of the rays'
+// shutter slice) and its unit winding normal.
 struct LayerTriangle {
     vec4 p0;
     vec4 p1;
