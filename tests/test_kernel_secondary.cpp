@@ -662,3 +662,42 @@ TEST_CASE_TEMPLATE("layer_trace: misses, depth intervals and empty segments", Re
     CHECK(proj.z == Real(1));
     CHECK(K::layer_project(lv, V(1, 2, 2)).z == Real(-1));
 }
+
+// cluster_reflector_pixels with a caller's parallel_for: the chunks of its
+// loops (65,536 pixels each) in another order (last first, as threads may
+// finish them) give the serial run's clusters exactly: the same pixel
+// assignment, iterations and sums bit for bit.
+TEST_CASE_TEMPLATE("clustering: the same clusters whatever order parallel_for runs the chunks in", Real, float,
+                   double) {
+    using K = kernel<Real>;
+    using V = typename K::vec3;
+    Rng rng(2026);
+    std::vector<V> positions, directions;
+    for (int i = 0; i < 200000; ++i) {  // four chunks, over every facet
+        const dvec3 p(rng.uniform(-3.0, 3.0), rng.uniform(0.0, 2.0), rng.uniform(-1.0, 1.0));
+        positions.push_back(to_vec3<Real>(p));
+        directions.push_back(to_vec3<Real>(random_unit(rng)));
+    }
+    std::size_t calls = 0, items = 0;
+    auto last_first = [&](std::size_t count, const auto& body) {
+        ++calls;
+        items += count;
+        for (std::size_t i = count; i-- > 0;) body(i);
+    };
+    const Clustering<Real> serial = cluster_reflector_pixels<Real>(positions, directions);
+    const Clustering<Real> reordered = cluster_reflector_pixels<Real>(positions, directions, {}, last_first);
+    CHECK(items > calls);  // some calls ran several chunks
+    CHECK(reordered.cluster_of == serial.cluster_of);
+    CHECK(reordered.iterations == serial.iterations);
+    CHECK(reordered.unsettled_facets == serial.unsettled_facets);
+    REQUIRE(reordered.clusters.size() == serial.clusters.size());
+    CHECK(serial.clusters.size() >= 12);
+    for (std::size_t c = 0; c < serial.clusters.size(); ++c) {
+        const auto& a = serial.clusters[c].sums;
+        const auto& b = reordered.clusters[c].sums;
+        CHECK(reordered.clusters[c].facet == serial.clusters[c].facet);
+        CHECK(a.count == b.count);
+        CHECK(a.position == b.position);
+        CHECK(a.direction == b.direction);
+    }
+}

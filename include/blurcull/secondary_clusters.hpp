@@ -44,7 +44,31 @@ struct Clustering {
     int unsettled_facets = 0;            // facets stopped by max_iterations, not by a settled assignment
 };
 
+// Runs body(i) for every i in [0, count): the serial default of
+// cluster_reflector_pixels's `parallel_for`. A caller's own may run the
+// calls on several threads, in any order, at once: each writes its own
+// outputs only.
+struct SerialFor {
+    template <class Body>
+    void operator()(std::size_t count, const Body& body) const {
+        for (std::size_t i = 0; i < count; ++i) body(i);
+    }
+};
+
 namespace detail {
+
+// The items of the chunked loops (classification, k-means assignment): many
+// per call, few calls.
+inline constexpr std::size_t cluster_chunk = 1u << 16;
+
+// body(first, last) over [0, count) in chunks of cluster_chunk, by `parallel_for`.
+template <class ParallelFor, class Body>
+void for_chunks(const ParallelFor& parallel_for, std::size_t count, const Body& body) {
+    parallel_for((count + cluster_chunk - 1) / cluster_chunk, [&](std::size_t chunk) {
+        std::size_t first = chunk * cluster_chunk;
+        body(first, std::min(count, first + cluster_chunk));
+    });
+}
 
 // The centres of one facet's k-means start: the point the seed picks, then
 // repeatedly the point farthest from the centres so far (ties: the lowest
@@ -78,21 +102,29 @@ int first_centres(const std::vector<typename kernel<Real>::vec3>& positions, con
 // Lloyd's k-means on one facet's members; returns the iterations run and
 // leaves each member's local cluster index in `local`; `settled` says the
 // last assignment changed nothing.
-template <class Real>
+// The assignment runs in chunks by `parallel_for` (each member's nearest
+// centre on its own); the sums stay in member order, so the result does not
+// depend on how the chunks run.
+template <class Real, class ParallelFor>
 int lloyd(const std::vector<typename kernel<Real>::vec3>& positions, const std::vector<std::size_t>& members,
           int k, int max_iterations, std::array<typename kernel<Real>::vec3, BC_CLUSTERS_PER_FACET_MAX>& centres,
-          std::vector<int>& local, bool& settled) {
+          std::vector<int>& local, bool& settled, const ParallelFor& parallel_for) {
     using K = kernel<Real>;
     local.assign(members.size(), -1);
     int iterations = 0;
     settled = false;
+    std::vector<char> chunk_changed((members.size() + cluster_chunk - 1) / cluster_chunk, 0);
     for (int it = 0; it < std::max(max_iterations, 1); ++it) {
-        bool changed = false;
-        for (std::size_t i = 0; i < members.size(); ++i) {
-            int c = K::kmeans_nearest(positions[members[i]], centres.data(), k);
-            changed = changed || c != local[i];
-            local[i] = c;
-        }
+        for_chunks(parallel_for, members.size(), [&](std::size_t first, std::size_t last) {
+            bool changed = false;
+            for (std::size_t i = first; i < last; ++i) {
+                int c = K::kmeans_nearest(positions[members[i]], centres.data(), k);
+                changed = changed || c != local[i];
+                local[i] = c;
+            }
+            chunk_changed[first / cluster_chunk] = changed ? 1 : 0;
+        });
+        bool changed = std::find(chunk_changed.begin(), chunk_changed.end(), char(1)) != chunk_changed.end();
         ++iterations;
         if (!changed) {
             settled = true;
@@ -116,21 +148,27 @@ int lloyd(const std::vector<typename kernel<Real>::vec3>& positions, const std::
 
 // Clusters of reflector pixels: positions (scene units) and unit specular
 // directions, one each per pixel. Deterministic: the same input and options
-// give the same clusters on every run. Each facet's pixel count n gets
-// clusters_for_facet(n, cluster_target_size(total, wanted), max_per_facet)
-// clusters; k-means by position then splits it (at most max_iterations
-// Lloyd iterations). Empty input gives no clusters.
-template <class Real>
+// give the same clusters on every run, whatever `parallel_for` (SerialFor,
+// or the caller's threads: the facet of each pixel and each k-means
+// assignment are computed by it in chunks, every sum in pixel order). Each
+// facet's pixel count n gets clusters_for_facet(n, cluster_target_size(total,
+// wanted), max_per_facet) clusters; k-means by position then splits it (at
+// most max_iterations Lloyd iterations). Empty input gives no clusters.
+template <class Real, class ParallelFor = SerialFor>
 Clustering<Real> cluster_reflector_pixels(const std::vector<typename kernel<Real>::vec3>& positions,
                                           const std::vector<typename kernel<Real>::vec3>& directions,
-                                          const ClusterOptions& options = {}) {
+                                          const ClusterOptions& options = {}, const ParallelFor& parallel_for = {}) {
     using K = kernel<Real>;
     Clustering<Real> out;
     std::size_t n = std::min(positions.size(), directions.size());
     out.cluster_of.assign(n, -1);
+    std::vector<std::uint8_t> facet_of(n);
+    detail::for_chunks(parallel_for, n, [&](std::size_t first, std::size_t last) {
+        for (std::size_t i = first; i < last; ++i)
+            facet_of[i] = static_cast<std::uint8_t>(K::dodecahedron_facet(directions[i]));
+    });
     std::array<std::vector<std::size_t>, BC_DODECAHEDRON_FACES> members;
-    for (std::size_t i = 0; i < n; ++i)
-        members[static_cast<std::size_t>(K::dodecahedron_facet(directions[i]))].push_back(i);
+    for (std::size_t i = 0; i < n; ++i) members[facet_of[i]].push_back(i);
     std::uint32_t target = K::cluster_target_size(static_cast<std::uint32_t>(n), options.wanted_clusters);
     std::vector<int> local;
     for (int facet = 0; facet < BC_DODECAHEDRON_FACES; ++facet) {
@@ -141,7 +179,8 @@ Clustering<Real> cluster_reflector_pixels(const std::vector<typename kernel<Real
         std::array<typename K::vec3, BC_CLUSTERS_PER_FACET_MAX> centres{};
         k = detail::first_centres<Real>(positions, m, k, options.seed, facet, centres);
         bool settled = false;
-        out.iterations += detail::lloyd<Real>(positions, m, k, options.max_iterations, centres, local, settled);
+        out.iterations +=
+            detail::lloyd<Real>(positions, m, k, options.max_iterations, centres, local, settled, parallel_for);
         if (!settled) ++out.unsettled_facets;
         // Final sums in pixel order; empty clusters dropped, the rest numbered in order.
         std::array<typename K::ClusterSums, BC_CLUSTERS_PER_FACET_MAX> sums;

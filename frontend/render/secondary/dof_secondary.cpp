@@ -367,7 +367,14 @@ std::vector<glm::vec3> bounce_all(const BounceContext& c, int threads, Secondary
     cluster_options.wanted_clusters = static_cast<std::uint32_t>(c.options.wanted_clusters);
     cluster_options.max_per_facet = static_cast<std::uint32_t>(c.options.clusters_per_facet);
     const Clock::time_point clustering_start = Clock::now();
-    const Clustering<float> clustering = cluster_reflector_pixels<float>(positions, directions, cluster_options);
+    // Its classification and k-means assignments on the threads (the same clusters as on one).
+    auto parallel_for = [threads](std::size_t count, const auto& body) {
+        run_parallel_items(
+            threads, static_cast<int>(count), [] { return 0; }, [&](int&, int i) { body(static_cast<std::size_t>(i)); },
+            [](int&) {});
+    };
+    const Clustering<float> clustering =
+        cluster_reflector_pixels<float>(positions, directions, cluster_options, parallel_for);
     stats.clustering_ms += ms_since(clustering_start);
     const int clusters = static_cast<int>(clustering.clusters.size());
     stats.clusters += clusters;
