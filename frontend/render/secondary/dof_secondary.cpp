@@ -142,10 +142,11 @@ ClusterRays cluster_rays(const BounceContext& c, std::vector<std::uint32_t>& mem
     auto key = [&](std::uint32_t r) { return std::make_pair(c.rays[r].sample / spp, c.rays[r].lens_part); };
     auto by_key = [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); };
     auto pixel = [&](std::uint32_t r) { return c.rays[r].sample / spp; };
+    auto by_pixel = [&](std::uint32_t a, std::uint32_t b) { return pixel(a) < pixel(b); };
     // Members come in ray order, so in pixel order (resolve_primary spawns
     // the rays sample by sample): sorting each pixel's run by lens part is
     // the whole stable sort, in O(n log spp).
-    if (std::is_sorted(members.begin(), members.end(), [&](std::uint32_t a, std::uint32_t b) { return pixel(a) < pixel(b); })) {
+    if (std::is_sorted(members.begin(), members.end(), by_pixel)) {
         for (auto run = members.begin(); run != members.end();) {
             const auto end = std::find_if(run, members.end(), [&](std::uint32_t r) { return pixel(r) != pixel(*run); });
             std::stable_sort(run, end, by_key);

@@ -131,7 +131,9 @@ int bounce_time_slices(const Scene& scene, const SecondaryOptions& options);
 // (either makes the clusters run one at a time, on the calling thread: a GL
 // context is current on one thread), else on the host; with `bouncer` each
 // cluster's layers, clipping, traces and hit surfaces run there instead
-// (`tracer` and `layer_builder` unused; one at a time as well). Throws
+// (`tracer` and `layer_builder` unused), its calls on the calling thread,
+// the host's steps around them (views, culls, ray groups, shading) on the
+// render's threads. Throws
 // std::invalid_argument for bad settings or options, SceneError for a bad scene.
 RenderResult render_dof_secondary(const Scene& scene, const RenderSettings& settings,
                                   const SecondaryOptions& options = {}, SecondaryStats* stats = nullptr,
