@@ -524,6 +524,12 @@ RenderResult render_dof_secondary(const Scene& scene, const RenderSettings& sett
     if (resident != nullptr) resident->add_phases(result.stats);
     result.image = resolve_samples(primary.sample_colour, settings.width, settings.height, settings.spp);
     result.stats.ms_total = ms_since(start);
+    if (options.time_slices > 1 && options.bounces != SecondaryBounces::image_space) {
+        result.warnings.push_back("dof-secondary: " + std::to_string(options.time_slices) +
+                                  " time slices asked for, not used: the " +
+                                  (options.bounces == SecondaryBounces::exact ? "exact bounce sees each ray's own time"
+                                                                              : "environment bounce sees no scene"));
+    }
     if (stats.clusters_split + stats.clusters_unusable > 0) {
         result.warnings.push_back("dof-secondary: " + std::to_string(stats.clusters_split + stats.clusters_unusable) +
                                   " clusters had rays no virtual view of this field of view holds; their " +
