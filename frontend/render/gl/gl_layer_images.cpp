@@ -167,13 +167,14 @@ void GlLayerBuilder::Passes::make_fans(const gl::Functions& f, std::size_t trian
         f.UseProgram(setup.id());
         f.DispatchCompute(groups_of(triangles, 64), 1, 1);
     }
-    f.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    // The scans read the fans and their count; the draws take it as their indirect command.
+    f.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
 }
 
 // The two scans of the fans in compute (GlLayerRaster::compute): depths
-// into the k-buffer, then their triangles. A work group per fan the setup pass can write (two per scene
-// triangle), in rows of at most 65,535 groups (GL's least maximum); those
-// past the fans written return at once.
+// into the k-buffer, then their triangles. A work group per fan the setup
+// pass can write (two per scene triangle), in rows of at most 65,535 groups
+// (GL's least maximum); those past the fans written return at once.
 void GlLayerBuilder::Passes::raster_fans(const gl::Functions& f, std::size_t triangles) {
     const std::size_t fans = 2 * triangles;
     if (fans == 0) return;
