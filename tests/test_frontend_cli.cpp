@@ -255,6 +255,25 @@ TEST_CASE("blurcull render refuses an option the backend cannot honour") {
     CHECK(embree.status == 0);
 }
 
+// --bounce-time-slices through the command: auto takes 4 slices on the
+// moving mirror-motion and 1 on the static mirror-sphere; a number is taken
+// as given; the --json counters say so.
+TEST_CASE("blurcull render --method dof-secondary --bounce-time-slices") {
+    auto slices = [](const std::string& arguments) {
+        Run run = run_cli("render --backend cpu --method dof-secondary --size 32x24 --spp 2 --json -q " + arguments +
+                          " -o slices.png");
+        INFO(arguments, " -> ", run.err);
+        REQUIRE(run.status == 0);
+        const nlohmann::json summary = nlohmann::json::parse(run.out);
+        CHECK(summary["counters"]["clusters"].get<double>() >= 1);
+        return summary["counters"]["bounce_time_slices"].get<double>();
+    };
+    CHECK(slices("--scene mirror-motion") == 4.0);
+    CHECK(slices("--scene mirror-sphere") == 1.0);
+    CHECK(slices("--scene mirror-motion --bounce-time-slices 2") == 2.0);
+    CHECK(slices("--scene mirror-sphere --bounce-time-slices auto") == 1.0);
+}
+
 // --occlusion: the same image either way; off tests every covered sample
 // (samples_hit counts them all), on reports what it skipped.
 TEST_CASE("blurcull render --occlusion on|off") {

@@ -214,14 +214,16 @@ TEST_CASE("dof-secondary: the GL build with host layers gives the CPU build's im
 namespace {
 
 // The scenes and options the per-cluster comparisons run: the mirror sphere
-// and the plane mirror with the defaults, and the sphere with one layer
-// (full lists, so the cascade drops fragments).
+// and the plane mirror with the defaults, the sphere with one layer (full
+// lists, so the cascade drops fragments), and the plane mirror's quads
+// moving (4 time slices: a batch of clusters per slice).
 std::vector<std::pair<Scene, SecondaryOptions>> layer_cases() {
     SecondaryOptions one_layer = small_options();
     one_layer.layers = 1;
     return {{mirror_sphere_scene(), small_options()},
             {plane_mirror_scene(0.1f), small_options()},
-            {mirror_sphere_scene(), one_layer}};
+            {mirror_sphere_scene(), one_layer},
+            {plane_mirror_scene(0.05f, {1.5f, 0.0f, 0.0f}), small_options()}};  // moving: 4 time slices
 }
 
 }  // namespace
