@@ -64,15 +64,36 @@ BC_RASTER_FN float bc_raster_edge(vec2 p, vec2 q, vec2 r) {
     return e;
 }
 
-// The texels (x0, y0, x1, y1) whose centres the image triangle's bounding
-// box may hold, clamped to the size x size image: none when x0 > x1 or
-// y0 > y1. Clamped as floats, so no conversion overflows.
-BC_RASTER_FN ivec4 bc_raster_texel_box(vec3 a, vec3 b, vec3 c, int size) {
+// An image triangle (image x, image y, view depth) turned counter-clockwise,
+// with twice its area (bc_raster_ccw): what a scan of it starts from.
+struct RasterTriangle {
+    vec3 a;
+    vec3 b;
+    vec3 c;
+    float area;  // not above 0 (0, NaN) for a degenerate triangle: nothing to scan
+};
+
+// (a, b, c) counter-clockwise: b and c swapped when bc_raster_edge is negative.
+BC_RASTER_FN RasterTriangle bc_raster_ccw(vec3 a, vec3 b, vec3 c) {
+    float area = bc_raster_edge(vec2(a.x, a.y), vec2(b.x, b.y), vec2(c.x, c.y));
+    bool flip = area < 0.0f;
+    RasterTriangle t;
+    t.a = a;
+    t.b = flip ? c : b;
+    t.c = flip ? b : c;
+    t.area = flip ? -area : area;
+    return t;
+}
+
+// The texels (x0, y0, x1, y1) whose centres the triangle's bounding box may
+// hold, clamped to the size x size image: none when x0 > x1 or y0 > y1.
+// Clamped as floats, so no conversion overflows.
+BC_RASTER_FN ivec4 bc_raster_texel_box(RasterTriangle t, int size) {
     float last = float(size - 1);
-    float x0 = clamp(floor(min(min(a.x, b.x), c.x) - 0.5f), 0.0f, float(size));
-    float x1 = clamp(ceil(max(max(a.x, b.x), c.x) - 0.5f), -1.0f, last);
-    float y0 = clamp(floor(min(min(a.y, b.y), c.y) - 0.5f), 0.0f, float(size));
-    float y1 = clamp(ceil(max(max(a.y, b.y), c.y) - 0.5f), -1.0f, last);
+    float x0 = clamp(floor(min(min(t.a.x, t.b.x), t.c.x) - 0.5f), 0.0f, float(size));
+    float x1 = clamp(ceil(max(max(t.a.x, t.b.x), t.c.x) - 0.5f), -1.0f, last);
+    float y0 = clamp(floor(min(min(t.a.y, t.b.y), t.c.y) - 0.5f), 0.0f, float(size));
+    float y1 = clamp(ceil(max(max(t.a.y, t.b.y), t.c.y) - 0.5f), -1.0f, last);
     return ivec4(int(x0), int(y0), int(x1), int(y1));
 }
 
@@ -81,9 +102,19 @@ BC_RASTER_FN ivec4 bc_raster_texel_box(vec3 a, vec3 b, vec3 c, int size) {
 // an edge two triangles share is covered once).
 BC_RASTER_FN bool bc_raster_owns_edge(vec2 a, vec2 b) { return (a.y == b.y && b.x < a.x) || b.y > a.y; }
 
-// Whether the counter-clockwise image triangle (a, b, c) covers `centre`;
-// owns: bc_raster_owns_edge of its edges bc, ca and ab.
-BC_RASTER_FN bool bc_raster_covers(vec2 a, vec2 b, vec2 c, bvec3 owns, vec2 centre) {
+// bc_raster_owns_edge of the triangle's edges bc, ca and ab.
+BC_RASTER_FN bvec3 bc_raster_owned_edges(RasterTriangle t) {
+    vec2 a = vec2(t.a.x, t.a.y);
+    vec2 b = vec2(t.b.x, t.b.y);
+    vec2 c = vec2(t.c.x, t.c.y);
+    return bvec3(bc_raster_owns_edge(b, c), bc_raster_owns_edge(c, a), bc_raster_owns_edge(a, b));
+}
+
+// Whether the triangle covers `centre`; owns: bc_raster_owned_edges(t).
+BC_RASTER_FN bool bc_raster_covers(RasterTriangle t, bvec3 owns, vec2 centre) {
+    vec2 a = vec2(t.a.x, t.a.y);
+    vec2 b = vec2(t.b.x, t.b.y);
+    vec2 c = vec2(t.c.x, t.c.y);
     float wa = bc_raster_edge(b, c, centre);
     float wb = bc_raster_edge(c, a, centre);
     float wc = bc_raster_edge(a, b, centre);

@@ -263,21 +263,15 @@ void bounce_cluster(const BounceContext& c, const Cluster<float>& cluster, std::
     shade_cluster(c, p.members, hits.data(), radiance, stats);
 }
 
-void add_stats(SecondaryStats& into, const SecondaryStats& from);
-
 // Every cluster through the ClusterBouncer, whose calls run on this thread
 // (its GL context's): the host prepares `threads` clusters at a time in
 // parallel and queues them in order (the GPU builds and traces them while
 // the host prepares the next), the hits are read once at the end and shaded
-// in parallel.
+// in parallel; each thread's statistics go to done(), the rest to `stats`.
+template <class Done>
 void bounce_clusters_resident(const BounceContext& c, const Clustering<float>& clustering,
                               std::vector<std::vector<std::uint32_t>>& members, std::vector<glm::vec3>& radiance,
-                              int threads, SecondaryStats& stats) {
-    std::mutex merge;
-    auto done = [&](const SecondaryStats& local) {
-        std::lock_guard<std::mutex> lock(merge);
-        add_stats(stats, local);
-    };
+                              int threads, SecondaryStats& stats, const Done& done) {
     c.bouncer->begin(c.world, c.rays.size());
     std::vector<std::vector<std::uint32_t>> queued;  // each queued cluster's rays, in the order of its hits
     const int clusters = static_cast<int>(clustering.clusters.size());
@@ -370,9 +364,7 @@ std::vector<glm::vec3> bounce_all(const BounceContext& c, int threads, Secondary
     const Clock::time_point clustering_start = Clock::now();
     // Its classification and k-means assignments on the threads (the same clusters as on one).
     auto parallel_for = [threads](std::size_t count, const auto& body) {
-        run_parallel_items(
-            threads, static_cast<int>(count), [] { return 0; }, [&](int&, int i) { body(static_cast<std::size_t>(i)); },
-            [](int&) {});
+        run_parallel_ranges(threads, count, 1, [&](std::size_t i, std::size_t) { body(i); });
     };
     const Clustering<float> clustering =
         cluster_reflector_pixels<float>(positions, directions, cluster_options, parallel_for);
@@ -383,7 +375,7 @@ std::vector<glm::vec3> bounce_all(const BounceContext& c, int threads, Secondary
     for (std::size_t r = 0; r < c.rays.size(); ++r)
         members[static_cast<std::size_t>(clustering.cluster_of[r])].push_back(static_cast<std::uint32_t>(r));
     if (c.bouncer != nullptr) {
-        bounce_clusters_resident(c, clustering, members, radiance, threads, stats);
+        bounce_clusters_resident(c, clustering, members, radiance, threads, stats, done);
         return radiance;
     }
     run_parallel_items(

@@ -31,19 +31,14 @@ inline int clip_near(const std::array<glm::vec3, 3>& in, float near, std::array<
 template <class Fragment>
 void scan_triangle(int size, glm::vec3 a, glm::vec3 b, glm::vec3 c, const Fragment& fragment) {
     using namespace layer_raster;
-    float area = bc_raster_edge(glm::vec2(a), glm::vec2(b), glm::vec2(c));
-    if (!(std::abs(area) > 0.0f)) return;
-    if (area < 0.0f) {  // orient counter-clockwise
-        std::swap(b, c);
-        area = -area;
-    }
-    const glm::ivec4 box = bc_raster_texel_box(a, b, c, size);
-    const glm::vec2 pa(a), pb(b), pc(c);
-    const glm::bvec3 owns(bc_raster_owns_edge(pb, pc), bc_raster_owns_edge(pc, pa), bc_raster_owns_edge(pa, pb));
+    const RasterTriangle t = bc_raster_ccw(a, b, c);
+    if (!(t.area > 0.0f)) return;
+    const glm::ivec4 box = bc_raster_texel_box(t, size);
+    const glm::bvec3 owns = bc_raster_owned_edges(t);
     for (int y = box.y; y <= box.w; ++y) {
         for (int x = box.x; x <= box.z; ++x) {
             const glm::vec2 centre(float(x) + 0.5f, float(y) + 0.5f);
-            if (bc_raster_covers(pa, pb, pc, owns, centre)) fragment(x, y, bc_raster_depth(a, b, c, area, centre));
+            if (bc_raster_covers(t, owns, centre)) fragment(x, y, bc_raster_depth(t.a, t.b, t.c, t.area, centre));
         }
     }
 }

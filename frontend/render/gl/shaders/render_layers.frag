@@ -9,18 +9,9 @@ flat in vec3 corner_c;
 flat in ivec2 fan_info;
 
 void main() {
-    vec3 a = corner_a;
-    vec3 b = corner_b;
-    vec3 c = corner_c;
-    float area = bc_raster_edge(a.xy, b.xy, c.xy);
-    if (!(abs(area) > 0.0)) return;
-    if (area < 0.0) {
-        vec3 swap = b;
-        b = c;
-        c = swap;
-        area = -area;
-    }
-    float z = bc_raster_depth(a, b, c, area, gl_FragCoord.xy);
+    RasterTriangle t = bc_raster_ccw(corner_a, corner_b, corner_c);
+    if (!(t.area > 0.0)) return;
+    float z = bc_raster_depth(t.a, t.b, t.c, t.area, gl_FragCoord.xy);
     uint done = layer_fragment(ivec2(gl_FragCoord.xy), z, fan_info.x, fan_info.y != 0);
     if (peel_pass != 0) return;
     atomicAdd(counts[BC_LAYER_COUNT_FRAGMENTS], 1u);

@@ -19,34 +19,22 @@ void main() {
     uint f = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
     if (f < counts[BC_LAYER_COUNT_FANS]) {  // the same for the whole group
         LayerFan fan = fans[f];
-        vec3 a = fan.a.xyz;
-        vec3 b = fan.b.xyz;
-        vec3 c = fan.c.xyz;
-        float area = bc_raster_edge(a.xy, b.xy, c.xy);
-        if (abs(area) > 0.0) {
-            if (area < 0.0) {  // orient counter-clockwise
-                vec3 swap = b;
-                b = c;
-                c = swap;
-                area = -area;
-            }
-            ivec4 box = bc_raster_texel_box(a, b, c, pass.sizes.x);
-            bvec3 owns = bvec3(bc_raster_owns_edge(b.xy, c.xy), bc_raster_owns_edge(c.xy, a.xy),
-                               bc_raster_owns_edge(a.xy, b.xy));
-            int width = box.z - box.x + 1;
-            int height = box.w - box.y + 1;
-            if (width > 0 && height > 0) {
-                uint texels = uint(width) * uint(height);
-                for (uint i = gl_LocalInvocationIndex; i < texels; i += gl_WorkGroupSize.x) {
-                    ivec2 texel = ivec2(box.x + int(i % uint(width)), box.y + int(i / uint(width)));
-                    vec2 centre = vec2(texel) + vec2(0.5);
-                    if (!bc_raster_covers(a.xy, b.xy, c.xy, owns, centre)) continue;
-                    uint done = layer_fragment(texel, bc_raster_depth(a, b, c, area, centre), fan.info.x,
-                                               fan.info.y != 0);
-                    fragments += 1u;
-                    if (done == BC_LAYER_FRAGMENT_CULLED_IN_FRONT) in_front += 1u;
-                    if (done == BC_LAYER_FRAGMENT_DROPPED) dropped += 1u;
-                }
+        RasterTriangle t = bc_raster_ccw(fan.a.xyz, fan.b.xyz, fan.c.xyz);
+        ivec4 box = bc_raster_texel_box(t, pass.sizes.x);
+        int width = box.z - box.x + 1;
+        int height = box.w - box.y + 1;
+        if (t.area > 0.0 && width > 0 && height > 0) {
+            bvec3 owns = bc_raster_owned_edges(t);
+            uint texels = uint(width) * uint(height);
+            for (uint i = gl_LocalInvocationIndex; i < texels; i += gl_WorkGroupSize.x) {
+                ivec2 texel = ivec2(box.x + int(i % uint(width)), box.y + int(i / uint(width)));
+                vec2 centre = vec2(texel) + vec2(0.5);
+                if (!bc_raster_covers(t, owns, centre)) continue;
+                uint done = layer_fragment(texel, bc_raster_depth(t.a, t.b, t.c, t.area, centre), fan.info.x,
+                                           fan.info.y != 0);
+                fragments += 1u;
+                if (done == BC_LAYER_FRAGMENT_CULLED_IN_FRONT) in_front += 1u;
+                if (done == BC_LAYER_FRAGMENT_DROPPED) dropped += 1u;
             }
         }
     }
