@@ -256,7 +256,8 @@ TEST_CASE("dof-secondary: GL layers and pyramid against the host's, every cluste
         const LayerTracer tracer = passes.layer_tracer();
         SecondaryStats stats;
         render_dof_secondary(scene, settings, options, &stats, &tracer, &primary, &both);
-        MESSAGE(scene.name << ", " << raster_name << ": " << agreement.clusters << " clusters, fragments host " << agreement.host_fragments
+        MESSAGE(scene.name << ", " << raster_name << ": " << agreement.clusters << " clusters, fragments host "
+                           << agreement.host_fragments
                            << " gl " << agreement.gl_fragments << "; entries in both " << agreement.entries_both
                            << " (depth differs " << agreement.depth_differs << ", at edge distance "
                            << agreement.worst_depth_edge_distance << ", relative " << agreement.worst_depth_relative
