@@ -119,12 +119,12 @@ void viewpoint_cluster(benchmark::State& state) {
     long pixels = 0;
     for (int c = 0; c < 256; ++c) {
         SyntheticCluster sc = make_cluster(rng, 30.0);
-        Input in{K::cluster_sums_empty(), {}, {}};
+        Input in{K::cluster_sums_empty(Real(1)), {}, {}};
         for (std::size_t i = 0; i < sc.positions.size(); ++i) {
             in.p.push_back(to_vec3<Real>(sc.positions[i]));
             in.d.push_back(to_vec3<Real>(sc.directions[i]));
-            in.sums = K::cluster_sums_add(in.sums, in.p.back(), in.d.back());
         }
+        in.sums = cluster_sums_of<Real>(in.p, in.d);
         pixels += static_cast<long>(in.p.size());
         inputs.push_back(std::move(in));
     }

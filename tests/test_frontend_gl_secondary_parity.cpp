@@ -127,7 +127,7 @@ const char* const kClusterMain = R"glsl(
 layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer Points { float pt[]; };          // position, direction
 layout(std430, binding = 1) readonly buffer Clusters { uint cl[]; };         // offset, count
-layout(std430, binding = 2) readonly buffer Params { float param[]; };       // tan_half_fov, min_near
+layout(std430, binding = 2) readonly buffer Params { float param[]; };       // tan_half_fov, min_near, largest
 layout(std430, binding = 3) writeonly buffer Results { uint out_[]; };
 uniform uint count;
 const uint STRIDE = 17u;
@@ -143,7 +143,7 @@ void main() {
     if (c >= count) return;
     uint o = cl[2u * c];
     uint n = cl[2u * c + 1u];
-    ClusterSums s = bc_cluster_sums_empty();
+    ClusterSums s = bc_cluster_sums_empty(bc_cluster_position_scale(param[2u + c]));
     for (uint i = 0u; i < n; ++i) s = bc_cluster_sums_add(s, P(o + i), D(o + i));
     VirtualViewFit f = bc_virtual_view_begin(s, param[0], param[1]);
     for (uint i = 0u; i < n; ++i) f = bc_virtual_view_add(f, P(o + i), D(o + i));
@@ -157,7 +157,7 @@ void main() {
     out_[at + 13u] = floatBitsToUint(v.backoff);
     out_[at + 14u] = uint(v.flags);
     out_[at + 15u] = bc_clusters_for_facet(n, bc_cluster_target_size(n * 7u, 24u), 3u) * 1000u +
-                     bc_kmeans_first_centre(n, 7u, int(c % 12u));
+                     bc_kmeans_start_key(7u, int(c % 12u), n) % 1000u;
     // The nearest of the cluster's first three points, for its first 16
     // points: 2 bits each.
     vec3 centres[BC_CLUSTERS_PER_FACET_MAX] =
@@ -331,14 +331,14 @@ TEST_CASE("GLSL virtual viewpoints, cluster rule and kmeans_nearest equal the ho
     Rng rng(0x71e3ull + sizeof(float));
     const float tan_half = static_cast<float>(std::tan(40.0 * 3.14159265358979323846 / 180.0));
     const float min_near = 0.01f;
-    std::vector<std::uint32_t> points, clusters, host;
+    std::vector<std::uint32_t> points, clusters, host, largest;
     constexpr int kStride = 17;
     for (int c = 0; c < 2000; ++c) {
         SyntheticCluster sc = make_cluster(rng, c % 5 == 0 ? 80.0 : 30.0);
         clusters.push_back(static_cast<std::uint32_t>(points.size() / 6));
         clusters.push_back(static_cast<std::uint32_t>(sc.positions.size()));
         std::vector<Kf::vec3> p, d;
-        Kf::ClusterSums sums = Kf::cluster_sums_empty();
+        float largest_coordinate = 0.0f;
         for (std::size_t i = 0; i < sc.positions.size(); ++i) {
             p.emplace_back(static_cast<float>(sc.positions[i].x), static_cast<float>(sc.positions[i].y),
                            static_cast<float>(sc.positions[i].z));
@@ -346,8 +346,10 @@ TEST_CASE("GLSL virtual viewpoints, cluster rule and kmeans_nearest equal the ho
                            static_cast<float>(sc.directions[i].z));
             put(points, p.back());
             put(points, d.back());
-            sums = Kf::cluster_sums_add(sums, p.back(), d.back());
+            for (int a = 0; a < 3; ++a) largest_coordinate = std::max(largest_coordinate, std::fabs(p.back()[a]));
         }
+        largest.push_back(bits_of(largest_coordinate));
+        const Kf::ClusterSums sums = cluster_sums_of<float>(p, d);
         Kf::VirtualView v = fit_virtual_view<float>(sums, p, d, tan_half, min_near);
         put(host, v.eye);
         put(host, v.forward);
@@ -358,7 +360,7 @@ TEST_CASE("GLSL virtual viewpoints, cluster rule and kmeans_nearest equal the ho
         host.push_back(static_cast<std::uint32_t>(v.flags));
         auto n = static_cast<std::uint32_t>(p.size());
         host.push_back(Kf::clusters_for_facet(n, Kf::cluster_target_size(n * 7u, 24u), 3u) * 1000u +
-                       Kf::kmeans_first_centre(n, 7u, c % 12));
+                       Kf::kmeans_start_key(7u, c % 12, n) % 1000u);
         Kf::vec3 centres[BC_CLUSTERS_PER_FACET_MAX] = {p[0], p[std::min<std::size_t>(1, n - 1)],
                                                        p[std::min<std::size_t>(2, n - 1)]};
         std::uint32_t mask = 0;
@@ -368,6 +370,7 @@ TEST_CASE("GLSL virtual viewpoints, cluster rule and kmeans_nearest equal the ho
         host.push_back(mask);
     }
     std::vector<std::uint32_t> params = {bits_of(tan_half), bits_of(min_near)};
+    params.insert(params.end(), largest.begin(), largest.end());
     std::vector<std::uint32_t> gpu = run_compute(*context, kClusterMain, {points, clusters, params}, host.size(), 2000u);
     Diff d;
     compare(d, host, gpu, kStride, {14, 15, 16}, "cluster");

@@ -193,8 +193,79 @@ TEST_CASE_TEMPLATE("kmeans_nearest: the nearest centre, lowest index on ties", R
     CHECK(K::kmeans_nearest(V(0, 5, 0), c, 2) == 0);  // only the first two
     CHECK(K::kmeans_nearest(V(0, 5, 0), c, 0) == 0);  // count clamped to 1
     CHECK(K::kmeans_nearest(V(0, 5, 0), c, 9) == 2);
-    CHECK(K::kmeans_first_centre(0, 1, 0) == 0);
-    for (std::uint32_t n : {1u, 2u, 17u, 1000u}) CHECK(K::kmeans_first_centre(n, 99, 3) < n);
+    // The start key: fixed by the seed, facet and pixel; another of any of them starts elsewhere.
+    CHECK(K::kmeans_start_key(99, 3, 17) == K::kmeans_start_key(99, 3, 17));
+    CHECK(K::kmeans_start_key(99, 3, 17) != K::kmeans_start_key(98, 3, 17));
+    CHECK(K::kmeans_start_key(99, 3, 17) != K::kmeans_start_key(99, 4, 17));
+    CHECK(K::kmeans_start_key(99, 3, 17) != K::kmeans_start_key(99, 3, 18));
+}
+
+TEST_CASE_TEMPLATE("cluster sums are exact: any split merged in any order gives one loop's bits", Real, float,
+                   double) {
+    using K = kernel<Real>;
+    using V = typename K::vec3;
+    Rng rng(0x5053ull + sizeof(Real));
+    std::vector<V> p, d;
+    for (int i = 0; i < 20000; ++i) {
+        // Magnitudes over 6 decades and both signs, so the low words carry.
+        double scale = std::pow(10.0, rng.uniform() * 6.0 - 3.0);
+        p.push_back(to_vec3<Real>(dvec3(rng.uniform() - 0.5, rng.uniform() - 0.5, rng.uniform() - 0.5) * scale * 200.0));
+        d.push_back(to_vec3<Real>(random_unit(rng)));
+    }
+    const typename K::ClusterSums loop = cluster_sums_of<Real>(p, d);
+    REQUIRE(loop.count == p.size());
+    CHECK(loop.unfit == 0u);
+    // Backwards, in 7 interleaved parts merged last first.
+    const Real scale = loop.position_scale;
+    std::array<typename K::ClusterSums, 7> parts;
+    parts.fill(K::cluster_sums_empty(scale));
+    for (std::size_t i = p.size(); i-- > 0;) parts[i % 7] = K::cluster_sums_add(parts[i % 7], p[i], d[i]);
+    typename K::ClusterSums merged = K::cluster_sums_empty(scale);
+    for (std::size_t k = parts.size(); k-- > 0;) merged = K::cluster_sums_merge(merged, parts[k]);
+    CHECK(merged.position_hi == loop.position_hi);
+    CHECK(merged.position_lo == loop.position_lo);
+    CHECK(merged.direction_hi == loop.direction_hi);
+    CHECK(merged.direction_lo == loop.direction_lo);
+    CHECK(merged.count == loop.count);
+    // The mean and direction sum: those of the points to within the fixed
+    // point's step (2^-30 of the largest |coordinate|) and one rounding.
+    long double sum[3] = {0, 0, 0}, dsum[3] = {0, 0, 0}, largest = 0;
+    for (std::size_t i = 0; i < p.size(); ++i)
+        for (int a = 0; a < 3; ++a) {
+            sum[a] += static_cast<long double>(p[i][a]);
+            dsum[a] += static_cast<long double>(d[i][a]);
+            largest = std::max(largest, std::fabs(static_cast<long double>(p[i][a])));
+        }
+    const V mean = K::cluster_mean_position(loop);
+    const V directions = K::cluster_direction_sum(loop);
+    const long double eps = std::numeric_limits<Real>::epsilon();
+    for (int a = 0; a < 3; ++a) {
+        const long double exact_mean = sum[a] / static_cast<long double>(p.size());
+        CHECK(std::fabs(static_cast<long double>(mean[a]) - exact_mean) <=
+              largest * (std::ldexp(1.0L, -29) + 4 * eps));
+        CHECK(std::fabs(static_cast<long double>(directions[a]) - dsum[a]) <=
+              static_cast<long double>(p.size()) * std::ldexp(1.0L, -30) + 4 * eps * std::fabs(dsum[a]) + eps);
+    }
+    // The scale: a power of two that takes the largest coordinate to at most 2^30.
+    for (Real largest_value : {Real(0), Real(1), Real(0.75), Real(3e4), Real(1e-20)}) {
+        const Real s = K::cluster_position_scale(largest_value);
+        int e = 0;
+        CHECK(std::frexp(s, &e) == Real(0.5));
+        CHECK(largest_value * s <= Real(1073741824.0));
+        if (largest_value > Real(0)) CHECK(largest_value * s >= Real(536870912.0));
+    }
+    // A point that does not fit (NaN, infinite, beyond the scale) is counted,
+    // not summed; a view of it is not finite.
+    const Real nan = std::numeric_limits<Real>::quiet_NaN();
+    typename K::ClusterSums odd = K::cluster_sums_empty(K::cluster_position_scale(Real(1)));
+    odd = K::cluster_sums_add(odd, V(nan, 0, 0), V(0, 0, 1));
+    odd = K::cluster_sums_add(odd, V(0, 0, 0), V(std::numeric_limits<Real>::infinity(), 0, 0));
+    odd = K::cluster_sums_add(odd, V(4, 0, 0), V(0, 0, 1));
+    odd = K::cluster_sums_add(odd, V(Real(0.5), 0, 0), V(0, 0, 1));
+    CHECK(odd.count == 1u);
+    CHECK(odd.unfit == 3u);
+    CHECK(K::cluster_mean_position(odd).x == Real(0.5));
+    CHECK((K::virtual_view_begin(odd, Real(1), Real(0.1)).flags & BC_VIEW_NOT_FINITE) != 0);
 }
 
 TEST_CASE_TEMPLATE("clustering a mirror sphere: facets, 1-3 clusters each, deterministic, balanced", Real, float,
@@ -311,12 +382,11 @@ TEST_CASE_TEMPLATE("virtual viewpoints contain their clusters with the smallest 
         double cone = n % 5 == 0 ? 80.0 : 30.0;
         SyntheticCluster sc = make_cluster(rng, cone);
         std::vector<V> p, d;
-        typename K::ClusterSums sums = K::cluster_sums_empty();
         for (std::size_t i = 0; i < sc.positions.size(); ++i) {
             p.push_back(to_vec3<Real>(sc.positions[i]));
             d.push_back(to_vec3<Real>(sc.directions[i]));
-            sums = K::cluster_sums_add(sums, p.back(), d.back());
         }
+        const typename K::ClusterSums sums = cluster_sums_of<Real>(p, d);
         Real min_near = Real(0.01);
         typename K::VirtualView v = fit_virtual_view<Real>(sums, p, d, tan_half, min_near);
         CAPTURE(n);
@@ -377,12 +447,8 @@ TEST_CASE_TEMPLATE("along its facet's normal, a field of view of 74.76 degrees h
         CAPTURE(facet);
         const std::vector<V>& d = by_facet[static_cast<std::size_t>(facet)];
         REQUIRE(d.size() > 1000);
-        typename K::ClusterSums sums = K::cluster_sums_empty();
-        std::vector<V> p;
-        for (const V& q : d) {
-            p.push_back(q);  // positions on the unit sphere, like a mirror ball's
-            sums = K::cluster_sums_add(sums, q, q);
-        }
+        const std::vector<V>& p = d;  // positions on the unit sphere, like a mirror ball's
+        const typename K::ClusterSums sums = cluster_sums_of<Real>(p, d);
         V normal = K::dodecahedron_normal(facet);
         auto fit_along = [&](Real tan_half) {
             typename K::VirtualViewFit f = K::virtual_view_begin_along(sums, normal, tan_half, Real(0.01));
@@ -396,9 +462,9 @@ TEST_CASE_TEMPLATE("along its facet's normal, a field of view of 74.76 degrees h
         CHECK(K::dot(v.forward, normal) >= 1 - 4 * std::numeric_limits<Real>::epsilon());
     }
     // Mean direction and begin_along(mean) are the same fit.
-    typename K::ClusterSums s = K::cluster_sums_add(K::cluster_sums_empty(), V(1, 2, 3), V(0, Real(0.6), Real(0.8)));
+    typename K::ClusterSums s = cluster_sums_of<Real>({V(1, 2, 3)}, {V(0, Real(0.6), Real(0.8))});
     typename K::VirtualViewFit a = K::virtual_view_begin(s, Real(1), Real(0.1));
-    typename K::VirtualViewFit b = K::virtual_view_begin_along(s, s.direction, Real(1), Real(0.1));
+    typename K::VirtualViewFit b = K::virtual_view_begin_along(s, K::cluster_direction_sum(s), Real(1), Real(0.1));
     CHECK(a.forward == b.forward);
     CHECK(a.right == b.right);
     CHECK((K::virtual_view_begin_along(s, V(0), Real(1), Real(0.1)).flags & BC_VIEW_EMPTY) != 0);
@@ -409,9 +475,7 @@ TEST_CASE_TEMPLATE("virtual viewpoint failures are flags, not hangs", Real, floa
     using V = typename K::vec3;
     Real tan_half = Real(0.8391);
     auto fit = [&](std::vector<V> p, std::vector<V> d, Real t = Real(0.8391), Real near = Real(0.01)) {
-        typename K::ClusterSums s = K::cluster_sums_empty();
-        for (std::size_t i = 0; i < p.size(); ++i) s = K::cluster_sums_add(s, p[i], d[i]);
-        return fit_virtual_view<Real>(s, p, d, t, near);
+        return fit_virtual_view<Real>(cluster_sums_of<Real>(p, d), p, d, t, near);
     };
     // Directions spread over 120 degrees: no FOV of 80 contains their rays.
     typename K::VirtualView spread = fit({V(0), V(1, 0, 0)}, {V(0, 0, 1), V(Real(0.866), 0, Real(-0.5))});
@@ -697,7 +761,9 @@ TEST_CASE_TEMPLATE("clustering: the same clusters whatever order parallel_for ru
         const auto& b = reordered.clusters[c].sums;
         CHECK(reordered.clusters[c].facet == serial.clusters[c].facet);
         CHECK(a.count == b.count);
-        CHECK(a.position == b.position);
-        CHECK(a.direction == b.direction);
+        CHECK(a.position_hi == b.position_hi);
+        CHECK(a.position_lo == b.position_lo);
+        CHECK(a.direction_hi == b.direction_hi);
+        CHECK(a.direction_lo == b.direction_lo);
     }
 }

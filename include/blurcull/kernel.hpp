@@ -395,17 +395,25 @@
 //   component counts as positive; zero or NaN input gives a valid face.
 // vec3 dodecahedron_normal(int face)
 //   Unit normal of a facet (0, +-phi, +-1) ... / sqrt(1 + phi^2); zero outside 0..11.
-// ClusterSums cluster_sums_empty(), cluster_sums_add(ClusterSums s, vec3 position, vec3 direction)
-// vec3 cluster_mean_position(ClusterSums s)
-//   Running sums over a cluster's pixels (positions, unit specular
-//   directions, count) and their mean position (zero for no pixel).
+// real cluster_position_scale(real largest)
+// ClusterSums cluster_sums_empty(real position_scale)
+// ClusterSums cluster_sums_add(ClusterSums s, vec3 position, vec3 direction)
+// ClusterSums cluster_sums_merge(ClusterSums a, ClusterSums b)
+// bool cluster_fixed_terms(vec3 position, vec3 direction, real position_scale, out ivec3 p, out ivec3 d)
+// vec3 cluster_mean_position(ClusterSums s), vec3 cluster_direction_sum(ClusterSums s)
+//   Exact sums over a cluster's pixels (positions, unit specular
+//   directions, count) in 64-bit fixed point: the same bits in any order,
+//   merged from any split, on every backend (a GPU adds the terms with
+//   atomics); positions scaled by a power of two for the largest
+//   |coordinate|. Their mean position (zero for no pixel) and direction sum.
 // uint cluster_target_size(uint total_pixels, uint wanted_clusters)
 // uint clusters_for_facet(uint facet_pixels, uint target_size, uint max_clusters)
 //   The cluster rule: ceil(total / wanted) pixels per cluster, and per facet
 //   round(pixels / target) clusters in [1, min(max_clusters <= 3, pixels)].
 // int kmeans_nearest(vec3 position, vec3 centres[3], int count)
-// uint kmeans_first_centre(uint count, uint seed, int facet)
-//   k-means by position: the nearest centre (lowest on ties), the seeded start.
+// uint kmeans_start_key(uint seed, int facet, uint index)
+//   k-means by position: the nearest centre (lowest on ties); the seeded
+//   start, the pixel of least key (a minimum in any order).
 // VirtualViewFit virtual_view_begin(ClusterSums sums, real tan_half_fov, real min_near)
 // VirtualViewFit virtual_view_begin_along(ClusterSums sums, vec3 axis, real tan_half_fov, real min_near)
 // VirtualViewFit virtual_view_add(VirtualViewFit f, vec3 position, vec3 direction)
@@ -459,6 +467,9 @@ struct kernel {
     // GLSL's ivec2, ivec4 (pixel positions and rectangles of the raster glue).
     using ivec2 = glm::ivec2;
     using ivec4 = glm::ivec4;
+    // and ivec3, uvec3 (the exact cluster sums' 64-bit words).
+    using ivec3 = glm::ivec3;
+    using uvec3 = glm::uvec3;
 
     // GLSL built-ins the shared text uses, forwarded to GLM (whose names follow GLSL).
     template <class X> static X min(X a, X b) { return glm::min(a, b); }

@@ -2,9 +2,10 @@
 // 2013, section 3.2): reflector pixels by dodecahedron facet of their specular
 // direction, then k-means by position inside each facet, then a virtual
 // viewpoint per cluster. The per-pixel steps are the kernel's shared text
-// (dodecahedron_facet, kmeans_nearest, cluster_sums_add, virtual_view_*), so
-// a GPU pass that calls them per pixel computes the same values; only the
-// loops over arrays of unknown size are here (docs/secondary-rays.md).
+// (dodecahedron_facet, kmeans_start_key, kmeans_nearest, cluster_sums_add,
+// virtual_view_*), and every sum is exact, so a GPU pass that calls them per
+// pixel computes the same clusters; only the loops over arrays of unknown
+// size are here (docs/secondary-rays.md).
 #pragma once
 
 #include "kernel.hpp"
@@ -25,7 +26,7 @@ struct ClusterOptions {
     std::uint32_t max_per_facet = BC_CLUSTERS_PER_FACET_MAX;
     // Lloyd iterations per facet at most; fewer when the assignment settles.
     int max_iterations = 8;
-    // Picks the first centre of every facet (kmeans_first_centre).
+    // Picks the first centre of every facet (kmeans_start_key).
     std::uint32_t seed = 0x5eedu;
 };
 
@@ -33,7 +34,7 @@ template <class Real>
 struct Cluster {
     using K = kernel<Real>;
     int facet = 0;                   // dodecahedron facet, 0..11
-    typename K::ClusterSums sums{};  // over its pixels, in pixel order
+    typename K::ClusterSums sums{};  // over its pixels (exact)
 };
 
 template <class Real>
@@ -57,63 +58,138 @@ struct SerialFor {
 
 namespace detail {
 
-// The items of the chunked loops (classification, k-means assignment): many
+// The items of the chunked loops (classification, k-means steps, sums): many
 // per call, few calls.
 inline constexpr std::size_t cluster_chunk = 1u << 16;
+
+inline std::size_t chunk_count(std::size_t count) { return (count + cluster_chunk - 1) / cluster_chunk; }
 
 // body(first, last) over [0, count) in chunks of cluster_chunk, by `parallel_for`.
 template <class ParallelFor, class Body>
 void for_chunks(const ParallelFor& parallel_for, std::size_t count, const Body& body) {
-    parallel_for((count + cluster_chunk - 1) / cluster_chunk, [&](std::size_t chunk) {
+    parallel_for(chunk_count(count), [&](std::size_t chunk) {
         std::size_t first = chunk * cluster_chunk;
         body(first, std::min(count, first + cluster_chunk));
     });
 }
 
-// The centres of one facet's k-means start: the point the seed picks, then
-// repeatedly the point farthest from the centres so far (ties: the lowest
-// index). Fewer than k when the points coincide.
+// The largest finite |coordinate| of the positions (0 for none).
+template <class Real, class ParallelFor>
+Real largest_coordinate(const std::vector<typename kernel<Real>::vec3>& positions, std::size_t n,
+                        const ParallelFor& parallel_for) {
+    using K = kernel<Real>;
+    std::vector<Real> chunk_largest(chunk_count(n), Real(0));
+    for_chunks(parallel_for, n, [&](std::size_t first, std::size_t last) {
+        Real largest = Real(0);
+        for (std::size_t i = first; i < last; ++i)
+            for (int a = 0; a < 3; ++a)
+                if (K::bc_finite(positions[i][a])) largest = std::max(largest, std::abs(positions[i][a]));
+        chunk_largest[first / cluster_chunk] = largest;
+    });
+    Real largest = Real(0);
+    for (Real l : chunk_largest) largest = std::max(largest, l);
+    return largest;
+}
+
+// A pick among a facet's members: the best value so far and its pixel.
 template <class Real>
+struct Pick {
+    Real value;
+    std::size_t pixel;
+};
+
+// The member whose value(pixel) is least (`least`) or greatest, ties to the
+// lowest pixel; the chunks' picks merged in member order (members ascend),
+// so any run of the chunks picks the same. `none`: the pick of no member.
+template <class Real, class ParallelFor, class Value>
+Pick<Real> pick_member(const std::vector<std::size_t>& members, bool least, Pick<Real> none, const Value& value,
+                       const ParallelFor& parallel_for) {
+    auto better = [least](Real a, Real b) { return least ? a < b : a > b; };
+    std::vector<Pick<Real>> chunk_pick(chunk_count(members.size()), none);
+    for_chunks(parallel_for, members.size(), [&](std::size_t first, std::size_t last) {
+        Pick<Real> pick = none;
+        for (std::size_t i = first; i < last; ++i) {
+            Real v = value(members[i]);
+            if (better(v, pick.value)) pick = {v, members[i]};
+        }
+        chunk_pick[first / cluster_chunk] = pick;
+    });
+    Pick<Real> pick = none;
+    for (const Pick<Real>& p : chunk_pick)
+        if (better(p.value, pick.value)) pick = p;
+    return pick;
+}
+
+// The centres of one facet's k-means start: the member of least
+// kmeans_start_key, then repeatedly the member farthest from the centres so
+// far (ties: the lowest index). Fewer than k when the points coincide.
+template <class Real, class ParallelFor>
 int first_centres(const std::vector<typename kernel<Real>::vec3>& positions, const std::vector<std::size_t>& members,
                   int k, std::uint32_t seed, int facet,
-                  std::array<typename kernel<Real>::vec3, BC_CLUSTERS_PER_FACET_MAX>& centres) {
+                  std::array<typename kernel<Real>::vec3, BC_CLUSTERS_PER_FACET_MAX>& centres,
+                  const ParallelFor& parallel_for) {
     using K = kernel<Real>;
-    auto count = static_cast<std::uint32_t>(members.size());
-    centres[0] = positions[members[K::kmeans_first_centre(count, seed, facet)]];
+    // Keys are 32-bit: exact in double.
+    Pick<double> start = pick_member<double>(
+        members, true, {4294967296.0, 0},
+        [&](std::size_t m) { return double(K::kmeans_start_key(seed, facet, static_cast<std::uint32_t>(m))); },
+        parallel_for);
+    centres[0] = positions[start.pixel];
     int chosen = 1;
     while (chosen < k) {
-        Real farthest = Real(0);
-        std::size_t pick = 0;
-        for (std::size_t m : members) {
-            Real d = K::bc_distance2(positions[m], centres[0]);
-            for (int c = 1; c < chosen; ++c)
-                d = K::min(d, K::bc_distance2(positions[m], centres[static_cast<std::size_t>(c)]));
-            if (d > farthest) {
-                farthest = d;
-                pick = m;
-            }
-        }
-        if (!(farthest > Real(0))) break;
-        centres[static_cast<std::size_t>(chosen++)] = positions[pick];
+        Pick<Real> far = pick_member<Real>(
+            members, false, {Real(0), 0},
+            [&](std::size_t m) {
+                Real d = K::bc_distance2(positions[m], centres[0]);
+                for (int c = 1; c < chosen; ++c)
+                    d = K::min(d, K::bc_distance2(positions[m], centres[static_cast<std::size_t>(c)]));
+                return d;
+            },
+            parallel_for);
+        if (!(far.value > Real(0))) break;
+        centres[static_cast<std::size_t>(chosen++)] = positions[far.pixel];
     }
     return chosen;
 }
 
+// The exact sums of each local cluster of one facet's members (member i in
+// local[i]), by chunks merged (any order gives the same bits).
+template <class Real, class ParallelFor>
+std::array<typename kernel<Real>::ClusterSums, BC_CLUSTERS_PER_FACET_MAX> local_sums(
+    const std::vector<typename kernel<Real>::vec3>& positions, const std::vector<typename kernel<Real>::vec3>& directions,
+    const std::vector<std::size_t>& members, const std::vector<int>& local, Real scale, const ParallelFor& parallel_for) {
+    using K = kernel<Real>;
+    using Sums = std::array<typename K::ClusterSums, BC_CLUSTERS_PER_FACET_MAX>;
+    Sums empty;
+    empty.fill(K::cluster_sums_empty(scale));
+    std::vector<Sums> chunk_sums(chunk_count(members.size()), empty);
+    for_chunks(parallel_for, members.size(), [&](std::size_t first, std::size_t last) {
+        Sums& sums = chunk_sums[first / cluster_chunk];
+        for (std::size_t i = first; i < last; ++i) {
+            auto& s = sums[static_cast<std::size_t>(local[i])];
+            s = K::cluster_sums_add(s, positions[members[i]], directions[members[i]]);
+        }
+    });
+    Sums sums = empty;
+    for (const Sums& chunk : chunk_sums)
+        for (std::size_t c = 0; c < sums.size(); ++c) sums[c] = K::cluster_sums_merge(sums[c], chunk[c]);
+    return sums;
+}
+
 // Lloyd's k-means on one facet's members; returns the iterations run and
 // leaves each member's local cluster index in `local`; `settled` says the
-// last assignment changed nothing.
-// The assignment runs in chunks by `parallel_for` (each member's nearest
-// centre on its own); the sums stay in member order, so the result does not
-// depend on how the chunks run.
+// last assignment changed nothing. Each step runs in chunks by
+// `parallel_for`; the result does not depend on how the chunks run.
 template <class Real, class ParallelFor>
-int lloyd(const std::vector<typename kernel<Real>::vec3>& positions, const std::vector<std::size_t>& members,
-          int k, int max_iterations, std::array<typename kernel<Real>::vec3, BC_CLUSTERS_PER_FACET_MAX>& centres,
+int lloyd(const std::vector<typename kernel<Real>::vec3>& positions,
+          const std::vector<typename kernel<Real>::vec3>& directions, const std::vector<std::size_t>& members, int k,
+          int max_iterations, Real scale, std::array<typename kernel<Real>::vec3, BC_CLUSTERS_PER_FACET_MAX>& centres,
           std::vector<int>& local, bool& settled, const ParallelFor& parallel_for) {
     using K = kernel<Real>;
     local.assign(members.size(), -1);
     int iterations = 0;
     settled = false;
-    std::vector<char> chunk_changed((members.size() + cluster_chunk - 1) / cluster_chunk, 0);
+    std::vector<char> chunk_changed(chunk_count(members.size()), 0);
     for (int it = 0; it < std::max(max_iterations, 1); ++it) {
         for_chunks(parallel_for, members.size(), [&](std::size_t first, std::size_t last) {
             bool changed = false;
@@ -130,12 +206,7 @@ int lloyd(const std::vector<typename kernel<Real>::vec3>& positions, const std::
             settled = true;
             break;
         }
-        std::array<typename K::ClusterSums, BC_CLUSTERS_PER_FACET_MAX> sums;
-        sums.fill(K::cluster_sums_empty());
-        for (std::size_t i = 0; i < members.size(); ++i) {
-            auto& s = sums[static_cast<std::size_t>(local[i])];
-            s = K::cluster_sums_add(s, positions[members[i]], typename K::vec3(Real(0)));
-        }
+        const auto sums = local_sums<Real>(positions, directions, members, local, scale, parallel_for);
         // An emptied cluster keeps its centre (it stays empty and is dropped).
         for (int c = 0; c < k; ++c)
             if (sums[static_cast<std::size_t>(c)].count > 0u)
@@ -149,11 +220,13 @@ int lloyd(const std::vector<typename kernel<Real>::vec3>& positions, const std::
 // Clusters of reflector pixels: positions (scene units) and unit specular
 // directions, one each per pixel. Deterministic: the same input and options
 // give the same clusters on every run, whatever `parallel_for` (SerialFor,
-// or the caller's threads: the facet of each pixel and each k-means
-// assignment are computed by it in chunks, every sum in pixel order). Each
-// facet's pixel count n gets clusters_for_facet(n, cluster_target_size(total,
-// wanted), max_per_facet) clusters; k-means by position then splits it (at
-// most max_iterations Lloyd iterations). Empty input gives no clusters.
+// or the caller's threads: every step runs in chunks of pixels, and its
+// sums are exact, so they do not depend on the order). A GPU build that
+// runs the same steps (render/gl/gl_clustering.hpp) gets the same clusters.
+// Each facet's pixel count n gets clusters_for_facet(n,
+// cluster_target_size(total, wanted), max_per_facet) clusters; k-means by
+// position then splits it (at most max_iterations Lloyd iterations). Empty
+// input gives no clusters.
 template <class Real, class ParallelFor = SerialFor>
 Clustering<Real> cluster_reflector_pixels(const std::vector<typename kernel<Real>::vec3>& positions,
                                           const std::vector<typename kernel<Real>::vec3>& directions,
@@ -167,6 +240,7 @@ Clustering<Real> cluster_reflector_pixels(const std::vector<typename kernel<Real
         for (std::size_t i = first; i < last; ++i)
             facet_of[i] = static_cast<std::uint8_t>(K::dodecahedron_facet(directions[i]));
     });
+    const Real scale = K::cluster_position_scale(detail::largest_coordinate<Real>(positions, n, parallel_for));
     std::array<std::vector<std::size_t>, BC_DODECAHEDRON_FACES> members;
     for (std::size_t i = 0; i < n; ++i) members[facet_of[i]].push_back(i);
     std::uint32_t target = K::cluster_target_size(static_cast<std::uint32_t>(n), options.wanted_clusters);
@@ -177,27 +251,35 @@ Clustering<Real> cluster_reflector_pixels(const std::vector<typename kernel<Real
         auto k = static_cast<int>(K::clusters_for_facet(pixels, target, options.max_per_facet));
         if (k == 0) continue;
         std::array<typename K::vec3, BC_CLUSTERS_PER_FACET_MAX> centres{};
-        k = detail::first_centres<Real>(positions, m, k, options.seed, facet, centres);
+        k = detail::first_centres<Real>(positions, m, k, options.seed, facet, centres, parallel_for);
         bool settled = false;
-        out.iterations +=
-            detail::lloyd<Real>(positions, m, k, options.max_iterations, centres, local, settled, parallel_for);
+        out.iterations += detail::lloyd<Real>(positions, directions, m, k, options.max_iterations, scale, centres, local,
+                                              settled, parallel_for);
         if (!settled) ++out.unsettled_facets;
-        // Final sums in pixel order; empty clusters dropped, the rest numbered in order.
-        std::array<typename K::ClusterSums, BC_CLUSTERS_PER_FACET_MAX> sums;
-        sums.fill(K::cluster_sums_empty());
-        for (std::size_t i = 0; i < m.size(); ++i) {
-            auto& s = sums[static_cast<std::size_t>(local[i])];
-            s = K::cluster_sums_add(s, positions[m[i]], directions[m[i]]);
-        }
+        // Final sums; empty clusters dropped, the rest numbered in order.
+        const auto sums = detail::local_sums<Real>(positions, directions, m, local, scale, parallel_for);
         std::array<int, BC_CLUSTERS_PER_FACET_MAX> global{};
         for (int c = 0; c < k; ++c) {
             const auto& s = sums[static_cast<std::size_t>(c)];
             global[static_cast<std::size_t>(c)] = static_cast<int>(out.clusters.size());
-            if (s.count > 0u) out.clusters.push_back({facet, s});
+            if (s.count + s.unfit > 0u) out.clusters.push_back({facet, s});
         }
         for (std::size_t i = 0; i < m.size(); ++i) out.cluster_of[m[i]] = global[static_cast<std::size_t>(local[i])];
     }
     return out;
+}
+
+// The exact sums of the points (positions, directions), positions scaled
+// for their largest |coordinate|: one cluster's sums for fit_virtual_view.
+template <class Real>
+typename kernel<Real>::ClusterSums cluster_sums_of(const std::vector<typename kernel<Real>::vec3>& positions,
+                                                   const std::vector<typename kernel<Real>::vec3>& directions) {
+    using K = kernel<Real>;
+    std::size_t n = std::min(positions.size(), directions.size());
+    typename K::ClusterSums sums =
+        K::cluster_sums_empty(K::cluster_position_scale(detail::largest_coordinate<Real>(positions, n, SerialFor{})));
+    for (std::size_t i = 0; i < n; ++i) sums = K::cluster_sums_add(sums, positions[i], directions[i]);
+    return sums;
 }
 
 // The virtual viewpoint of one cluster (virtual_view_begin/add/finish over

@@ -12,9 +12,13 @@ layout(std430, binding = 0) buffer CheckData {
 float check_secondary_rays(vec3 d, vec3 p) {
     int face = bc_dodecahedron_facet(d);
     vec3 normal = bc_dodecahedron_normal(face);
-    ClusterSums sums = bc_cluster_sums_add(bc_cluster_sums_empty(), p, normal);
-    vec3 mean = bc_cluster_mean_position(sums);
-    uint k = bc_clusters_for_facet(sums.count, bc_cluster_target_size(100u, 24u), 3u) + bc_kmeans_first_centre(5u, 7u, face);
+    ClusterSums empty = bc_cluster_sums_empty(bc_cluster_position_scale(values[56]));
+    ClusterSums sums = bc_cluster_sums_merge(bc_cluster_sums_add(empty, p, normal), empty);
+    ivec3 fixed_p;
+    ivec3 fixed_d;
+    bool fits = bc_cluster_fixed_terms(p, d, sums.position_scale, fixed_p, fixed_d);
+    vec3 mean = bc_cluster_mean_position(sums) + bc_cluster_direction_sum(sums) + vec3(fits ? fixed_p : fixed_d);
+    uint k = bc_clusters_for_facet(sums.count, bc_cluster_target_size(100u, 24u), 3u) + bc_kmeans_start_key(5u, face, 7u);
     vec3 centres[BC_CLUSTERS_PER_FACET_MAX] = vec3[BC_CLUSTERS_PER_FACET_MAX](p, mean, d);
     int nearest = bc_kmeans_nearest(p, centres, int(k));
     vec3 right;

@@ -106,13 +106,17 @@ vec3 bc_cross(vec3 a, vec3 b) {
 #define dodecahedron_normal bc_dodecahedron_normal
 #define dodecahedron_facet bc_dodecahedron_facet
 // clustering reflector pixels (clusters_body.inl)
+#define cluster_position_scale bc_cluster_position_scale
 #define cluster_sums_empty bc_cluster_sums_empty
+#define cluster_fixed_terms bc_cluster_fixed_terms
 #define cluster_sums_add bc_cluster_sums_add
+#define cluster_sums_merge bc_cluster_sums_merge
 #define cluster_mean_position bc_cluster_mean_position
+#define cluster_direction_sum bc_cluster_direction_sum
 #define cluster_target_size bc_cluster_target_size
 #define clusters_for_facet bc_clusters_for_facet
 #define kmeans_nearest bc_kmeans_nearest
-#define kmeans_first_centre bc_kmeans_first_centre
+#define kmeans_start_key bc_kmeans_start_key
 // the virtual viewpoint (virtual_view_body.inl)
 #define virtual_view_basis bc_virtual_view_basis
 #define virtual_view_begin_along bc_virtual_view_begin_along

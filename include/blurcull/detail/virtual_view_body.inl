@@ -88,6 +88,7 @@ BC_FN VirtualViewFit virtual_view_begin_along(BC_IN(ClusterSums) sums, vec3 axis
     real length2 = bc_dot3(axis, axis);
     if (!bc_finite(length2) || !bc_finite(f.origin.x) || !bc_finite(f.origin.y) || !bc_finite(f.origin.z))
         f.flags |= BC_VIEW_NOT_FINITE;
+    if (sums.unfit != 0u) f.flags |= BC_VIEW_NOT_FINITE;
     if (sums.count == 0u || !(length2 > bc_tiny())) f.flags |= BC_VIEW_EMPTY;
     bool has_axis = (f.flags & (BC_VIEW_EMPTY | BC_VIEW_NOT_FINITE)) == 0;
     f.forward = has_axis ? axis / sqrt(length2) : vec3(real(0), real(0), real(1));
@@ -100,7 +101,7 @@ BC_FN VirtualViewFit virtual_view_begin_along(BC_IN(ClusterSums) sums, vec3 axis
 // (0, 180) degrees (the paper: 80); min_near > 0 (scene units) keeps the eye
 // at least that far behind every pixel, so the near plane is never at zero.
 BC_FN VirtualViewFit virtual_view_begin(BC_IN(ClusterSums) sums, real tan_half_fov, real min_near) {
-    return virtual_view_begin_along(sums, sums.direction, tan_half_fov, min_near);
+    return virtual_view_begin_along(sums, cluster_direction_sum(sums), tan_half_fov, min_near);
 }
 
 // The back-off t_i at which `position` enters the frustum and is min_near in
