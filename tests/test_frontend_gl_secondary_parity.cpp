@@ -19,6 +19,7 @@
 #include <blurcull/glsl/kernel_glsl.hpp>
 #include <blurcull/layer_trace.hpp>
 #include <blurcull/secondary_clusters.hpp>
+#include "render/gl/gl_clustering.hpp"
 #include "render/gl/gl_context.hpp"
 
 #include <doctest/doctest.h>
@@ -300,6 +301,92 @@ TEST_CASE("GLSL assigns the mirror sphere's pixels to the host's facets and clus
                      << agree_with_clustering);
     CHECK(agree_with_clustering == static_cast<long>(p.size()));
     report(diff, "dodecahedron_facet + kmeans_nearest on the sphere");
+}
+
+namespace {
+
+// Whether two clusterings are one: every ray's cluster, each cluster's
+// facet and sums word for word, the iterations and unsettled facets.
+void check_same_clustering(const Clustering<float>& host, const Clustering<float>& gpu) {
+    CHECK(gpu.iterations == host.iterations);
+    CHECK(gpu.unsettled_facets == host.unsettled_facets);
+    REQUIRE(gpu.clusters.size() == host.clusters.size());
+    long words_differ = 0;
+    for (std::size_t c = 0; c < host.clusters.size(); ++c) {
+        const Kf::ClusterSums& a = host.clusters[c].sums;
+        const Kf::ClusterSums& b = gpu.clusters[c].sums;
+        CHECK(gpu.clusters[c].facet == host.clusters[c].facet);
+        words_differ += (a.position_hi != b.position_hi) + (a.position_lo != b.position_lo) +
+                        (a.direction_hi != b.direction_hi) + (a.direction_lo != b.direction_lo) +
+                        (a.count != b.count) + (a.unfit != b.unfit) + (a.position_scale != b.position_scale);
+    }
+    long rays_differ = 0;
+    for (std::size_t i = 0; i < host.cluster_of.size(); ++i) rays_differ += gpu.cluster_of[i] != host.cluster_of[i];
+    MESSAGE(host.cluster_of.size() << " rays, " << host.clusters.size() << " clusters, " << host.iterations
+                                   << " Lloyd iterations: " << rays_differ << " rays and " << words_differ
+                                   << " sums differ");
+    CHECK(gpu.cluster_of.size() == host.cluster_of.size());
+    CHECK(rays_differ == 0);
+    CHECK(words_differ == 0);
+}
+
+}  // namespace
+
+TEST_CASE("the GPU clustering passes give the host's clusters, sums bit for bit") {
+    auto context = context_or_skip();
+    if (!context) return;
+    const frontend::GlClustering gpu(*context);
+    SUBCASE("one point repeated: fewer centres than asked") {
+        std::vector<Kf::vec3> p(600, Kf::vec3(1.0f, 2.0f, 3.0f)), d(600, Kf::vec3(0.0f, 0.0f, 1.0f));
+        ClusterOptions options;
+        options.wanted_clusters = 1000;  // 3 asked of the facet
+        const Clustering<float> host = cluster_reflector_pixels<float>(p, d, options);
+        CHECK(host.clusters.size() == 1);
+        check_same_clustering(host, gpu.cluster(p, d, options));
+    }
+    SUBCASE("the mirror sphere's pixels, to settling and stopped early") {
+        std::vector<dvec3> dp, dd;
+        mirror_sphere_pixels(dp, dd);
+        std::vector<Kf::vec3> p, d;
+        for (std::size_t i = 0; i < dp.size(); ++i) {
+            p.emplace_back(static_cast<float>(dp[i].x), static_cast<float>(dp[i].y), static_cast<float>(dp[i].z));
+            d.emplace_back(static_cast<float>(dd[i].x), static_cast<float>(dd[i].y), static_cast<float>(dd[i].z));
+        }
+        for (int iterations : {1, 8, 1000}) {
+            CAPTURE(iterations);
+            ClusterOptions options;
+            options.max_iterations = iterations;
+            check_same_clustering(cluster_reflector_pixels<float>(p, d, options), gpu.cluster(p, d, options));
+        }
+    }
+    SUBCASE("300,000 random rays over every facet, with coincident, NaN and infinite ones") {
+        Rng rng(0xc1u);
+        std::vector<Kf::vec3> p, d;
+        for (int i = 0; i < 300000; ++i) {
+            p.emplace_back(static_cast<float>(rng.uniform(-30.0, 30.0)), static_cast<float>(rng.uniform(0.0, 2.0)),
+                           static_cast<float>(rng.uniform(-1.0, 1.0)));
+            const dvec3 u = random_unit(rng);
+            d.emplace_back(static_cast<float>(u.x), static_cast<float>(u.y), static_cast<float>(u.z));
+        }
+        // 500 rays at one point (equal distances: the least ray wins), and points that do not fit.
+        for (int i = 0; i < 500; ++i) {
+            p.emplace_back(5.0f, 5.0f, 5.0f);
+            d.emplace_back(0.0f, 0.0f, -1.0f);
+        }
+        const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+        p[17] = Kf::vec3(nan, 0.0f, 0.0f);
+        p[4242] = Kf::vec3(0.0f, inf, 0.0f);
+        d[99999] = Kf::vec3(nan, 0.0f, 1.0f);
+        for (std::uint32_t seed : {0x5eedu, 7u}) {
+            CAPTURE(seed);
+            ClusterOptions options;
+            options.seed = seed;
+            options.wanted_clusters = seed == 7u ? 30u : 24u;
+            const Clustering<float> host = cluster_reflector_pixels<float>(p, d, options);
+            CHECK(host.clusters.size() >= 12);
+            check_same_clustering(host, gpu.cluster(p, d, options));
+        }
+    }
 }
 
 TEST_CASE("GLSL dodecahedron_facet and normals equal the host's on 10^6 directions") {

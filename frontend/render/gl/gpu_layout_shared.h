@@ -109,6 +109,13 @@ using uint = std::uint32_t;
 #define BC_GL_TRACE_PYRAMID_BINDING 5       // Pyramid: the layers' min/max levels (GlLayerBuilder's)
 #define BC_GL_TRACE_RAYS_BINDING 6          // Rays: per ray its start and direction (vec4 each)
 #define BC_GL_TRACE_GROUPS_BINDING 7        // Groups: per group of rays clipped together its end
+//
+// dof-secondary's clustering pass (gl_clustering.cpp; shaders/
+// render_secondary_cluster.comp, after the trace passes' prelude, so
+// numbered past their bindings):
+#define BC_GL_CLUSTER_POINTS_BINDING 8  // Points: per ray its position and direction (vec4 each)
+#define BC_GL_CLUSTER_LABELS_BINDING 9  // Labels: per ray facet * 4 + local cluster
+#define BC_GL_CLUSTER_STATE_BINDING 10  // State: ClusterState (gl_cluster_shared.h)
 
 // What render_setup.comp finds out about triangle i, once per frame.
 struct TriangleInfo {
@@ -285,6 +292,12 @@ static_assert(distinct_bindings({BC_GL_TRACE_DEPTHS_BINDING, BC_GL_TRACE_SEGMENT
                                  BC_GL_TRACE_HITS_BINDING, BC_GL_TRACE_TRIANGLE_IDS_BINDING,
                                  BC_GL_TRACE_PYRAMID_BINDING, BC_GL_TRACE_RAYS_BINDING, BC_GL_TRACE_GROUPS_BINDING}),
               "the trace pass's bindings");
+static_assert(distinct_bindings({BC_GL_TRACE_DEPTHS_BINDING, BC_GL_TRACE_SEGMENTS_BINDING, BC_GL_TRACE_VIEW_BINDING,
+                                 BC_GL_TRACE_HITS_BINDING, BC_GL_TRACE_TRIANGLE_IDS_BINDING,
+                                 BC_GL_TRACE_PYRAMID_BINDING, BC_GL_TRACE_RAYS_BINDING, BC_GL_TRACE_GROUPS_BINDING,
+                                 BC_GL_CLUSTER_POINTS_BINDING, BC_GL_CLUSTER_LABELS_BINDING,
+                                 BC_GL_CLUSTER_STATE_BINDING}),
+              "the clustering pass's bindings, past the trace prelude's");
 static_assert(sizeof(TriangleInfo) % 16 == 0 && sizeof(CellBounds) % 16 == 0 && sizeof(MethodBox) % 16 == 0 &&
                   sizeof(MaskTriangle) % 16 == 0 &&
                   sizeof(GpuMovingTriangle) % 16 == 0,

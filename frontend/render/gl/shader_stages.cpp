@@ -35,9 +35,11 @@ ShaderStage shader_stage(GLenum type, std::string_view main_name, Prelude prelud
             if (prelude == Prelude::layer_fragments) add("render_layers_fragment.glsl");
             break;
         case Prelude::secondary:
+        case Prelude::clusters:
             add("gpu_layout_shared.h");
             add("bounce_shared.h");
             add("render_secondary_common.glsl");
+            if (prelude == Prelude::clusters) add("gl_cluster_shared.h");
             break;
     }
     add(main_name);

@@ -33,6 +33,9 @@ enum class Prelude {
     // gpu_layout_shared.h, bounce_shared.h and render_secondary_common.glsl:
     // dof-secondary's clip and trace passes (gl_layer_trace.cpp).
     secondary,
+    // secondary's, then gl_cluster_shared.h: dof-secondary's clustering
+    // pass (gl_clustering.cpp).
+    clusters,
 };
 
 // A stage of `type` (GL_COMPUTE_SHADER, GL_VERTEX_SHADER, ...): the kernel's

@@ -1,0 +1,69 @@
+// The state of dof-secondary's clustering on the GPU (gl_clustering.cpp,
+// shaders/render_secondary_cluster.comp), written once for C++ and GLSL
+// (std430) in the style of gpu_layout_shared.h: 4-byte scalars and arrays
+// of them only (array stride 4 in std430), so the C++ struct has the same
+// offsets; the C++ side checks them with static_assert.
+// docs/secondary-rays.md, "Clusters on the GPU".
+#ifndef BLURCULL_GL_CLUSTER_SHARED_H
+#define BLURCULL_GL_CLUSTER_SHARED_H
+
+#ifdef __cplusplus
+#include <cstddef>
+#include <cstdint>
+
+namespace blurcull::frontend::gpu {
+using uint = std::uint32_t;
+#endif
+
+// The pass's step (uniform `step`): per ray or per facet (one work group).
+#define BC_CLUSTER_STEP_CLASSIFY 0     // per ray: its facet; facet counts, largest |coordinate|
+#define BC_CLUSTER_STEP_SETUP 1        // per facet: k (clusters_for_facet), the position scale
+#define BC_CLUSTER_STEP_START_KEY 2    // per ray: least kmeans_start_key of its facet
+#define BC_CLUSTER_STEP_START_RAY 3    // per ray: the least ray of that key
+#define BC_CLUSTER_STEP_PICK 4         // per facet: the picked ray becomes a centre
+#define BC_CLUSTER_STEP_FAR_DISTANCE 5 // per ray: the greatest distance to its facet's centres
+#define BC_CLUSTER_STEP_FAR_RAY 6      // per ray: the least ray at that distance
+#define BC_CLUSTER_STEP_ASSIGN 7       // per ray: Lloyd's assignment, its position summed
+#define BC_CLUSTER_STEP_UPDATE 8       // per facet: settled, or the means become the centres
+#define BC_CLUSTER_STEP_FINAL_SUMS 9   // per ray: its cluster's sums, positions and directions
+
+// ClusterState.facet_flags bits.
+#define BC_CLUSTER_CHANGED 1u  // an assignment of this iteration changed
+#define BC_CLUSTER_SETTLED 2u  // an iteration changed nothing: Lloyd stopped
+
+#define BC_CLUSTER_FACETS 12
+// A facet's clusters are slots facet * BC_CLUSTERS_PER_FACET_MAX + local.
+#define BC_CLUSTER_SLOTS 36
+// Each slot's sums: 6 words of each kind (position xyz, direction xyz).
+#define BC_CLUSTER_SUM_WORDS 216
+// A ray's label before its first assignment: local cluster 3 (none).
+#define BC_CLUSTER_NO_LOCAL 3u
+
+struct ClusterState {
+    uint largest_bits;     // the largest finite |position coordinate| (float bits; atomicMax)
+    uint rays;             // the rays clustered
+    float position_scale;  // cluster_position_scale(largest)
+    uint padding;
+    uint facet_count[BC_CLUSTER_FACETS];      // rays per facet
+    int facet_k[BC_CLUSTER_FACETS];           // clusters_for_facet, then the centres found
+    int facet_chosen[BC_CLUSTER_FACETS];      // centres picked so far
+    uint facet_flags[BC_CLUSTER_FACETS];      // BC_CLUSTER_*
+    int facet_iterations[BC_CLUSTER_FACETS];  // Lloyd iterations run
+    uint pick_key[BC_CLUSTER_FACETS];         // the pick's least start key or greatest distance (float bits)
+    uint pick_ray[BC_CLUSTER_FACETS];         // and its least ray
+    float centres[3 * BC_CLUSTER_SLOTS];      // slot * 3 + axis
+    int sum_hi[BC_CLUSTER_SUM_WORDS];         // slot * 6 + word: ClusterSums' high words
+    uint sum_lo[BC_CLUSTER_SUM_WORDS];        // and low words
+    uint sum_count[BC_CLUSTER_SLOTS];
+    uint sum_unfit[BC_CLUSTER_SLOTS];
+};
+
+#ifdef __cplusplus
+static_assert(offsetof(ClusterState, facet_count) == 16 && offsetof(ClusterState, centres) == 16 + 7 * 48 &&
+                  offsetof(ClusterState, sum_hi) == 16 + 7 * 48 + 432 &&
+                  sizeof(ClusterState) == 16 + 7 * 48 + 432 + 2 * 864 + 2 * 144,
+              "ClusterState: std430 offsets");
+}  // namespace blurcull::frontend::gpu
+#endif
+
+#endif  // BLURCULL_GL_CLUSTER_SHARED_H

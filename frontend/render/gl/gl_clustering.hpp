@@ -1,0 +1,46 @@
+// dof-secondary's clustering on the GPU: cluster_reflector_pixels
+// (include/blurcull/secondary_clusters.hpp) as compute passes
+// (shaders/render_secondary_cluster.comp), one dispatch per step, on the
+// kernel's shared text. Its choices are minima and maxima and its sums
+// exact, so it gives the host's clusters bit for bit where the GPU rounds
+// as the host does (llvmpipe; the test asserts it). docs/secondary-rays.md,
+// "Clusters on the GPU".
+#pragma once
+
+#include "render/gl/gl_context.hpp"
+
+#include <blurcull/secondary_clusters.hpp>
+
+#include <glm/glm.hpp>
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+namespace blurcull::frontend {
+
+class GlClustering {
+public:
+    // On `context` (kept alive by the caller; made current here, and by the
+    // destructor to delete its program and buffers); compiles the pass.
+    // cluster() runs on the current context: the caller makes `context`
+    // current first. Throws gl::GlError with the compiler's log.
+    explicit GlClustering(const gl::HeadlessContext& context);
+    ~GlClustering();
+    GlClustering(const GlClustering&) = delete;
+    GlClustering& operator=(const GlClustering&) = delete;
+
+    // cluster_reflector_pixels<float>(positions, directions, options): the
+    // same Clustering, its passes on the GPU; waits for them once and reads
+    // back each ray's cluster and the 36 sums.
+    Clustering<float> cluster(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& directions,
+                              const ClusterOptions& options = {}) const;
+
+private:
+    const gl::HeadlessContext* context_;
+    const gl::Functions* gl_;
+    std::unique_ptr<gl::Program> program_;
+    mutable std::optional<gl::Buffer> points_, labels_, state_;
+};
+
+}  // namespace blurcull::frontend

@@ -1,0 +1,180 @@
+// dof-secondary's clustering on the GPU (gl_clustering.cpp): the steps of
+// cluster_reflector_pixels (include/blurcull/secondary_clusters.hpp), one
+// dispatch each, on the kernel's shared text: each ray's dodecahedron
+// facet, the facets' k, the k-means start (the least kmeans_start_key, then
+// the farthest rays), Lloyd's assignments and updates, the final sums. Every
+// choice is a minimum or maximum and every sum exact (64-bit fixed point,
+// added with atomics on its two words), so the order the invocations run
+// in changes nothing: the host's clusters, bit for bit, where the GPU
+// rounds as the host does. Per-ray steps run one invocation per ray, the
+// per-facet steps one work group.
+layout(local_size_x = BC_TRACE_GROUP) in;
+layout(std430, binding = BC_GL_CLUSTER_POINTS_BINDING) readonly buffer Points { vec4 point[]; };  // position, direction
+layout(std430, binding = BC_GL_CLUSTER_LABELS_BINDING) buffer Labels { uint label[]; };          // facet * 4 + local
+layout(std430, binding = BC_GL_CLUSTER_STATE_BINDING) coherent buffer State { ClusterState state; };
+uniform int step;
+uniform uint rays;
+uniform uint wanted_clusters;
+uniform uint max_per_facet;
+uniform uint seed;
+
+vec3 position_of(uint r) { return point[2u * r].xyz; }
+vec3 direction_of(uint r) { return point[2u * r + 1u].xyz; }
+
+vec3 centre(int slot) {
+    return vec3(state.centres[3 * slot], state.centres[3 * slot + 1], state.centres[3 * slot + 2]);
+}
+
+void set_centre(int slot, vec3 c) {
+    state.centres[3 * slot] = c.x;
+    state.centres[3 * slot + 1] = c.y;
+    state.centres[3 * slot + 2] = c.z;
+}
+
+// The slot's sums as the kernel's ClusterSums.
+ClusterSums slot_sums(int slot) {
+    ClusterSums s = bc_cluster_sums_empty(state.position_scale);
+    int at = 6 * slot;
+    s.position_hi = ivec3(state.sum_hi[at], state.sum_hi[at + 1], state.sum_hi[at + 2]);
+    s.position_lo = uvec3(state.sum_lo[at], state.sum_lo[at + 1], state.sum_lo[at + 2]);
+    s.direction_hi = ivec3(state.sum_hi[at + 3], state.sum_hi[at + 4], state.sum_hi[at + 5]);
+    s.direction_lo = uvec3(state.sum_lo[at + 3], state.sum_lo[at + 4], state.sum_lo[at + 5]);
+    s.count = state.sum_count[slot];
+    s.unfit = state.sum_unfit[slot];
+    return s;
+}
+
+// Adds q to the 64-bit sum at `word`: the low word's atomic add returns what
+// was there, from which the carry is exact whatever ran before or after.
+void add_fixed(int word, int q) {
+    uint before = atomicAdd(state.sum_lo[word], uint(q));
+    int carry = ((before + uint(q)) < before ? 1 : 0) + (q < 0 ? -1 : 0);
+    if (carry != 0) atomicAdd(state.sum_hi[word], carry);
+}
+
+// Ray r's terms into its slot's sums (with the directions' for the final sums).
+void add_to_slot(uint r, int slot, bool with_directions) {
+    ivec3 p;
+    ivec3 d;
+    if (!bc_cluster_fixed_terms(position_of(r), direction_of(r), state.position_scale, p, d)) {
+        atomicAdd(state.sum_unfit[slot], 1u);
+        return;
+    }
+    int at = 6 * slot;
+    add_fixed(at, p.x);
+    add_fixed(at + 1, p.y);
+    add_fixed(at + 2, p.z);
+    if (with_directions) {
+        add_fixed(at + 3, d.x);
+        add_fixed(at + 4, d.y);
+        add_fixed(at + 5, d.z);
+    }
+    atomicAdd(state.sum_count[slot], 1u);
+}
+
+// The squared distance from ray r to the nearest of its facet's centres so far.
+float far_distance(uint r, int facet) {
+    vec3 p = position_of(r);
+    int base = facet * BC_CLUSTERS_PER_FACET_MAX;
+    float d = bc_distance2(p, centre(base));
+    for (int c = 1; c < state.facet_chosen[facet]; ++c) d = min(d, bc_distance2(p, centre(base + c)));
+    return d;
+}
+
+void clear_facet_sums(int facet) {
+    for (int slot = facet * BC_CLUSTERS_PER_FACET_MAX; slot < (facet + 1) * BC_CLUSTERS_PER_FACET_MAX; ++slot) {
+        for (int w = 6 * slot; w < 6 * slot + 6; ++w) {
+            state.sum_hi[w] = 0;
+            state.sum_lo[w] = 0u;
+        }
+        state.sum_count[slot] = 0u;
+        state.sum_unfit[slot] = 0u;
+    }
+}
+
+// The per-facet steps.
+void facet_step(int f) {
+    int base = f * BC_CLUSTERS_PER_FACET_MAX;
+    if (step == BC_CLUSTER_STEP_SETUP) {
+        if (f == 0) state.position_scale = bc_cluster_position_scale(uintBitsToFloat(state.largest_bits));
+        uint target = bc_cluster_target_size(rays, wanted_clusters);
+        state.facet_k[f] = int(bc_clusters_for_facet(state.facet_count[f], target, max_per_facet));
+        state.facet_chosen[f] = 0;
+        state.facet_flags[f] = 0u;
+        state.facet_iterations[f] = 0;
+        state.pick_key[f] = 0xffffffffu;
+        state.pick_ray[f] = 0xffffffffu;
+        clear_facet_sums(f);
+    } else if (step == BC_CLUSTER_STEP_PICK) {
+        int chosen = state.facet_chosen[f];
+        if (chosen < state.facet_k[f]) {
+            if (chosen > 0 && state.pick_key[f] == 0u) {
+                state.facet_k[f] = chosen;  // every ray on a centre: fewer clusters
+            } else {
+                set_centre(base + chosen, position_of(state.pick_ray[f]));
+                state.facet_chosen[f] = chosen + 1;
+            }
+        }
+        state.pick_key[f] = 0u;  // the farthest picks take the greatest distance
+        state.pick_ray[f] = 0xffffffffu;
+    } else if (step == BC_CLUSTER_STEP_UPDATE) {
+        if (state.facet_k[f] == 0 || (state.facet_flags[f] & BC_CLUSTER_SETTLED) != 0u) return;
+        state.facet_iterations[f] += 1;
+        if ((state.facet_flags[f] & BC_CLUSTER_CHANGED) == 0u) {
+            state.facet_flags[f] = BC_CLUSTER_SETTLED;
+        } else {
+            // An emptied cluster keeps its centre (it stays empty and is dropped).
+            for (int c = 0; c < state.facet_k[f]; ++c)
+                if (state.sum_count[base + c] > 0u) set_centre(base + c, bc_cluster_mean_position(slot_sums(base + c)));
+            state.facet_flags[f] = 0u;
+        }
+        clear_facet_sums(f);
+    }
+}
+
+void main() {
+    if (step == BC_CLUSTER_STEP_SETUP || step == BC_CLUSTER_STEP_PICK || step == BC_CLUSTER_STEP_UPDATE) {
+        if (gl_LocalInvocationID.x < uint(BC_CLUSTER_FACETS)) facet_step(int(gl_LocalInvocationID.x));
+        return;
+    }
+    uint r = dispatch_item();
+    if (r >= rays) return;
+    if (step == BC_CLUSTER_STEP_CLASSIFY) {
+        int f = bc_dodecahedron_facet(direction_of(r));
+        label[r] = uint(f) * 4u + BC_CLUSTER_NO_LOCAL;
+        atomicAdd(state.facet_count[f], 1u);
+        vec3 p = abs(position_of(r));
+        float largest = 0.0;
+        for (int a = 0; a < 3; ++a)
+            if (bc_finite(p[a])) largest = max(largest, p[a]);
+        atomicMax(state.largest_bits, floatBitsToUint(largest));
+        return;
+    }
+    int f = int(label[r] >> 2u);
+    if (state.facet_k[f] == 0) return;
+    bool picking = state.facet_chosen[f] < state.facet_k[f];
+    if (step == BC_CLUSTER_STEP_START_KEY) {
+        atomicMin(state.pick_key[f], bc_kmeans_start_key(seed, f, r));
+    } else if (step == BC_CLUSTER_STEP_START_RAY) {
+        if (bc_kmeans_start_key(seed, f, r) == state.pick_key[f]) atomicMin(state.pick_ray[f], r);
+    } else if (step == BC_CLUSTER_STEP_FAR_DISTANCE) {
+        // Non-negative floats order as their bits; NaN never passes d > 0.
+        if (!picking) return;
+        float d = far_distance(r, f);
+        if (d > 0.0) atomicMax(state.pick_key[f], floatBitsToUint(d));
+    } else if (step == BC_CLUSTER_STEP_FAR_RAY) {
+        if (picking && state.pick_key[f] != 0u && floatBitsToUint(far_distance(r, f)) == state.pick_key[f])
+            atomicMin(state.pick_ray[f], r);
+    } else if (step == BC_CLUSTER_STEP_ASSIGN) {
+        if ((state.facet_flags[f] & BC_CLUSTER_SETTLED) != 0u) return;
+        int base = f * BC_CLUSTERS_PER_FACET_MAX;
+        vec3 centres[BC_CLUSTERS_PER_FACET_MAX] =
+            vec3[BC_CLUSTERS_PER_FACET_MAX](centre(base), centre(base + 1), centre(base + 2));
+        uint c = uint(bc_kmeans_nearest(position_of(r), centres, state.facet_k[f]));
+        if (c != (label[r] & 3u)) atomicOr(state.facet_flags[f], BC_CLUSTER_CHANGED);
+        label[r] = uint(f) * 4u + c;
+        add_to_slot(r, base + int(c), false);
+    } else if (step == BC_CLUSTER_STEP_FINAL_SUMS) {
+        add_to_slot(r, f * BC_CLUSTERS_PER_FACET_MAX + int(label[r] & 3u), true);
+    }
+}
