@@ -439,6 +439,50 @@ TEST_CASE("dof-secondary: the GPU-resident bounce gives the host's hits on the s
     }
 }
 
+// 4b. The rays clustered in compute passes (GlClustering, what the
+//    bouncer does by default) against the host's clustering, the rest
+//    alike: the clustering is minima, maxima and exact sums, so on an
+//    IEEE-exact GL the same clusters (tests/test_frontend_gl_secondary_parity.cpp
+//    asserts it cluster by cluster), hence the same trace steps and image
+//    bit for bit; elsewhere within test 3's tolerance.
+TEST_CASE("dof-secondary: the rays clustered on the GPU give the host clustering's image") {
+    std::optional<blurcull::gl::HeadlessContext> context = context_or_skip();
+    if (!context) return;
+    const bool exact = !probe_arithmetic(*context).tolerant();
+    GlRenderer rasterizer;
+    const GlDofSecondary passes(rasterizer, *context);
+    const RenderSettings settings = quiet_settings(48, 36, 8);
+    for (const Scene& scene :
+         {mirror_sphere_scene(), plane_mirror_scene(0.1f), plane_mirror_scene(0.05f, {1.5f, 0.0f, 0.0f})}) {
+        CAPTURE(scene.name);
+        const PrimaryPass primary = passes.primary_pass(scene, {});
+        auto render_with = [&](GlDofSecondary::ClustersOn on, SecondaryStats& stats) {
+            const std::unique_ptr<ClusterBouncer> bouncer = passes.cluster_bouncer(GlLayerRaster::graphics, on);
+            return render_dof_secondary(scene, settings, small_options(), &stats, nullptr, &primary, nullptr,
+                                        bouncer.get());
+        };
+        SecondaryStats gpu_stats, host_stats;
+        const RenderResult gpu = render_with(GlDofSecondary::ClustersOn::gl, gpu_stats);
+        const RenderResult host = render_with(GlDofSecondary::ClustersOn::host, host_stats);
+        bool timed = false;
+        for (const auto& [key, ms] : gpu.stats.ms_per_phase) timed = timed || (key == "wall_bounce_gpu_clustering" && ms > 0.0);
+        CHECK(timed);
+        const ImageError e = compare(host.image, gpu.image);
+        MESSAGE(scene.name << ": " << gpu_stats.clusters << " clusters on the GPU, " << host_stats.clusters
+                           << " on the host; trace steps " << gpu_stats.trace_steps << " vs " << host_stats.trace_steps
+                           << "; image RMSE " << e.rmse << ", max " << e.max_abs);
+        CHECK(gpu_stats.rays == host_stats.rays);
+        CHECK(gpu_stats.clusters > 0);
+        if (exact) {
+            CHECK(gpu_stats.clusters == host_stats.clusters);
+            CHECK(gpu_stats.trace_steps == host_stats.trace_steps);
+            CHECK(e.max_abs == 0.0);
+        } else {
+            CHECK(e.rmse < 0.002);
+        }
+    }
+}
+
 // 5. The primary pass on the compute pipeline (GlOptions::pipeline compute,
 //    `--gl-pipeline compute`, what --backend auto picks on a hardware GPU),
 //    which also scans the layers in compute (GlLayerRaster::compute): the

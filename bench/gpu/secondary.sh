@@ -8,9 +8,11 @@
 # the JCST configuration (water, 800x600, 100 spp) beside the paper's 196 ms
 # on a GTX 285. Prints per render the whole time, the primary pass and the
 # resolve and bounce phases (host clock: wall time, GL work included), of the
-# bounce the host's own steps (clustering, views, shading), on hardware GL the
-# resident bounce's GPU time (gpu_bounce_layers + gpu_bounce_trace, timer
-# queries), and the PSNR against embree. The gl-compute variant scans the
+# bounce the host's own steps (clustering, views, shading; on the gl and
+# gl-compute variants the clustering is the GPU's compute passes, waited
+# for), on hardware GL the resident bounce's GPU time (gpu_bounce_layers +
+# gpu_bounce_trace + gpu_bounce_gpu_clustering, timer queries), and the PSNR
+# against embree. The gl-compute variant scans the
 # layers in compute as well (GlLayerRaster::compute), gl on the GL rasterizer. docs/secondary-rays.md, "What the gl backend runs".
 #
 # Build and pack here, then run from the bundle on the device:
@@ -40,7 +42,7 @@ say "gl: $renderer ($kind)"
 say "cpus: $(nproc); size $size, spp $spp, runs $runs, seed 1, sampler sobol"
 [ "$kind" = software ] && say "SOFTWARE GL (llvmpipe on the CPU): a smoke run, not GPU figures"
 
-echo "scene,variant,size,spp,run,ms_total,ms_primary,ms_resolve,ms_bounce,host_clustering,host_views,host_shading,gpu_bounce_layers,gpu_bounce_trace,psnr_db" >"$csv"
+echo "scene,variant,size,spp,run,ms_total,ms_primary,ms_resolve,ms_bounce,host_clustering,host_views,host_shading,gpu_bounce_layers,gpu_bounce_trace,gpu_bounce_clustering,psnr_db" >"$csv"
 failed=0
 # One render: scene variant size spp run args...; appends a csv line.
 render() {
@@ -66,7 +68,7 @@ gpu = lambda k: "%.2f" % p[k] if k in p else ""
 print(",".join([scene, variant, size, spp, run, "%.1f" % d["ms_total"], "%.1f" % primary,
                 "%.1f" % p.get("resolve", 0.0), "%.1f" % p.get("bounce", 0.0), gpu("wall_bounce_clustering"),
                 gpu("wall_bounce_views"), gpu("wall_bounce_shading"), gpu("gpu_bounce_layers"),
-                gpu("gpu_bounce_trace"), psnr]))
+                gpu("gpu_bounce_trace"), gpu("gpu_bounce_gpu_clustering"), psnr]))
 PY
 }
 # Every variant of one scene and size, embree first (the reference image).
@@ -88,7 +90,7 @@ summarize() {
 import csv, statistics, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
 keys = sorted({(r["scene"], r["size"], r["spp"]) for r in rows}, key=lambda k: (k[1], k[0]))
-print("scene size spp | variant: median ms total / primary / resolve / bounce (of it on the host: clustering + views + shading; GPU time of the resident bounce), PSNR against embree | bounce gl-readback / gl")
+print("scene size spp | variant: median ms total / primary / resolve / bounce (of it: clustering + views + shading, the clustering on the GPU for gl and gl-compute; GPU time of the resident bounce), PSNR against embree | bounce gl-readback / gl")
 for key in keys:
     line, bounce = [], {}
     for variant in ("embree", "gl", "gl-compute", "gl-readback"):
@@ -97,7 +99,8 @@ for key in keys:
             continue
         med = lambda f: statistics.median(float(r[f]) for r in rs)
         bounce[variant] = med("ms_bounce")
-        gpu = [float(r["gpu_bounce_layers"]) + float(r["gpu_bounce_trace"]) for r in rs if r["gpu_bounce_layers"]]
+        gpu = [float(r["gpu_bounce_layers"]) + float(r["gpu_bounce_trace"]) + float(r["gpu_bounce_clustering"] or 0)
+               for r in rs if r["gpu_bounce_layers"]]
         host = [sum(float(r[k]) for k in ("host_clustering", "host_views", "host_shading")) for r in rs
                 if r["host_clustering"]]
         psnr = rs[-1]["psnr_db"]

@@ -30,16 +30,19 @@ void add_counts(LayerStats& stats, const GlLayerCounts& counts) {
 // ClusterBouncer on the GL passes: the layers built and left on the GPU,
 // then clipped, traced and the surfaces picked there, cluster after cluster
 // with nothing waited for until finish() reads every hit back.
+// With `clustering` the rays are clustered there too (GlClustering).
 // Its phases: gpu_bounce_layers (the layers and pyramid) and
 // gpu_bounce_trace (clipping, traces and surfaces), on hardware GL only;
 // wall_bounce_layers and wall_bounce_trace (the host's time to issue them:
 // nothing waits), wall_bounce_readback (finish(): waits for all of the
-// batch's GPU work, then reads the hits and counts).
+// batch's GPU work, then reads the hits and counts); with the clustering,
+// gpu_ and wall_bounce_gpu_clustering (its passes, their upload and
+// read-back).
 class GlClusterBouncer final : public ClusterBouncer {
 public:
     GlClusterBouncer(const gl::HeadlessContext& context, const GlLayerBuilder& builder, const GlLayerTracer& tracer,
-                     GlLayerRaster raster)
-        : context_(&context), builder_(&builder), tracer_(&tracer), raster_(raster) {}
+                     GlLayerRaster raster, const GlClustering* clustering)
+        : context_(&context), builder_(&builder), tracer_(&tracer), raster_(raster), clustering_(clustering) {}
     GlClusterBouncer(const GlClusterBouncer&) = delete;
     GlClusterBouncer& operator=(const GlClusterBouncer&) = delete;
     // The timers' queries are deleted on the current context: this one's.
@@ -49,14 +52,22 @@ public:
         timers_.reset();
     }
 
+    std::optional<Clustering<float>> cluster(const std::vector<glm::vec3>& positions,
+                                             const std::vector<glm::vec3>& directions,
+                                             const ClusterOptions& options) override {
+        if (clustering_ == nullptr) return std::nullopt;
+        make_timers();
+        timers_->begin(clustering_phase);
+        Clustering<float> clusters = clustering_->cluster(positions, directions, options);
+        timers_->end(clustering_phase);
+        return clusters;
+    }
+
     void begin(const WorldTriangles& triangles, std::size_t max_rays) override {
-        context_->make_current();
+        make_timers();
         builder_->upload_triangles(triangles.vertices, triangles.normals);
         tracer_->begin_bounces(max_rays);
         queued_ = 0;
-        if (!timers_)
-            timers_.emplace(context_->gl(), std::vector<std::string>{"bounce_layers", "bounce_trace", "bounce_readback"},
-                            !context_->software(), false);  // no wait between the passes
     }
 
     void add_phases(RenderStats& stats) const override {
@@ -88,11 +99,22 @@ public:
     }
 
 private:
-    enum Phase : std::size_t { layers_phase, trace_phase, readback_phase };
+    enum Phase : std::size_t { layers_phase, trace_phase, readback_phase, clustering_phase };
+
+    // The context made current, and the timers made on it the first time.
+    void make_timers() {
+        context_->make_current();
+        if (timers_) return;
+        std::vector<std::string> names{"bounce_layers", "bounce_trace", "bounce_readback"};
+        if (clustering_ != nullptr) names.emplace_back("bounce_gpu_clustering");
+        timers_.emplace(context_->gl(), std::move(names), !context_->software(), false);  // no wait between the passes
+    }
+
     const gl::HeadlessContext* context_;
     const GlLayerBuilder* builder_;
     const GlLayerTracer* tracer_;
     GlLayerRaster raster_;
+    const GlClustering* clustering_;  // null: the host clusters
     std::size_t queued_ = 0;  // rays queued since begin()
     mutable std::optional<GlPhaseTimers> timers_;  // made by begin(), on the context; read by add_phases
 };
@@ -114,7 +136,8 @@ GlDofSecondary::GlDofSecondary(GlRenderer& rasterizer, const gl::HeadlessContext
     : rasterizer_(&rasterizer),
       trace_context_(&trace_context),
       tracer_(made_current(trace_context)),
-      builder_(trace_context) {}
+      builder_(trace_context),
+      clustering_(trace_context) {}
 
 PrimaryPass GlDofSecondary::primary_pass(const Scene& scene, const GlOptions& gl_options) const {
     return [this, &scene, gl_options](const RenderSettings& primary_settings, std::vector<std::uint32_t>& ids) {
@@ -141,8 +164,9 @@ LayerBuilder GlDofSecondary::layer_builder(GlLayerRaster raster) const {
     };
 }
 
-std::unique_ptr<ClusterBouncer> GlDofSecondary::cluster_bouncer(GlLayerRaster raster) const {
-    return std::make_unique<GlClusterBouncer>(*trace_context_, builder_, tracer_, raster);
+std::unique_ptr<ClusterBouncer> GlDofSecondary::cluster_bouncer(GlLayerRaster raster, ClustersOn clusters_on) const {
+    return std::make_unique<GlClusterBouncer>(*trace_context_, builder_, tracer_, raster,
+                                              clusters_on == ClustersOn::gl ? &clustering_ : nullptr);
 }
 
 RenderResult GlDofSecondary::render(const Scene& scene, const RenderSettings& settings, const GlOptions& gl_options,

@@ -4,14 +4,16 @@
 // the compute pipeline), the groups' interval
 // clipping, the image-space traces and the hits' surfaces in compute passes
 // (GlLayerTracer::bounce) on the layers where they were built: only each
-// ray's surface comes back. Handed to render_dof_secondary (clustering,
-// views and shading on the host). `blurcull render --backend gl` and
+// ray's surface comes back. The rays are clustered in compute passes too
+// (GlClustering, the host's clusters exactly). Handed to
+// render_dof_secondary (views and shading on the host). `blurcull render --backend gl` and
 // `blurcull view` both render through it (docs/secondary-rays.md, "What the
 // gl backend runs").
 #pragma once
 
 #include "render/common/render_types.hpp"
 #include "render/gl/gl_backend.hpp"
+#include "render/gl/gl_clustering.hpp"
 #include "render/gl/gl_context.hpp"
 #include "render/gl/gl_layer_images.hpp"
 #include "render/gl/gl_layer_trace.hpp"
@@ -51,13 +53,18 @@ public:
     PrimaryPass primary_pass(const Scene& scene, const GlOptions& gl_options) const;
     LayerTracer layer_tracer() const;
     LayerBuilder layer_builder(GlLayerRaster raster = GlLayerRaster::graphics) const;
-    std::unique_ptr<ClusterBouncer> cluster_bouncer(GlLayerRaster raster = GlLayerRaster::graphics) const;
+    // The bouncer clusters the rays in compute passes too (GlClustering)
+    // unless `clusters_on` says host.
+    enum class ClustersOn { gl, host };
+    std::unique_ptr<ClusterBouncer> cluster_bouncer(GlLayerRaster raster = GlLayerRaster::graphics,
+                                                    ClustersOn clusters_on = ClustersOn::gl) const;
 
 private:
     GlRenderer* rasterizer_;
     const gl::HeadlessContext* trace_context_;
     GlLayerTracer tracer_;
     GlLayerBuilder builder_;
+    GlClustering clustering_;
 };
 
 }  // namespace blurcull::frontend

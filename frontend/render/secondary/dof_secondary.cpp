@@ -17,6 +17,7 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -366,8 +367,11 @@ std::vector<glm::vec3> bounce_all(const BounceContext& c, int threads, Secondary
     auto parallel_for = [threads](std::size_t count, const auto& body) {
         run_parallel_ranges(threads, count, 1, [&](std::size_t i, std::size_t) { body(i); });
     };
+    std::optional<Clustering<float>> resident_clustering;
+    if (c.bouncer != nullptr) resident_clustering = c.bouncer->cluster(positions, directions, cluster_options);
     const Clustering<float> clustering =
-        cluster_reflector_pixels<float>(positions, directions, cluster_options, parallel_for);
+        resident_clustering ? std::move(*resident_clustering)
+                            : cluster_reflector_pixels<float>(positions, directions, cluster_options, parallel_for);
     stats.clustering_ms += ms_since(clustering_start);
     const int clusters = static_cast<int>(clustering.clusters.size());
     stats.clusters += clusters;

@@ -14,9 +14,12 @@
 #include "render/secondary/secondary_options.hpp"
 #include "scene/scene.hpp"
 
+#include <blurcull/secondary_clusters.hpp>
+
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <vector>
 
 namespace blurcull::frontend {
@@ -85,6 +88,14 @@ struct ClusterRays {
 class ClusterBouncer {
 public:
     virtual ~ClusterBouncer() = default;
+    // The batch's rays clustered there: cluster_reflector_pixels's result
+    // (the GL build's compute passes give it bit for bit); nullopt: the host
+    // clusters them. Called before begin().
+    virtual std::optional<Clustering<float>> cluster(const std::vector<glm::vec3>& /*positions*/,
+                                                     const std::vector<glm::vec3>& /*directions*/,
+                                                     const ClusterOptions& /*options*/) {
+        return std::nullopt;
+    }
     virtual void begin(const WorldTriangles& triangles, std::size_t max_rays) = 0;
     virtual void queue(const WorldTriangles& triangles, const kernelf::LayerView& view, int layers, float thickness,
                        const ClusterCulls& culls, const ClusterRays& rays) = 0;
