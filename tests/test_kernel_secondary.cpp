@@ -227,6 +227,15 @@ TEST_CASE_TEMPLATE("cluster sums are exact: any split merged in any order gives 
     CHECK(merged.direction_hi == loop.direction_hi);
     CHECK(merged.direction_lo == loop.direction_lo);
     CHECK(merged.count == loop.count);
+    // The host driver's 64-bit integer adds of the same terms: the same words.
+    detail::FixedSums<Real> wide;
+    for (std::size_t i = 0; i < p.size(); ++i) wide.add(p[i], d[i], scale);
+    const typename K::ClusterSums from_wide = wide.sums(scale);
+    CHECK(from_wide.position_hi == loop.position_hi);
+    CHECK(from_wide.position_lo == loop.position_lo);
+    CHECK(from_wide.direction_hi == loop.direction_hi);
+    CHECK(from_wide.direction_lo == loop.direction_lo);
+    CHECK(from_wide.count == loop.count);
     // The mean and direction sum: those of the points to within the fixed
     // point's step (2^-30 of the largest |coordinate|) and one rounding.
     long double sum[3] = {0, 0, 0}, dsum[3] = {0, 0, 0}, largest = 0;

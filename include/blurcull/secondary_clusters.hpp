@@ -152,28 +152,68 @@ int first_centres(const std::vector<typename kernel<Real>::vec3>& positions, con
     return chosen;
 }
 
+// A cluster's exact sums in 64-bit integers: the kernel's fixed-point
+// terms (cluster_fixed_terms) added as the kernel's two 32-bit words would
+// add them (integer sums are the same in any grouping), in one machine add
+// each; sums() gives the kernel's ClusterSums.
+template <class Real>
+struct FixedSums {
+    using K = kernel<Real>;
+    std::array<std::int64_t, 6> total{};  // position xyz, direction xyz
+    std::uint32_t count = 0, unfit = 0;
+
+    void add(const typename K::vec3& position, const typename K::vec3& direction, Real scale) {
+        glm::ivec3 p(0), d(0);
+        if (!K::cluster_fixed_terms(position, direction, scale, p, d)) {
+            ++unfit;
+            return;
+        }
+        for (int a = 0; a < 3; ++a) {
+            total[static_cast<std::size_t>(a)] += p[a];
+            total[static_cast<std::size_t>(3 + a)] += d[a];
+        }
+        ++count;
+    }
+    void merge(const FixedSums& other) {
+        for (std::size_t w = 0; w < total.size(); ++w) total[w] += other.total[w];
+        count += other.count;
+        unfit += other.unfit;
+    }
+    typename K::ClusterSums sums(Real scale) const {
+        typename K::ClusterSums s = K::cluster_sums_empty(scale);
+        for (int a = 0; a < 3; ++a) {
+            const auto position = static_cast<std::uint64_t>(total[static_cast<std::size_t>(a)]);
+            const auto direction = static_cast<std::uint64_t>(total[static_cast<std::size_t>(3 + a)]);
+            s.position_hi[a] = static_cast<std::int32_t>(static_cast<std::uint32_t>(position >> 32));
+            s.position_lo[a] = static_cast<std::uint32_t>(position);
+            s.direction_hi[a] = static_cast<std::int32_t>(static_cast<std::uint32_t>(direction >> 32));
+            s.direction_lo[a] = static_cast<std::uint32_t>(direction);
+        }
+        s.count = count;
+        s.unfit = unfit;
+        return s;
+    }
+};
+
 // The exact sums of each local cluster of one facet's members (member i in
 // local[i]), by chunks merged (any order gives the same bits).
 template <class Real, class ParallelFor>
 std::array<typename kernel<Real>::ClusterSums, BC_CLUSTERS_PER_FACET_MAX> local_sums(
     const std::vector<typename kernel<Real>::vec3>& positions, const std::vector<typename kernel<Real>::vec3>& directions,
     const std::vector<std::size_t>& members, const std::vector<int>& local, Real scale, const ParallelFor& parallel_for) {
-    using K = kernel<Real>;
-    using Sums = std::array<typename K::ClusterSums, BC_CLUSTERS_PER_FACET_MAX>;
-    Sums empty;
-    empty.fill(K::cluster_sums_empty(scale));
-    std::vector<Sums> chunk_sums(chunk_count(members.size()), empty);
+    using Sums = std::array<FixedSums<Real>, BC_CLUSTERS_PER_FACET_MAX>;
+    std::vector<Sums> chunk_sums(chunk_count(members.size()));
     for_chunks(parallel_for, members.size(), [&](std::size_t first, std::size_t last) {
         Sums& sums = chunk_sums[first / cluster_chunk];
-        for (std::size_t i = first; i < last; ++i) {
-            auto& s = sums[static_cast<std::size_t>(local[i])];
-            s = K::cluster_sums_add(s, positions[members[i]], directions[members[i]]);
-        }
+        for (std::size_t i = first; i < last; ++i)
+            sums[static_cast<std::size_t>(local[i])].add(positions[members[i]], directions[members[i]], scale);
     });
-    Sums sums = empty;
+    Sums sums;
     for (const Sums& chunk : chunk_sums)
-        for (std::size_t c = 0; c < sums.size(); ++c) sums[c] = K::cluster_sums_merge(sums[c], chunk[c]);
-    return sums;
+        for (std::size_t c = 0; c < sums.size(); ++c) sums[c].merge(chunk[c]);
+    std::array<typename kernel<Real>::ClusterSums, BC_CLUSTERS_PER_FACET_MAX> out;
+    for (std::size_t c = 0; c < sums.size(); ++c) out[c] = sums[c].sums(scale);
+    return out;
 }
 
 // Lloyd's k-means on one facet's members; returns the iterations run and

@@ -6,8 +6,9 @@
 // choice is a minimum or maximum and every sum exact (64-bit fixed point,
 // added with atomics on its two words), so the order the invocations run
 // in changes nothing: the host's clusters, bit for bit, where the GPU
-// rounds as the host does. Per-ray steps run one invocation per ray, the
-// per-facet steps one work group.
+// rounds as the host does. Per-ray steps run one invocation per ray (the
+// assignment and the sums a run of BC_CLUSTER_RUN rays each), the per-facet
+// steps one work group.
 layout(local_size_x = BC_TRACE_GROUP) in;
 layout(std430, binding = BC_GL_CLUSTER_POINTS_BINDING) readonly buffer Points { vec4 point[]; };  // position, direction
 layout(std430, binding = BC_GL_CLUSTER_LABELS_BINDING) buffer Labels { uint label[]; };          // facet * 4 + local
@@ -44,32 +45,33 @@ ClusterSums slot_sums(int slot) {
     return s;
 }
 
-// Adds q to the 64-bit sum at `word`: the low word's atomic add returns what
-// was there, from which the carry is exact whatever ran before or after.
-void add_fixed(int word, int q) {
-    uint before = atomicAdd(state.sum_lo[word], uint(q));
-    int carry = ((before + uint(q)) < before ? 1 : 0) + (q < 0 ? -1 : 0);
-    if (carry != 0) atomicAdd(state.sum_hi[word], carry);
+// Adds the 64-bit value (hi, lo) to the sum at `word`: the low word's
+// atomic add returns what was there, from which the carry is exact
+// whatever ran before or after.
+void add_fixed(int word, int hi, uint lo) {
+    uint before = atomicAdd(state.sum_lo[word], lo);
+    int high = hi + ((before + lo) < before ? 1 : 0);
+    if (high != 0) atomicAdd(state.sum_hi[word], high);
 }
 
-// Ray r's terms into its slot's sums (with the directions' for the final sums).
-void add_to_slot(uint r, int slot, bool with_directions) {
-    ivec3 p;
-    ivec3 d;
-    if (!bc_cluster_fixed_terms(position_of(r), direction_of(r), state.position_scale, p, d)) {
-        atomicAdd(state.sum_unfit[slot], 1u);
-        return;
-    }
+// Sums taken in an invocation's registers (the kernel's exact
+// cluster_sums_add) into the slot's: positions, count, unfit, and with
+// `with_directions` the directions.
+void flush_sums(int slot, ClusterSums s, bool with_directions) {
+    if (slot < 0 || s.count + s.unfit == 0u) return;
     int at = 6 * slot;
-    add_fixed(at, p.x);
-    add_fixed(at + 1, p.y);
-    add_fixed(at + 2, p.z);
-    if (with_directions) {
-        add_fixed(at + 3, d.x);
-        add_fixed(at + 4, d.y);
-        add_fixed(at + 5, d.z);
+    if (s.count > 0u) {
+        add_fixed(at, s.position_hi.x, s.position_lo.x);
+        add_fixed(at + 1, s.position_hi.y, s.position_lo.y);
+        add_fixed(at + 2, s.position_hi.z, s.position_lo.z);
+        if (with_directions) {
+            add_fixed(at + 3, s.direction_hi.x, s.direction_lo.x);
+            add_fixed(at + 4, s.direction_hi.y, s.direction_lo.y);
+            add_fixed(at + 5, s.direction_hi.z, s.direction_lo.z);
+        }
+        atomicAdd(state.sum_count[slot], s.count);
     }
-    atomicAdd(state.sum_count[slot], 1u);
+    if (s.unfit > 0u) atomicAdd(state.sum_unfit[slot], s.unfit);
 }
 
 // The squared distance from ray r to the nearest of its facet's centres so far.
@@ -132,7 +134,44 @@ void facet_step(int f) {
     }
 }
 
+// Lloyd's assignment (`assign`) or the final sums over the invocation's run
+// of BC_CLUSTER_RUN consecutive rays: neighbouring rays mostly share a
+// cluster, so each run's sums go to the slots in a few atomics, not one per
+// ray and word.
+void sum_run(uint first, bool assign) {
+    int slot = -1;
+    ClusterSums run = bc_cluster_sums_empty(state.position_scale);
+    for (uint r = first; r < min(first + uint(BC_CLUSTER_RUN), rays); ++r) {
+        int f = int(label[r] >> 2u);
+        if (state.facet_k[f] == 0) continue;
+        uint c = label[r] & 3u;
+        if (assign) {
+            if ((state.facet_flags[f] & BC_CLUSTER_SETTLED) != 0u) continue;
+            int base = f * BC_CLUSTERS_PER_FACET_MAX;
+            vec3 centres[BC_CLUSTERS_PER_FACET_MAX] =
+                vec3[BC_CLUSTERS_PER_FACET_MAX](centre(base), centre(base + 1), centre(base + 2));
+            uint nearest = uint(bc_kmeans_nearest(position_of(r), centres, state.facet_k[f]));
+            if (nearest != c) atomicOr(state.facet_flags[f], BC_CLUSTER_CHANGED);
+            label[r] = uint(f) * 4u + nearest;
+            c = nearest;
+        }
+        int ray_slot = f * BC_CLUSTERS_PER_FACET_MAX + int(c);
+        if (ray_slot != slot) {
+            flush_sums(slot, run, !assign);
+            run = bc_cluster_sums_empty(state.position_scale);
+            slot = ray_slot;
+        }
+        run = bc_cluster_sums_add(run, position_of(r), direction_of(r));
+    }
+    flush_sums(slot, run, !assign);
+}
+
 void main() {
+    if (step == BC_CLUSTER_STEP_ASSIGN || step == BC_CLUSTER_STEP_FINAL_SUMS) {
+        uint run = dispatch_item();
+        if (run * uint(BC_CLUSTER_RUN) < rays) sum_run(run * uint(BC_CLUSTER_RUN), step == BC_CLUSTER_STEP_ASSIGN);
+        return;
+    }
     if (step == BC_CLUSTER_STEP_SETUP || step == BC_CLUSTER_STEP_PICK || step == BC_CLUSTER_STEP_UPDATE) {
         if (gl_LocalInvocationID.x < uint(BC_CLUSTER_FACETS)) facet_step(int(gl_LocalInvocationID.x));
         return;
@@ -165,16 +204,5 @@ void main() {
     } else if (step == BC_CLUSTER_STEP_FAR_RAY) {
         if (picking && state.pick_key[f] != 0u && floatBitsToUint(far_distance(r, f)) == state.pick_key[f])
             atomicMin(state.pick_ray[f], r);
-    } else if (step == BC_CLUSTER_STEP_ASSIGN) {
-        if ((state.facet_flags[f] & BC_CLUSTER_SETTLED) != 0u) return;
-        int base = f * BC_CLUSTERS_PER_FACET_MAX;
-        vec3 centres[BC_CLUSTERS_PER_FACET_MAX] =
-            vec3[BC_CLUSTERS_PER_FACET_MAX](centre(base), centre(base + 1), centre(base + 2));
-        uint c = uint(bc_kmeans_nearest(position_of(r), centres, state.facet_k[f]));
-        if (c != (label[r] & 3u)) atomicOr(state.facet_flags[f], BC_CLUSTER_CHANGED);
-        label[r] = uint(f) * 4u + c;
-        add_to_slot(r, base + int(c), false);
-    } else if (step == BC_CLUSTER_STEP_FINAL_SUMS) {
-        add_to_slot(r, f * BC_CLUSTERS_PER_FACET_MAX + int(label[r] & 3u), true);
     }
 }
