@@ -173,11 +173,15 @@ RenderResult GlDofSecondary::render(const Scene& scene, const RenderSettings& se
                                     const SecondaryOptions& options, SecondaryStats* stats,
                                     LayerImagesOn layers_on) const {
     const PrimaryPass primary = primary_pass(scene, gl_options);
-    // The layers scanned as the primary samples are: in compute with the compute pipeline.
-    const GlLayerRaster raster =
-        gl_options.pipeline == GlPipeline::compute ? GlLayerRaster::compute : GlLayerRaster::graphics;
+    // The layers scanned as the primary samples are, and the rays clustered:
+    // in compute with the compute pipeline (what --backend auto picks on a
+    // GPU); with the fragment pipeline by the GL rasterizer and on the host
+    // (on llvmpipe both are the faster: its compute passes run on the CPU).
+    const bool compute = gl_options.pipeline == GlPipeline::compute;
+    const GlLayerRaster raster = compute ? GlLayerRaster::compute : GlLayerRaster::graphics;
     if (layers_on == LayerImagesOn::gl) {
-        const std::unique_ptr<ClusterBouncer> bouncer = cluster_bouncer(raster);
+        const std::unique_ptr<ClusterBouncer> bouncer =
+            cluster_bouncer(raster, compute ? ClustersOn::gl : ClustersOn::host);
         return render_dof_secondary(scene, settings, options, stats, nullptr, &primary, nullptr, bouncer.get());
     }
     const LayerTracer tracer = layer_tracer();

@@ -4,9 +4,9 @@
 // the compute pipeline), the groups' interval
 // clipping, the image-space traces and the hits' surfaces in compute passes
 // (GlLayerTracer::bounce) on the layers where they were built: only each
-// ray's surface comes back. The rays are clustered in compute passes too
-// (GlClustering, the host's clusters exactly). Handed to
-// render_dof_secondary (views and shading on the host). `blurcull render --backend gl` and
+// ray's surface comes back. With the compute pipeline the rays are
+// clustered in compute passes too (GlClustering, the host's clusters
+// exactly). Handed to render_dof_secondary (views and shading on the host). `blurcull render --backend gl` and
 // `blurcull view` both render through it (docs/secondary-rays.md, "What the
 // gl backend runs").
 #pragma once
@@ -54,7 +54,8 @@ public:
     LayerTracer layer_tracer() const;
     LayerBuilder layer_builder(GlLayerRaster raster = GlLayerRaster::graphics) const;
     // The bouncer clusters the rays in compute passes too (GlClustering)
-    // unless `clusters_on` says host.
+    // unless `clusters_on` says host. render() clusters in compute with the
+    // compute pipeline, on the host with the fragment pipeline.
     enum class ClustersOn { gl, host };
     std::unique_ptr<ClusterBouncer> cluster_bouncer(GlLayerRaster raster = GlLayerRaster::graphics,
                                                     ClustersOn clusters_on = ClustersOn::gl) const;

@@ -36,8 +36,8 @@ using uint = std::uint32_t;
 #define BC_CLUSTER_SLOTS 36
 // Each slot's sums: 6 words of each kind (position xyz, direction xyz).
 #define BC_CLUSTER_SUM_WORDS 216
-// Rays per invocation of the assign and final-sums steps (summed in its
-// registers, then added to the slots).
+// Rays per invocation of the per-ray steps (the sums taken in its registers,
+// then added to the slots).
 #define BC_CLUSTER_RUN 16
 // A ray's label before its first assignment: local cluster 3 (none).
 #define BC_CLUSTER_NO_LOCAL 3u

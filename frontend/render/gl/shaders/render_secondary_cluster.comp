@@ -6,9 +6,8 @@
 // choice is a minimum or maximum and every sum exact (64-bit fixed point,
 // added with atomics on its two words), so the order the invocations run
 // in changes nothing: the host's clusters, bit for bit, where the GPU
-// rounds as the host does. Per-ray steps run one invocation per ray (the
-// assignment and the sums a run of BC_CLUSTER_RUN rays each), the per-facet
-// steps one work group.
+// rounds as the host does. The per-ray steps run a run of BC_CLUSTER_RUN
+// consecutive rays an invocation, the per-facet steps one work group.
 layout(local_size_x = BC_TRACE_GROUP) in;
 layout(std430, binding = BC_GL_CLUSTER_POINTS_BINDING) readonly buffer Points { vec4 point[]; };  // position, direction
 layout(std430, binding = BC_GL_CLUSTER_LABELS_BINDING) buffer Labels { uint label[]; };          // facet * 4 + local
@@ -166,18 +165,10 @@ void sum_run(uint first, bool assign) {
     flush_sums(slot, run, !assign);
 }
 
-void main() {
-    if (step == BC_CLUSTER_STEP_ASSIGN || step == BC_CLUSTER_STEP_FINAL_SUMS) {
-        uint run = dispatch_item();
-        if (run * uint(BC_CLUSTER_RUN) < rays) sum_run(run * uint(BC_CLUSTER_RUN), step == BC_CLUSTER_STEP_ASSIGN);
-        return;
-    }
-    if (step == BC_CLUSTER_STEP_SETUP || step == BC_CLUSTER_STEP_PICK || step == BC_CLUSTER_STEP_UPDATE) {
-        if (gl_LocalInvocationID.x < uint(BC_CLUSTER_FACETS)) facet_step(int(gl_LocalInvocationID.x));
-        return;
-    }
-    uint r = dispatch_item();
-    if (r >= rays) return;
+// The per-ray steps but the sums, for ray r. An atomic minimum or maximum
+// is skipped when the value cannot win (most rays, once one has stored a
+// near-final value): fewer atomics on the 12 facets' words.
+void ray_step(uint r) {
     if (step == BC_CLUSTER_STEP_CLASSIFY) {
         int f = bc_dodecahedron_facet(direction_of(r));
         label[r] = uint(f) * 4u + BC_CLUSTER_NO_LOCAL;
@@ -186,23 +177,38 @@ void main() {
         float largest = 0.0;
         for (int a = 0; a < 3; ++a)
             if (bc_finite(p[a])) largest = max(largest, p[a]);
-        atomicMax(state.largest_bits, floatBitsToUint(largest));
+        if (floatBitsToUint(largest) > state.largest_bits) atomicMax(state.largest_bits, floatBitsToUint(largest));
         return;
     }
     int f = int(label[r] >> 2u);
     if (state.facet_k[f] == 0) return;
     bool picking = state.facet_chosen[f] < state.facet_k[f];
     if (step == BC_CLUSTER_STEP_START_KEY) {
-        atomicMin(state.pick_key[f], bc_kmeans_start_key(seed, f, r));
+        uint key = bc_kmeans_start_key(seed, f, r);
+        if (key < state.pick_key[f]) atomicMin(state.pick_key[f], key);
     } else if (step == BC_CLUSTER_STEP_START_RAY) {
         if (bc_kmeans_start_key(seed, f, r) == state.pick_key[f]) atomicMin(state.pick_ray[f], r);
     } else if (step == BC_CLUSTER_STEP_FAR_DISTANCE) {
         // Non-negative floats order as their bits; NaN never passes d > 0.
         if (!picking) return;
         float d = far_distance(r, f);
-        if (d > 0.0) atomicMax(state.pick_key[f], floatBitsToUint(d));
+        if (d > 0.0 && floatBitsToUint(d) > state.pick_key[f]) atomicMax(state.pick_key[f], floatBitsToUint(d));
     } else if (step == BC_CLUSTER_STEP_FAR_RAY) {
         if (picking && state.pick_key[f] != 0u && floatBitsToUint(far_distance(r, f)) == state.pick_key[f])
             atomicMin(state.pick_ray[f], r);
     }
+}
+
+void main() {
+    if (step == BC_CLUSTER_STEP_SETUP || step == BC_CLUSTER_STEP_PICK || step == BC_CLUSTER_STEP_UPDATE) {
+        if (gl_LocalInvocationID.x < uint(BC_CLUSTER_FACETS)) facet_step(int(gl_LocalInvocationID.x));
+        return;
+    }
+    uint first = dispatch_item() * uint(BC_CLUSTER_RUN);
+    if (first >= rays) return;
+    if (step == BC_CLUSTER_STEP_ASSIGN || step == BC_CLUSTER_STEP_FINAL_SUMS) {
+        sum_run(first, step == BC_CLUSTER_STEP_ASSIGN);
+        return;
+    }
+    for (uint r = first; r < min(first + uint(BC_CLUSTER_RUN), rays); ++r) ray_step(r);
 }
