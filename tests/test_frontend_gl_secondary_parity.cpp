@@ -307,6 +307,16 @@ namespace {
 
 // Whether two clusterings are one: every ray's cluster, each cluster's
 // facet and sums word for word, the iterations and unsettled facets.
+// Whether two views are one, bit for bit.
+bool same_view(const Kf::VirtualView& a, const Kf::VirtualView& b) {
+    auto bits3 = [](const Kf::vec3& x, const Kf::vec3& y) {
+        return bits_of(x.x) == bits_of(y.x) && bits_of(x.y) == bits_of(y.y) && bits_of(x.z) == bits_of(y.z);
+    };
+    return bits3(a.eye, b.eye) && bits3(a.forward, b.forward) && bits3(a.right, b.right) && bits3(a.up, b.up) &&
+           bits_of(a.tan_half_fov) == bits_of(b.tan_half_fov) && bits_of(a.near) == bits_of(b.near) &&
+           bits_of(a.backoff) == bits_of(b.backoff) && a.flags == b.flags;
+}
+
 void check_same_clustering(const Clustering<float>& host, const Clustering<float>& gpu) {
     CHECK(gpu.iterations == host.iterations);
     CHECK(gpu.unsettled_facets == host.unsettled_facets);
@@ -335,7 +345,30 @@ void check_same_clustering(const Clustering<float>& host, const Clustering<float
 TEST_CASE("the GPU clustering passes give the host's clusters, sums bit for bit") {
     auto context = context_or_skip();
     if (!context) return;
-    const frontend::GlClustering gpu(*context);
+    const frontend::GlClustering gpu_passes(*context);
+    // The GPU's clustering and views against the host's, both asserted equal.
+    struct {
+        const frontend::GlClustering& passes;
+        Clustering<float> cluster(const std::vector<Kf::vec3>& p, const std::vector<Kf::vec3>& d,
+                                  const ClusterOptions& options) const {
+            const float tan_half = 0.8391f, min_near = 0.01f;
+            ClusterViews<float> views;
+            Clustering<float> clusters = passes.cluster(p, d, options, tan_half, min_near, &views);
+            const ClusterViews<float> host = fit_cluster_views<float>(clusters, p, d, tan_half, min_near);
+            REQUIRE(views.along_mean.size() == clusters.clusters.size());
+            REQUIRE(views.along_normal.size() == clusters.clusters.size());
+            long differ = 0, outside = 0;
+            for (std::size_t c = 0; c < clusters.clusters.size(); ++c) {
+                differ += !same_view(views.along_mean[c], host.along_mean[c]);
+                differ += !same_view(views.along_normal[c], host.along_normal[c]);
+                outside += (host.along_mean[c].flags & BC_VIEW_DIRECTION_OUTSIDE) != 0;
+            }
+            MESSAGE((2 * clusters.clusters.size()) << " views (" << outside << " with a direction outside along the mean): "
+                                                 << differ << " differ");
+            CHECK(differ == 0);
+            return clusters;
+        }
+    } gpu{gpu_passes};
     SUBCASE("one point repeated: fewer centres than asked") {
         std::vector<Kf::vec3> p(600, Kf::vec3(1.0f, 2.0f, 3.0f)), d(600, Kf::vec3(0.0f, 0.0f, 1.0f));
         ClusterOptions options;

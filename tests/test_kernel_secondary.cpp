@@ -775,4 +775,36 @@ TEST_CASE_TEMPLATE("clustering: the same clusters whatever order parallel_for ru
         CHECK(a.direction_hi == b.direction_hi);
         CHECK(a.direction_lo == b.direction_lo);
     }
+    // The views of all clusters in one pass, its chunks in either order:
+    // fit_virtual_view's over each cluster's pixels in order, along the mean
+    // and along the facet's normal, bit for bit.
+    const Real tan_half = Real(0.8391), min_near = Real(0.01);
+    const ClusterViews<Real> views = fit_cluster_views<Real>(serial, positions, directions, tan_half, min_near);
+    const ClusterViews<Real> views_reordered =
+        fit_cluster_views<Real>(serial, positions, directions, tan_half, min_near, last_first);
+    REQUIRE(views.along_mean.size() == serial.clusters.size());
+    REQUIRE(views.along_normal.size() == serial.clusters.size());
+    auto same = [](const typename K::VirtualView& x, const typename K::VirtualView& y) {
+        return x.eye == y.eye && x.forward == y.forward && x.right == y.right && x.up == y.up &&
+               x.tan_half_fov == y.tan_half_fov && x.near == y.near && x.backoff == y.backoff && x.flags == y.flags;
+    };
+    int outside = 0;
+    for (std::size_t c = 0; c < serial.clusters.size(); ++c) {
+        std::vector<V> p, d;
+        for (std::size_t i = 0; i < positions.size(); ++i)
+            if (serial.cluster_of[i] == static_cast<int>(c)) {
+                p.push_back(positions[i]);
+                d.push_back(directions[i]);
+            }
+        const auto& sums = serial.clusters[c].sums;
+        CHECK(same(views.along_mean[c], fit_virtual_view<Real>(sums, p, d, tan_half, min_near)));
+        typename K::VirtualViewFit f = K::virtual_view_begin_along(
+            sums, K::dodecahedron_normal(serial.clusters[c].facet), tan_half, min_near);
+        for (std::size_t i = 0; i < p.size(); ++i) f = K::virtual_view_add(f, p[i], d[i]);
+        CHECK(same(views.along_normal[c], K::virtual_view_finish(f)));
+        CHECK(same(views_reordered.along_mean[c], views.along_mean[c]));
+        CHECK(same(views_reordered.along_normal[c], views.along_normal[c]));
+        outside += (views.along_mean[c].flags & BC_VIEW_DIRECTION_OUTSIDE) != 0;
+    }
+    MESSAGE(serial.clusters.size() << " clusters' views, " << outside << " with a direction outside along the mean");
 }

@@ -30,7 +30,8 @@ void add_counts(LayerStats& stats, const GlLayerCounts& counts) {
 // ClusterBouncer on the GL passes: the layers built and left on the GPU,
 // then clipped, traced and the surfaces picked there, cluster after cluster
 // with nothing waited for until finish() reads every hit back.
-// With `clustering` the rays are clustered there too (GlClustering).
+// With `clustering` the rays are clustered there too, and the clusters'
+// views fitted (GlClustering).
 // Its phases: gpu_bounce_layers (the layers and pyramid) and
 // gpu_bounce_trace (clipping, traces and surfaces), on hardware GL only;
 // wall_bounce_layers and wall_bounce_trace (the host's time to issue them:
@@ -53,12 +54,12 @@ public:
     }
 
     std::optional<Clustering<float>> cluster(const std::vector<glm::vec3>& positions,
-                                             const std::vector<glm::vec3>& directions,
-                                             const ClusterOptions& options) override {
+                                             const std::vector<glm::vec3>& directions, const ClusterOptions& options,
+                                             float tan_half_fov, float min_near, ClusterViews<float>& views) override {
         if (clustering_ == nullptr) return std::nullopt;
         make_timers();
         timers_->begin(clustering_phase);
-        Clustering<float> clusters = clustering_->cluster(positions, directions, options);
+        Clustering<float> clusters = clustering_->cluster(positions, directions, options, tan_half_fov, min_near, &views);
         timers_->end(clustering_phase);
         return clusters;
     }

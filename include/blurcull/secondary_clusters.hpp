@@ -337,4 +337,72 @@ typename kernel<Real>::VirtualView fit_virtual_view(const typename kernel<Real>:
     return K::virtual_view_finish(fit);
 }
 
+// Each cluster's two virtual views, as the dof-secondary renderer fits
+// them: along the cluster's mean direction (virtual_view_begin), and along
+// its facet's normal (virtual_view_begin_along with dodecahedron_normal),
+// which holds every direction of the facet from 74.76 degrees and is the
+// view to take when the first has BC_VIEW_DIRECTION_OUTSIDE.
+template <class Real>
+struct ClusterViews {
+    std::vector<typename kernel<Real>::VirtualView> along_mean, along_normal;
+};
+
+namespace detail {
+
+// Two partial folds of virtual_view_add from one begun fit, as one: each
+// field the fold changes is a maximum, a minimum or an or.
+template <class Real>
+typename kernel<Real>::VirtualViewFit merge_fits(typename kernel<Real>::VirtualViewFit a,
+                                                 const typename kernel<Real>::VirtualViewFit& b) {
+    a.backoff = std::max(a.backoff, b.backoff);
+    a.depth_min = std::min(a.depth_min, b.depth_min);
+    a.magnitude = std::max(a.magnitude, b.magnitude);
+    a.flags |= b.flags;
+    return a;
+}
+
+}  // namespace detail
+
+// ClusterViews of `clustering` over the pixels it was made of, in one pass
+// over the pixels (chunks by `parallel_for`, folded per chunk and merged:
+// every field of the fold is a maximum, a minimum or an or, so the views are
+// fit_virtual_view's bit for bit, whatever the order). tan_half_fov and
+// min_near as in virtual_view_begin.
+template <class Real, class ParallelFor = SerialFor>
+ClusterViews<Real> fit_cluster_views(const Clustering<Real>& clustering,
+                                     const std::vector<typename kernel<Real>::vec3>& positions,
+                                     const std::vector<typename kernel<Real>::vec3>& directions, Real tan_half_fov,
+                                     Real min_near, const ParallelFor& parallel_for = {}) {
+    using K = kernel<Real>;
+    using Fit = typename K::VirtualViewFit;
+    const std::size_t clusters = clustering.clusters.size();
+    std::vector<Fit> begun(2 * clusters);
+    for (std::size_t c = 0; c < clusters; ++c) {
+        const auto& cluster = clustering.clusters[c];
+        begun[2 * c] = K::virtual_view_begin(cluster.sums, tan_half_fov, min_near);
+        begun[2 * c + 1] =
+            K::virtual_view_begin_along(cluster.sums, K::dodecahedron_normal(cluster.facet), tan_half_fov, min_near);
+    }
+    const std::size_t n = std::min({positions.size(), directions.size(), clustering.cluster_of.size()});
+    std::vector<std::vector<Fit>> chunk_fits(detail::chunk_count(n));
+    detail::for_chunks(parallel_for, n, [&](std::size_t first, std::size_t last) {
+        std::vector<Fit>& fits = chunk_fits[first / detail::cluster_chunk];
+        fits = begun;
+        for (std::size_t i = first; i < last; ++i) {
+            const auto c = static_cast<std::size_t>(clustering.cluster_of[i]);
+            fits[2 * c] = K::virtual_view_add(fits[2 * c], positions[i], directions[i]);
+            fits[2 * c + 1] = K::virtual_view_add(fits[2 * c + 1], positions[i], directions[i]);
+        }
+    });
+    std::vector<Fit> fits = begun;
+    for (const std::vector<Fit>& chunk : chunk_fits)
+        for (std::size_t f = 0; f < fits.size(); ++f) fits[f] = detail::merge_fits<Real>(fits[f], chunk[f]);
+    ClusterViews<Real> views;
+    for (std::size_t c = 0; c < clusters; ++c) {
+        views.along_mean.push_back(K::virtual_view_finish(fits[2 * c]));
+        views.along_normal.push_back(K::virtual_view_finish(fits[2 * c + 1]));
+    }
+    return views;
+}
+
 }  // namespace blurcull

@@ -26,6 +26,9 @@ using uint = std::uint32_t;
 #define BC_CLUSTER_STEP_ASSIGN 7       // per ray: Lloyd's assignment, its position summed
 #define BC_CLUSTER_STEP_UPDATE 8       // per facet: settled, or the means become the centres
 #define BC_CLUSTER_STEP_FINAL_SUMS 9   // per ray: its cluster's sums, positions and directions
+#define BC_CLUSTER_STEP_VIEW_BEGIN 10  // per slot: its two fits begun (virtual_view_begin, _begin_along)
+#define BC_CLUSTER_STEP_VIEW_ADD 11    // per ray: virtual_view_add of both, combined by max, min and or
+#define BC_CLUSTER_STEP_VIEW_FINISH 12 // per slot: virtual_view_finish of both
 
 // ClusterState.facet_flags bits.
 #define BC_CLUSTER_CHANGED 1u  // an assignment of this iteration changed
@@ -61,7 +64,35 @@ struct ClusterState {
     uint sum_unfit[BC_CLUSTER_SLOTS];
 };
 
+// One fit of a slot's virtual view (fits[2 * slot]: along the mean
+// direction; fits[2 * slot + 1]: along the facet's normal, what the host
+// fits when the first leaves a direction outside): VirtualViewFit's fields
+// as virtual_view_begin set them, the running maxima, minimum and flags of
+// virtual_view_add over the slot's rays (each field of the fold is one of
+// those, so the rays may come in any order), and the finished view's own
+// fields (its basis and tan are the fit's).
+struct ClusterViewFit {
+    float origin[3];
+    float forward[3];
+    float right[3];
+    float up[3];
+    float tan_half_fov;
+    float min_near;
+    int begin_flags;
+    uint backoff_bits;    // max over the rays (non-negative float bits)
+    uint depth_min_key;   // min over the rays (bc_float_order of the depth)
+    uint magnitude_bits;  // max over the rays (non-negative float bits)
+    int add_flags;        // or over the rays
+    float eye[3];
+    float near;
+    float backoff;
+    int flags;
+};
+
 #ifdef __cplusplus
+static_assert(sizeof(ClusterViewFit) == 25 * 4 && offsetof(ClusterViewFit, backoff_bits) == 60 &&
+                  offsetof(ClusterViewFit, eye) == 76,
+              "ClusterViewFit: std430 offsets");
 static_assert(offsetof(ClusterState, facet_count) == 16 && offsetof(ClusterState, centres) == 16 + 7 * 48 &&
                   offsetof(ClusterState, sum_hi) == 16 + 7 * 48 + 432 &&
                   sizeof(ClusterState) == 16 + 7 * 48 + 432 + 2 * 864 + 2 * 144,

@@ -12,6 +12,27 @@
 namespace blurcull::frontend {
 
 using gpu::ClusterState;
+using gpu::ClusterViewFit;
+
+namespace {
+
+glm::vec3 vec3_of(const float v[3]) { return {v[0], v[1], v[2]}; }
+
+// A fit's finished view as the host's virtual_view_finish gives it.
+kernelf::VirtualView view_of(const ClusterViewFit& fit) {
+    kernelf::VirtualView v{};
+    v.eye = vec3_of(fit.eye);
+    v.forward = vec3_of(fit.forward);
+    v.right = vec3_of(fit.right);
+    v.up = vec3_of(fit.up);
+    v.tan_half_fov = fit.tan_half_fov;
+    v.near = fit.near;
+    v.backoff = fit.backoff;
+    v.flags = fit.flags;
+    return v;
+}
+
+}  // namespace
 
 GlClustering::GlClustering(const gl::HeadlessContext& context)
     : context_((context.make_current(), &context)),
@@ -24,8 +45,8 @@ GlClustering::GlClustering(const gl::HeadlessContext& context)
 GlClustering::~GlClustering() { context_->make_current_for_release(); }
 
 Clustering<float> GlClustering::cluster(const std::vector<glm::vec3>& positions,
-                                        const std::vector<glm::vec3>& directions,
-                                        const ClusterOptions& options) const {
+                                        const std::vector<glm::vec3>& directions, const ClusterOptions& options,
+                                        float tan_half_fov, float min_near, ClusterViews<float>* views) const {
     using K = kernelf;
     Clustering<float> out;
     const std::size_t n = std::min(positions.size(), directions.size());
@@ -45,6 +66,9 @@ Clustering<float> GlClustering::cluster(const std::vector<glm::vec3>& positions,
         .bind_base(BC_GL_CLUSTER_POINTS_BINDING);
     gl::reserve_storage(f, labels_, n * sizeof(std::uint32_t)).bind_base(BC_GL_CLUSTER_LABELS_BINDING);
     gl::reserve_storage(f, state_, sizeof initial, &initial).bind_base(BC_GL_CLUSTER_STATE_BINDING);
+    std::vector<ClusterViewFit> fits(2 * BC_CLUSTER_SLOTS, ClusterViewFit{});
+    gl::reserve_storage(f, views_, fits.size() * sizeof(ClusterViewFit), fits.data())
+        .bind_base(BC_GL_CLUSTER_VIEWS_BINDING);
 
     const GLuint id = program_->id();
     f.UseProgram(id);
@@ -52,6 +76,8 @@ Clustering<float> GlClustering::cluster(const std::vector<glm::vec3>& positions,
     f.Uniform1ui(f.GetUniformLocation(id, "wanted_clusters"), options.wanted_clusters);
     f.Uniform1ui(f.GetUniformLocation(id, "max_per_facet"), options.max_per_facet);
     f.Uniform1ui(f.GetUniformLocation(id, "seed"), options.seed);
+    f.Uniform1f(f.GetUniformLocation(id, "tan_half_fov"), tan_half_fov);
+    f.Uniform1f(f.GetUniformLocation(id, "min_near"), min_near);
     const GLint step_at = f.GetUniformLocation(id, "step");
     // A step over the rays (a run of BC_CLUSTER_RUN rays an invocation, 64
     // a work group, in rows of at most 65,535 groups:
@@ -59,8 +85,9 @@ Clustering<float> GlClustering::cluster(const std::vector<glm::vec3>& positions,
     // work group); each sees the last one's writes.
     auto run = [&](int step) {
         f.Uniform1i(step_at, step);
-        const bool per_facet =
-            step == BC_CLUSTER_STEP_SETUP || step == BC_CLUSTER_STEP_PICK || step == BC_CLUSTER_STEP_UPDATE;
+        const bool per_facet = step == BC_CLUSTER_STEP_SETUP || step == BC_CLUSTER_STEP_PICK ||
+                               step == BC_CLUSTER_STEP_UPDATE || step == BC_CLUSTER_STEP_VIEW_BEGIN ||
+                               step == BC_CLUSTER_STEP_VIEW_FINISH;
         constexpr std::size_t row = 65535;
         const std::size_t runs = (n + BC_CLUSTER_RUN - 1) / BC_CLUSTER_RUN;
         const std::size_t groups = per_facet ? 1 : (runs + 63) / 64;
@@ -82,6 +109,11 @@ Clustering<float> GlClustering::cluster(const std::vector<glm::vec3>& positions,
         run(BC_CLUSTER_STEP_UPDATE);
     }
     run(BC_CLUSTER_STEP_FINAL_SUMS);
+    if (views != nullptr) {
+        run(BC_CLUSTER_STEP_VIEW_BEGIN);
+        run(BC_CLUSTER_STEP_VIEW_ADD);
+        run(BC_CLUSTER_STEP_VIEW_FINISH);
+    }
     f.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     f.UseProgram(0);
     gl::check_gl(f, "dof-secondary: the clustering passes");
@@ -90,6 +122,11 @@ Clustering<float> GlClustering::cluster(const std::vector<glm::vec3>& positions,
     state_->read(&state, sizeof state);
     std::vector<std::uint32_t> labels(n);
     labels_->read(labels.data(), n * sizeof(std::uint32_t));
+    if (views != nullptr) {
+        views_->read(fits.data(), fits.size() * sizeof(ClusterViewFit));
+        views->along_mean.clear();
+        views->along_normal.clear();
+    }
     // The clusters as the host numbers them: by facet, then local index, the empty ones dropped.
     std::array<int, BC_CLUSTER_SLOTS> global{};
     for (int facet = 0; facet < BC_CLUSTER_FACETS; ++facet) {
@@ -109,7 +146,12 @@ Clustering<float> GlClustering::cluster(const std::vector<glm::vec3>& positions,
             s.count = state.sum_count[slot];
             s.unfit = state.sum_unfit[slot];
             global[static_cast<std::size_t>(slot)] = static_cast<int>(out.clusters.size());
-            if (s.count + s.unfit > 0u) out.clusters.push_back({facet, s});
+            if (s.count + s.unfit == 0u) continue;
+            out.clusters.push_back({facet, s});
+            if (views != nullptr) {
+                views->along_mean.push_back(view_of(fits[static_cast<std::size_t>(2 * slot)]));
+                views->along_normal.push_back(view_of(fits[static_cast<std::size_t>(2 * slot + 1)]));
+            }
         }
     }
     for (std::size_t i = 0; i < n; ++i) {

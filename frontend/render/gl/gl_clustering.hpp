@@ -32,15 +32,18 @@ public:
 
     // cluster_reflector_pixels<float>(positions, directions, options): the
     // same Clustering, its passes on the GPU; waits for them once and reads
-    // back each ray's cluster and the 36 sums.
+    // back each ray's cluster and the 36 sums. With `views`, each cluster's
+    // two views too (fit_cluster_views's with tan_half_fov and min_near:
+    // three more passes, read back with the rest).
     Clustering<float> cluster(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& directions,
-                              const ClusterOptions& options = {}) const;
+                              const ClusterOptions& options = {}, float tan_half_fov = 1.0f, float min_near = 1e-3f,
+                              ClusterViews<float>* views = nullptr) const;
 
 private:
     const gl::HeadlessContext* context_;
     const gl::Functions* gl_;
     std::unique_ptr<gl::Program> program_;
-    mutable std::optional<gl::Buffer> points_, labels_, state_;
+    mutable std::optional<gl::Buffer> points_, labels_, state_, views_;
 };
 
 }  // namespace blurcull::frontend

@@ -62,22 +62,10 @@ glm::vec3 exact_radiance(const BounceContext& c, const SecondaryRay& ray, Second
 // The cluster's virtual view: along the mean direction, else along the facet
 // normal (holds every direction of the facet from 74.76 degrees); the flags
 // tell the caller what is left outside.
-K::VirtualView fit_cluster_view(const BounceContext& c, const Cluster<float>& cluster,
-                                const std::vector<std::uint32_t>& members, SecondaryStats& stats) {
-    std::vector<glm::vec3> positions, directions;
-    for (std::uint32_t r : members) {
-        positions.push_back(c.rays[r].origin);
-        directions.push_back(c.rays[r].direction);
-    }
-    K::VirtualView view = fit_virtual_view<float>(cluster.sums, positions, directions, c.tan_half_fov, c.min_near);
-    if (view.flags == BC_VIEW_DIRECTION_OUTSIDE) {
-        ++stats.clusters_refit_on_normal;
-        K::VirtualViewFit fit =
-            K::virtual_view_begin_along(cluster.sums, K::dodecahedron_normal(cluster.facet), c.tan_half_fov, c.min_near);
-        for (std::size_t i = 0; i < positions.size(); ++i) fit = K::virtual_view_add(fit, positions[i], directions[i]);
-        view = K::virtual_view_finish(fit);
-    }
-    return view;
+K::VirtualView cluster_view(const ClusterViews<float>& views, std::size_t cluster, SecondaryStats& stats) {
+    if (views.along_mean[cluster].flags != BC_VIEW_DIRECTION_OUTSIDE) return views.along_mean[cluster];
+    ++stats.clusters_refit_on_normal;
+    return views.along_normal[cluster];
 }
 
 // The culls of a cluster's layers: its own triangles and surface depth, and
@@ -210,10 +198,9 @@ struct PreparedCluster {
 // The cluster's view fitted, its culls and ray groups; the rays no view
 // holds traced against the scene (their radiance written). False when no ray
 // is left for the layers.
-bool prepare_cluster(const BounceContext& c, const Cluster<float>& cluster, std::vector<std::uint32_t> members,
+bool prepare_cluster(const BounceContext& c, const K::VirtualView& fitted, std::vector<std::uint32_t> members,
                      std::vector<glm::vec3>& radiance, SecondaryStats& stats, PreparedCluster& out) {
     const Clock::time_point views_start = Clock::now();
-    const K::VirtualView fitted = fit_cluster_view(c, cluster, members, stats);
     if ((fitted.flags & ~BC_VIEW_DIRECTION_OUTSIDE) != 0) {
         ++stats.clusters_unusable;
         for (std::uint32_t r : members) radiance[r] = exact_radiance(c, c.rays[r], stats);
@@ -251,10 +238,10 @@ void shade_cluster(const BounceContext& c, const std::vector<std::uint32_t>& mem
 // One cluster on the host (or with a LayerBuilder and LayerTracer): its
 // view, its layers with the culls, its pyramid, and the traces of its rays
 // (or their exact fallback).
-void bounce_cluster(const BounceContext& c, const Cluster<float>& cluster, std::vector<std::uint32_t> members,
+void bounce_cluster(const BounceContext& c, const K::VirtualView& view, std::vector<std::uint32_t> members,
                     std::vector<glm::vec3>& radiance, SecondaryStats& stats) {
     PreparedCluster p;
-    if (!prepare_cluster(c, cluster, std::move(members), radiance, stats, p)) return;
+    if (!prepare_cluster(c, view, std::move(members), radiance, stats, p)) return;
     const Clock::time_point build_start = Clock::now();
     const ClusterLayers built =
         c.layer_builder != nullptr ? (*c.layer_builder)(c.world, p.view, c.options.layers, p.culls, stats.layers)
@@ -270,12 +257,12 @@ void bounce_cluster(const BounceContext& c, const Cluster<float>& cluster, std::
 // the host prepares the next), the hits are read once at the end and shaded
 // in parallel; each thread's statistics go to done(), the rest to `stats`.
 template <class Done>
-void bounce_clusters_resident(const BounceContext& c, const Clustering<float>& clustering,
+void bounce_clusters_resident(const BounceContext& c, const std::vector<K::VirtualView>& views,
                               std::vector<std::vector<std::uint32_t>>& members, std::vector<glm::vec3>& radiance,
                               int threads, SecondaryStats& stats, const Done& done) {
     c.bouncer->begin(c.world, c.rays.size());
     std::vector<std::vector<std::uint32_t>> queued;  // each queued cluster's rays, in the order of its hits
-    const int clusters = static_cast<int>(clustering.clusters.size());
+    const int clusters = static_cast<int>(views.size());
     const int window = std::max(1, threads);
     for (int first = 0; first < clusters; first += window) {
         const int count = std::min(window, clusters - first);
@@ -285,8 +272,8 @@ void bounce_clusters_resident(const BounceContext& c, const Clustering<float>& c
             threads, count, [] { return SecondaryStats{}; },
             [&](SecondaryStats& local, int k) {
                 const auto j = static_cast<std::size_t>(first + k);
-                ready[static_cast<std::size_t>(k)] = prepare_cluster(c, clustering.clusters[j], std::move(members[j]),
-                                                                     radiance, local, prepared[static_cast<std::size_t>(k)]);
+                ready[static_cast<std::size_t>(k)] = prepare_cluster(c, views[j], std::move(members[j]), radiance, local,
+                                                                     prepared[static_cast<std::size_t>(k)]);
             },
             done);
         for (int k = 0; k < count; ++k) {
@@ -368,25 +355,33 @@ std::vector<glm::vec3> bounce_all(const BounceContext& c, int threads, Secondary
         run_parallel_ranges(threads, count, 1, [&](std::size_t i, std::size_t) { body(i); });
     };
     std::optional<Clustering<float>> resident_clustering;
-    if (c.bouncer != nullptr) resident_clustering = c.bouncer->cluster(positions, directions, cluster_options);
+    ClusterViews<float> fitted;
+    if (c.bouncer != nullptr)
+        resident_clustering = c.bouncer->cluster(positions, directions, cluster_options, c.tan_half_fov, c.min_near, fitted);
     const Clustering<float> clustering =
         resident_clustering ? std::move(*resident_clustering)
                             : cluster_reflector_pixels<float>(positions, directions, cluster_options, parallel_for);
     stats.clustering_ms += ms_since(clustering_start);
     const int clusters = static_cast<int>(clustering.clusters.size());
     stats.clusters += clusters;
+    // Each cluster's two views, in one pass over the rays (where the bouncer did not fit them).
+    const Clock::time_point views_start = Clock::now();
+    if (!resident_clustering)
+        fitted = fit_cluster_views<float>(clustering, positions, directions, c.tan_half_fov, c.min_near, parallel_for);
+    std::vector<K::VirtualView> views;
+    for (std::size_t j = 0; j < clustering.clusters.size(); ++j) views.push_back(cluster_view(fitted, j, stats));
+    stats.views_ms += ms_since(views_start);
     std::vector<std::vector<std::uint32_t>> members(clustering.clusters.size());
     for (std::size_t r = 0; r < c.rays.size(); ++r)
         members[static_cast<std::size_t>(clustering.cluster_of[r])].push_back(static_cast<std::uint32_t>(r));
     if (c.bouncer != nullptr) {
-        bounce_clusters_resident(c, clustering, members, radiance, threads, stats, done);
+        bounce_clusters_resident(c, views, members, radiance, threads, stats, done);
         return radiance;
     }
     run_parallel_items(
         threads, clusters, [] { return SecondaryStats{}; },
         [&](SecondaryStats& local, int j) {
-            bounce_cluster(c, clustering.clusters[static_cast<std::size_t>(j)], members[static_cast<std::size_t>(j)],
-                           radiance, local);
+            bounce_cluster(c, views[static_cast<std::size_t>(j)], members[static_cast<std::size_t>(j)], radiance, local);
         },
         done);
     return radiance;

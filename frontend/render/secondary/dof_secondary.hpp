@@ -88,12 +88,14 @@ struct ClusterRays {
 class ClusterBouncer {
 public:
     virtual ~ClusterBouncer() = default;
-    // The batch's rays clustered there: cluster_reflector_pixels's result
-    // (the GL build's compute passes give it bit for bit); nullopt: the host
-    // clusters them. Called before begin().
+    // The batch's rays clustered there: cluster_reflector_pixels's result,
+    // and each cluster's views in `views` (fit_cluster_views's; the GL
+    // build's compute passes give both bit for bit); nullopt: the host
+    // clusters them and fits the views. Called before begin().
     virtual std::optional<Clustering<float>> cluster(const std::vector<glm::vec3>& /*positions*/,
                                                      const std::vector<glm::vec3>& /*directions*/,
-                                                     const ClusterOptions& /*options*/) {
+                                                     const ClusterOptions& /*options*/, float /*tan_half_fov*/,
+                                                     float /*min_near*/, ClusterViews<float>& /*views*/) {
         return std::nullopt;
     }
     virtual void begin(const WorldTriangles& triangles, std::size_t max_rays) = 0;

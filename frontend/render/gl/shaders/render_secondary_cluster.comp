@@ -12,11 +12,14 @@ layout(local_size_x = BC_TRACE_GROUP) in;
 layout(std430, binding = BC_GL_CLUSTER_POINTS_BINDING) readonly buffer Points { vec4 point[]; };  // position, direction
 layout(std430, binding = BC_GL_CLUSTER_LABELS_BINDING) buffer Labels { uint label[]; };          // facet * 4 + local
 layout(std430, binding = BC_GL_CLUSTER_STATE_BINDING) coherent buffer State { ClusterState state; };
+layout(std430, binding = BC_GL_CLUSTER_VIEWS_BINDING) coherent buffer Views { ClusterViewFit fits[]; };
 uniform int step;
 uniform uint rays;
 uniform uint wanted_clusters;
 uniform uint max_per_facet;
 uniform uint seed;
+uniform float tan_half_fov;  // the views' (view steps)
+uniform float min_near;
 
 vec3 position_of(uint r) { return point[2u * r].xyz; }
 vec3 direction_of(uint r) { return point[2u * r + 1u].xyz; }
@@ -90,6 +93,117 @@ void clear_facet_sums(int facet) {
         }
         state.sum_count[slot] = 0u;
         state.sum_unfit[slot] = 0u;
+    }
+}
+
+// A float's bits as a key that orders as the floats do, negative ones
+// included (NaN apart): the sign bit flipped for positive floats, every bit
+// for negative ones.
+uint float_order(float x) {
+    uint bits = floatBitsToUint(x);
+    return (bits & 0x80000000u) != 0u ? ~bits : bits | 0x80000000u;
+}
+
+float float_of_order(uint key) {
+    return uintBitsToFloat((key & 0x80000000u) != 0u ? key & 0x7fffffffu : ~key);
+}
+
+vec3 load3(float v[3]) { return vec3(v[0], v[1], v[2]); }
+
+// Fit i as virtual_view_begin left it.
+VirtualViewFit begun_fit(int i) {
+    VirtualViewFit f;
+    f.origin = load3(fits[i].origin);
+    f.forward = load3(fits[i].forward);
+    f.right = load3(fits[i].right);
+    f.up = load3(fits[i].up);
+    f.tan_half_fov = fits[i].tan_half_fov;
+    f.min_near = fits[i].min_near;
+    f.backoff = 0.0;
+    f.depth_min = bc_huge();
+    f.magnitude = 0.0;
+    f.flags = fits[i].begin_flags;
+    return f;
+}
+
+void begin_fit(int i, VirtualViewFit f) {
+    for (int a = 0; a < 3; ++a) {
+        fits[i].origin[a] = f.origin[a];
+        fits[i].forward[a] = f.forward[a];
+        fits[i].right[a] = f.right[a];
+        fits[i].up[a] = f.up[a];
+    }
+    fits[i].tan_half_fov = f.tan_half_fov;
+    fits[i].min_near = f.min_near;
+    fits[i].begin_flags = f.flags;
+    fits[i].backoff_bits = floatBitsToUint(f.backoff);
+    fits[i].depth_min_key = float_order(f.depth_min);
+    fits[i].magnitude_bits = floatBitsToUint(f.magnitude);
+    fits[i].add_flags = 0;
+}
+
+// The per-slot view steps (one invocation per slot).
+void slot_view_step(int slot) {
+    ClusterSums sums = slot_sums(slot);
+    if (sums.count + sums.unfit == 0u) return;
+    int along_mean = 2 * slot, along_normal = 2 * slot + 1;
+    if (step == BC_CLUSTER_STEP_VIEW_BEGIN) {
+        begin_fit(along_mean, bc_virtual_view_begin(sums, tan_half_fov, min_near));
+        begin_fit(along_normal, bc_virtual_view_begin_along(sums, bc_dodecahedron_normal(slot / BC_CLUSTERS_PER_FACET_MAX),
+                                                            tan_half_fov, min_near));
+        return;
+    }
+    for (int i = along_mean; i <= along_normal; ++i) {
+        VirtualViewFit f = begun_fit(i);
+        f.backoff = uintBitsToFloat(fits[i].backoff_bits);
+        f.depth_min = float_of_order(fits[i].depth_min_key);
+        f.magnitude = uintBitsToFloat(fits[i].magnitude_bits);
+        f.flags |= fits[i].add_flags;
+        VirtualView v = bc_virtual_view_finish(f);
+        for (int a = 0; a < 3; ++a) fits[i].eye[a] = v.eye[a];
+        fits[i].near = v.near;
+        fits[i].backoff = v.backoff;
+        fits[i].flags = v.flags;
+    }
+}
+
+// A run's fold of virtual_view_add into fit i: the fit's maxima, minimum
+// and flags (each ray's add from the begun fit: its t, z, magnitude and
+// flags, as the host's fold takes them).
+void flush_view(int i, VirtualViewFit g) {
+    if (i < 0) return;
+    if (g.backoff > 0.0 && floatBitsToUint(g.backoff) > fits[i].backoff_bits)
+        atomicMax(fits[i].backoff_bits, floatBitsToUint(g.backoff));
+    uint key = float_order(g.depth_min);
+    if (key < fits[i].depth_min_key) atomicMin(fits[i].depth_min_key, key);
+    if (floatBitsToUint(g.magnitude) > fits[i].magnitude_bits)
+        atomicMax(fits[i].magnitude_bits, floatBitsToUint(g.magnitude));
+    int added = g.flags & ~fits[i].begin_flags;
+    if ((added & ~fits[i].add_flags) != 0) atomicOr(fits[i].add_flags, added);
+}
+
+void view_run(uint first) {
+    int slot = -1;
+    VirtualViewFit runs[2];
+    for (uint r = first; r < min(first + uint(BC_CLUSTER_RUN), rays); ++r) {
+        int f = int(label[r] >> 2u);
+        if (state.facet_k[f] == 0) continue;
+        int ray_slot = f * BC_CLUSTERS_PER_FACET_MAX + int(label[r] & 3u);
+        if (ray_slot != slot) {
+            if (slot >= 0) {
+                flush_view(2 * slot, runs[0]);
+                flush_view(2 * slot + 1, runs[1]);
+            }
+            slot = ray_slot;
+            runs[0] = begun_fit(2 * slot);
+            runs[1] = begun_fit(2 * slot + 1);
+        }
+        runs[0] = bc_virtual_view_add(runs[0], position_of(r), direction_of(r));
+        runs[1] = bc_virtual_view_add(runs[1], position_of(r), direction_of(r));
+    }
+    if (slot >= 0) {
+        flush_view(2 * slot, runs[0]);
+        flush_view(2 * slot + 1, runs[1]);
     }
 }
 
@@ -200,6 +314,10 @@ void ray_step(uint r) {
 }
 
 void main() {
+    if (step == BC_CLUSTER_STEP_VIEW_BEGIN || step == BC_CLUSTER_STEP_VIEW_FINISH) {
+        if (gl_LocalInvocationID.x < uint(BC_CLUSTER_SLOTS)) slot_view_step(int(gl_LocalInvocationID.x));
+        return;
+    }
     if (step == BC_CLUSTER_STEP_SETUP || step == BC_CLUSTER_STEP_PICK || step == BC_CLUSTER_STEP_UPDATE) {
         if (gl_LocalInvocationID.x < uint(BC_CLUSTER_FACETS)) facet_step(int(gl_LocalInvocationID.x));
         return;
@@ -208,6 +326,10 @@ void main() {
     if (first >= rays) return;
     if (step == BC_CLUSTER_STEP_ASSIGN || step == BC_CLUSTER_STEP_FINAL_SUMS) {
         sum_run(first, step == BC_CLUSTER_STEP_ASSIGN);
+        return;
+    }
+    if (step == BC_CLUSTER_STEP_VIEW_ADD) {
+        view_run(first);
         return;
     }
     for (uint r = first; r < min(first + uint(BC_CLUSTER_RUN), rays); ++r) ray_step(r);
