@@ -305,22 +305,26 @@ TEST_CASE("GLSL assigns the mirror sphere's pixels to the host's facets and clus
 
 namespace {
 
-// Whether two clusterings are one: every ray's cluster, each cluster's
-// facet and sums word for word, the iterations and unsettled facets.
-// Whether two views are one, bit for bit.
-bool same_view(const Kf::VirtualView& a, const Kf::VirtualView& b) {
-    auto bits3 = [](const Kf::vec3& x, const Kf::vec3& y) {
-        return bits_of(x.x) == bits_of(y.x) && bits_of(x.y) == bits_of(y.y) && bits_of(x.z) == bits_of(y.z);
+// Whether two views are one: bit for bit, or on a GPU outside the IEEE
+// model (`tolerant`) the same flags and every value within 1e-4 relative.
+bool same_view(const Kf::VirtualView& a, const Kf::VirtualView& b, bool tolerant) {
+    auto close = [tolerant](float x, float y) {
+        return tolerant ? std::fabs(x - y) <= 1e-4f * (1.0f + std::fabs(x)) : bits_of(x) == bits_of(y);
     };
-    return bits3(a.eye, b.eye) && bits3(a.forward, b.forward) && bits3(a.right, b.right) && bits3(a.up, b.up) &&
-           bits_of(a.tan_half_fov) == bits_of(b.tan_half_fov) && bits_of(a.near) == bits_of(b.near) &&
-           bits_of(a.backoff) == bits_of(b.backoff) && a.flags == b.flags;
+    auto close3 = [&](const Kf::vec3& x, const Kf::vec3& y) { return close(x.x, y.x) && close(x.y, y.y) && close(x.z, y.z); };
+    return close3(a.eye, b.eye) && close3(a.forward, b.forward) && close3(a.right, b.right) && close3(a.up, b.up) &&
+           close(a.tan_half_fov, b.tan_half_fov) && close(a.near, b.near) && close(a.backoff, b.backoff) &&
+           a.flags == b.flags;
 }
 
-void check_same_clustering(const Clustering<float>& host, const Clustering<float>& gpu) {
-    CHECK(gpu.iterations == host.iterations);
-    CHECK(gpu.unsettled_facets == host.unsettled_facets);
+// Whether two clusterings are one: every ray's cluster, each cluster's
+// facet and sums word for word, the iterations and unsettled facets. On a
+// GPU outside the IEEE model (`tolerant`) a mean may round differently and
+// move a ray: asserted there, the same number of clusters on the same
+// facets and at most 1 ray in 100 in another cluster.
+void check_same_clustering(const Clustering<float>& host, const Clustering<float>& gpu, bool tolerant) {
     REQUIRE(gpu.clusters.size() == host.clusters.size());
+    REQUIRE(gpu.cluster_of.size() == host.cluster_of.size());
     long words_differ = 0;
     for (std::size_t c = 0; c < host.clusters.size(); ++c) {
         const Kf::ClusterSums& a = host.clusters[c].sums;
@@ -335,20 +339,29 @@ void check_same_clustering(const Clustering<float>& host, const Clustering<float
     MESSAGE(host.cluster_of.size() << " rays, " << host.clusters.size() << " clusters, " << host.iterations
                                    << " Lloyd iterations: " << rays_differ << " rays and " << words_differ
                                    << " sums differ");
-    CHECK(gpu.cluster_of.size() == host.cluster_of.size());
+    if (tolerant) {
+        CHECK(double(rays_differ) <= 0.01 * double(host.cluster_of.size()));
+        return;
+    }
+    CHECK(gpu.iterations == host.iterations);
+    CHECK(gpu.unsettled_facets == host.unsettled_facets);
     CHECK(rays_differ == 0);
     CHECK(words_differ == 0);
 }
 
 }  // namespace
 
-TEST_CASE("the GPU clustering passes give the host's clusters, sums bit for bit") {
+TEST_CASE("the GPU clustering passes give the host's clusters and views, bit for bit on an IEEE-exact GL") {
     auto context = context_or_skip();
     if (!context) return;
+    const ArithmeticProbe probe = probe_arithmetic(*context);
+    MESSAGE("GL arithmetic: " << probe.describe());
+    const bool tolerant = probe.tolerant();
     const frontend::GlClustering gpu_passes(*context);
     // The GPU's clustering and views against the host's, both asserted equal.
     struct {
         const frontend::GlClustering& passes;
+        bool tolerant;
         Clustering<float> cluster(const std::vector<Kf::vec3>& p, const std::vector<Kf::vec3>& d,
                                   const ClusterOptions& options) const {
             const float tan_half = 0.8391f, min_near = 0.01f;
@@ -359,8 +372,8 @@ TEST_CASE("the GPU clustering passes give the host's clusters, sums bit for bit"
             REQUIRE(views.along_normal.size() == clusters.clusters.size());
             long differ = 0, outside = 0;
             for (std::size_t c = 0; c < clusters.clusters.size(); ++c) {
-                differ += !same_view(views.along_mean[c], host.along_mean[c]);
-                differ += !same_view(views.along_normal[c], host.along_normal[c]);
+                differ += !same_view(views.along_mean[c], host.along_mean[c], tolerant);
+                differ += !same_view(views.along_normal[c], host.along_normal[c], tolerant);
                 outside += (host.along_mean[c].flags & BC_VIEW_DIRECTION_OUTSIDE) != 0;
             }
             MESSAGE((2 * clusters.clusters.size()) << " views (" << outside << " with a direction outside along the mean): "
@@ -368,14 +381,14 @@ TEST_CASE("the GPU clustering passes give the host's clusters, sums bit for bit"
             CHECK(differ == 0);
             return clusters;
         }
-    } gpu{gpu_passes};
+    } gpu{gpu_passes, tolerant};
     SUBCASE("one point repeated: fewer centres than asked") {
         std::vector<Kf::vec3> p(600, Kf::vec3(1.0f, 2.0f, 3.0f)), d(600, Kf::vec3(0.0f, 0.0f, 1.0f));
         ClusterOptions options;
         options.wanted_clusters = 1000;  // 3 asked of the facet
         const Clustering<float> host = cluster_reflector_pixels<float>(p, d, options);
         CHECK(host.clusters.size() == 1);
-        check_same_clustering(host, gpu.cluster(p, d, options));
+        check_same_clustering(host, gpu.cluster(p, d, options), tolerant);
     }
     SUBCASE("the mirror sphere's pixels, to settling and stopped early") {
         std::vector<dvec3> dp, dd;
@@ -389,7 +402,7 @@ TEST_CASE("the GPU clustering passes give the host's clusters, sums bit for bit"
             CAPTURE(iterations);
             ClusterOptions options;
             options.max_iterations = iterations;
-            check_same_clustering(cluster_reflector_pixels<float>(p, d, options), gpu.cluster(p, d, options));
+            check_same_clustering(cluster_reflector_pixels<float>(p, d, options), gpu.cluster(p, d, options), tolerant);
         }
     }
     SUBCASE("300,000 random rays over every facet, with coincident, NaN and infinite ones") {
@@ -417,7 +430,7 @@ TEST_CASE("the GPU clustering passes give the host's clusters, sums bit for bit"
             options.wanted_clusters = seed == 7u ? 30u : 24u;
             const Clustering<float> host = cluster_reflector_pixels<float>(p, d, options);
             CHECK(host.clusters.size() >= 12);
-            check_same_clustering(host, gpu.cluster(p, d, options));
+            check_same_clustering(host, gpu.cluster(p, d, options), tolerant);
         }
     }
 }
