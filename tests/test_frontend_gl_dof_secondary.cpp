@@ -35,6 +35,8 @@
 // 4. The GPU-resident bounce (clipping, traces and surfaces on the GPU)
 //    against the host's on the same GL layers: the same hits per ray (the
 //    test case below says how exactly).
+// 4b. The rays clustered and the views fitted in compute passes against
+//    the host's: the same image.
 // 5. The primary pass and the layers on the compute pipeline: the fragment
 //    pipeline's image.
 // 6. More rays than one row of work groups (over 4.19 million).
@@ -53,6 +55,7 @@
 #include <cstring>
 #include <memory>
 #include <string>
+#include <vector>
 
 using namespace blurcull::frontend;
 using namespace blurcull::frontend::test;
@@ -185,6 +188,13 @@ void compare_layers(const WorldTriangles& world, const kernelf::LayerView& view,
     }
 }
 
+// The scenes of the whole-render comparisons: a mirror sphere, a plane
+// mirror, and quads moving in a plane mirror, bounced in 4 shutter slices
+// (auto; the bouncer's triangles uploaded again for each).
+std::vector<Scene> bounce_scenes() {
+    return {mirror_sphere_scene(), plane_mirror_scene(0.1f), plane_mirror_scene(0.05f, {1.5f, 0.0f, 0.0f})};
+}
+
 }  // namespace
 
 TEST_CASE("dof-secondary: the GL build with host layers gives the CPU build's image") {
@@ -193,10 +203,7 @@ TEST_CASE("dof-secondary: the GL build with host layers gives the CPU build's im
     GlRenderer rasterizer;
     const GlDofSecondary passes(rasterizer, *context);
     const RenderSettings settings = quiet_settings(48, 36, 8);
-    // The third: quads moving in a mirror, bounced in 4 shutter slices
-    // (auto), the bouncer's triangles uploaded again for each.
-    for (const Scene& scene :
-         {mirror_sphere_scene(), plane_mirror_scene(0.1f), plane_mirror_scene(0.05f, {1.5f, 0.0f, 0.0f})}) {
+    for (const Scene& scene : bounce_scenes()) {
         CAPTURE(scene.name);
         SecondaryStats cpu_stats, gl_stats;
         const Image cpu = render_dof_secondary(scene, settings, small_options(), &cpu_stats).image;
@@ -305,10 +312,7 @@ TEST_CASE("dof-secondary: the GL build with GL layers against the CPU build") {
     GlRenderer rasterizer;
     const GlDofSecondary passes(rasterizer, *context);
     const RenderSettings settings = quiet_settings(48, 36, 8);
-    // The third: quads moving in a mirror, bounced in 4 shutter slices
-    // (auto), the bouncer's triangles uploaded again for each.
-    for (const Scene& scene :
-         {mirror_sphere_scene(), plane_mirror_scene(0.1f), plane_mirror_scene(0.05f, {1.5f, 0.0f, 0.0f})}) {
+    for (const Scene& scene : bounce_scenes()) {
         CAPTURE(scene.name);
         SecondaryStats cpu_stats, gl_stats;
         const Image cpu = render_dof_secondary(scene, settings, small_options(), &cpu_stats).image;
@@ -452,8 +456,7 @@ TEST_CASE("dof-secondary: the rays clustered on the GPU give the host clustering
     GlRenderer rasterizer;
     const GlDofSecondary passes(rasterizer, *context);
     const RenderSettings settings = quiet_settings(48, 36, 8);
-    for (const Scene& scene :
-         {mirror_sphere_scene(), plane_mirror_scene(0.1f), plane_mirror_scene(0.05f, {1.5f, 0.0f, 0.0f})}) {
+    for (const Scene& scene : bounce_scenes()) {
         CAPTURE(scene.name);
         const PrimaryPass primary = passes.primary_pass(scene, {});
         auto render_with = [&](GlDofSecondary::ClustersOn on, SecondaryStats& stats) {
