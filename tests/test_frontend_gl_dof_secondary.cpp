@@ -35,8 +35,9 @@
 // 4. The GPU-resident bounce (clipping, traces and surfaces on the GPU)
 //    against the host's on the same GL layers: the same hits per ray (the
 //    test case below says how exactly).
-// 4b. The rays clustered and the views fitted in compute passes against
-//    the host's: the same image.
+// 4b. The rays clustered, the views fitted and each cluster's rays gathered
+//    on the GPU against the host's clusters, views and uploaded rays: the
+//    same image.
 // 5. The primary pass and the layers on the compute pipeline: the fragment
 //    pipeline's image.
 // 6. More rays than one row of work groups (over 4.19 million).
@@ -443,9 +444,11 @@ TEST_CASE("dof-secondary: the GPU-resident bounce gives the host's hits on the s
     }
 }
 
-// 4b. The rays clustered in compute passes (GlClustering, what the
-//    bouncer does by default) against the host's clustering, the rest
-//    alike: the clustering is minima, maxima and exact sums, so on an
+// 4b. The rays clustered and the views fitted in compute passes
+//    (GlClustering, what the bouncer does by default), then each cluster's
+//    rays gathered there by index (queue_bounce_gathered), against the
+//    host's clustering and views and the rays uploaded, the rest alike: the
+//    clustering is minima, maxima and exact sums, so on an
 //    IEEE-exact GL the same clusters (tests/test_frontend_gl_secondary_parity.cpp
 //    asserts it cluster by cluster), hence the same trace steps and image
 //    bit for bit; elsewhere within test 3's tolerance.

@@ -30,8 +30,9 @@ void add_counts(LayerStats& stats, const GlLayerCounts& counts) {
 // ClusterBouncer on the GL passes: the layers built and left on the GPU,
 // then clipped, traced and the surfaces picked there, cluster after cluster
 // with nothing waited for until finish() reads every hit back.
-// With `clustering` the rays are clustered there too, and the clusters'
-// views fitted (GlClustering).
+// With `clustering` the rays are clustered there too, the clusters' views
+// fitted (GlClustering), and each cluster's rays gathered from there by
+// index instead of uploaded.
 // Its phases: gpu_bounce_layers (the layers and pyramid) and
 // gpu_bounce_trace (clipping, traces and surfaces), on hardware GL only;
 // wall_bounce_layers and wall_bounce_trace (the host's time to issue them:
@@ -60,6 +61,7 @@ public:
         make_timers();
         timers_->begin(clustering_phase);
         Clustering<float> clusters = clustering_->cluster(positions, directions, options, tan_half_fov, min_near, &views);
+        rays_on_gpu_ = true;
         timers_->end(clustering_phase);
         return clusters;
     }
@@ -84,8 +86,12 @@ public:
         builder_->build_resident(view, layers, input, raster_);
         timers_->end(layers_phase);
         timers_->begin(trace_phase);
-        tracer_->queue_bounce(view, layers, thickness, *builder_, rays.starts, rays.directions, rays.group_ends,
-                              queued_);
+        if (rays_on_gpu_)  // the batch's rays are on the GPU: only their indices go
+            tracer_->queue_bounce_gathered(view, layers, thickness, *builder_, clustering_->points_buffer(),
+                                           rays.indices, rays.offset, rays.group_ends, queued_);
+        else
+            tracer_->queue_bounce(view, layers, thickness, *builder_, rays.starts, rays.directions, rays.group_ends,
+                                  queued_);
         timers_->end(trace_phase);
         queued_ += rays.starts.size();
     }
@@ -94,6 +100,7 @@ public:
         context_->make_current();
         timers_->begin(readback_phase);
         std::vector<LayerBounceHit> hits = tracer_->finish_bounces(queued_);
+        rays_on_gpu_ = false;  // the next batch's, if cluster() puts them there
         add_counts(stats, builder_->read_counts());  // the passes are done: no wait
         timers_->end(readback_phase);
         return hits;
@@ -116,6 +123,7 @@ private:
     const GlLayerTracer* tracer_;
     GlLayerRaster raster_;
     const GlClustering* clustering_;  // null: the host clusters
+    bool rays_on_gpu_ = false;        // cluster() left this batch's rays in clustering_'s points
     std::size_t queued_ = 0;  // rays queued since begin()
     mutable std::optional<GlPhaseTimers> timers_;  // made by begin(), on the context; read by add_phases
 };

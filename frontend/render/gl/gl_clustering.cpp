@@ -44,6 +44,11 @@ GlClustering::GlClustering(const gl::HeadlessContext& context)
 // The program's and buffers' glDelete* act on the current context: this one's, with several alive.
 GlClustering::~GlClustering() { context_->make_current_for_release(); }
 
+const gl::Buffer& GlClustering::points_buffer() const {
+    if (!points_) throw gl::GlError("gl: no rays clustered yet, so none on the GPU");
+    return *points_;
+}
+
 Clustering<float> GlClustering::cluster(const std::vector<glm::vec3>& positions,
                                         const std::vector<glm::vec3>& directions, const ClusterOptions& options,
                                         float tan_half_fov, float min_near, ClusterViews<float>* views) const {

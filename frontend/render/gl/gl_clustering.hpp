@@ -39,6 +39,11 @@ public:
                               const ClusterOptions& options = {}, float tan_half_fov = 1.0f, float min_near = 1e-3f,
                               ClusterViews<float>* views = nullptr) const;
 
+    // The last cluster() call's rays on the GPU: per ray its position and
+    // direction (vec4 each), for GlLayerTracer::queue_bounce_gathered.
+    // Throws gl::GlError before the first call.
+    const gl::Buffer& points_buffer() const;
+
 private:
     const gl::HeadlessContext* context_;
     const gl::Functions* gl_;

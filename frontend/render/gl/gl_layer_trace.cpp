@@ -52,7 +52,10 @@ GlLayerTracer::GlLayerTracer(const gl::HeadlessContext& context)
     : context_((context.make_current(), &context)),
       gl_(&context.gl()),
       program_(secondary_program(context.gl(), "render_secondary_trace.comp")),
-      clip_program_(secondary_program(context.gl(), "render_secondary_clip.comp")) {}
+      clip_program_(secondary_program(context.gl(), "render_secondary_clip.comp")),
+      gather_program_(std::make_unique<gl::Program>(
+          context.gl(), std::vector<gl::ShaderStage>{gl::shader_stage(
+                            GL_COMPUTE_SHADER, "render_secondary_gather.comp", gl::Prelude::clusters)})) {}
 
 // The programs' and buffers' glDelete* act on the current context: this one's, with several alive.
 GlLayerTracer::~GlLayerTracer() { context_->make_current_for_release(); }
@@ -114,25 +117,54 @@ void GlLayerTracer::begin_bounces(std::size_t rays) const {
     gl::reserve_storage(*gl_, bounce_hits_, rays * 2 * sizeof(std::uint32_t));
 }
 
+void GlLayerTracer::check_room(std::size_t first, std::size_t rays) const {
+    if (!bounce_hits_ || bounce_hits_->size() < (first + rays) * 2 * sizeof(std::uint32_t))
+        throw gl::GlError("gl: queue_bounce past the " + std::to_string(bounce_hits_ ? bounce_hits_->size() / 8 : 0) +
+                          " hits begin_bounces made room for");
+}
+
 void GlLayerTracer::queue_bounce(const kernelf::LayerView& view, int layers, float thickness,
                                  const GlLayerBuilder& built, const std::vector<glm::vec3>& starts,
                                  const std::vector<glm::vec3>& directions,
                                  const std::vector<std::uint32_t>& group_ends, std::size_t first) const {
     if (starts.empty() || group_ends.empty()) return;
-    if (!bounce_hits_ || bounce_hits_->size() < (first + starts.size()) * 2 * sizeof(std::uint32_t))
-        throw gl::GlError("gl: queue_bounce past the " + std::to_string(bounce_hits_ ? bounce_hits_->size() / 8 : 0) +
-                          " hits begin_bounces made room for");
-    const gl::Functions& f = *gl_;
+    check_room(first, starts.size());
     std::vector<glm::vec4> rays(2 * starts.size());
     for (std::size_t i = 0; i < starts.size(); ++i) {
         rays[2 * i] = glm::vec4(starts[i], 0.0f);
         rays[2 * i + 1] = glm::vec4(directions[i], 0.0f);
     }
+    bind_storage(*gl_, rays_, BC_GL_TRACE_RAYS_BINDING, rays.size() * sizeof(glm::vec4), rays.data());
+    clip_and_trace(view, layers, thickness, built, starts.size(), group_ends, first);
+}
+
+void GlLayerTracer::queue_bounce_gathered(const kernelf::LayerView& view, int layers, float thickness,
+                                          const GlLayerBuilder& built, const gl::Buffer& points,
+                                          const std::vector<std::uint32_t>& indices, float offset,
+                                          const std::vector<std::uint32_t>& group_ends, std::size_t first) const {
+    if (indices.empty() || group_ends.empty()) return;
+    check_room(first, indices.size());
+    const gl::Functions& f = *gl_;
+    points.bind_base(BC_GL_CLUSTER_POINTS_BINDING);
+    bind_storage(f, indices_, BC_GL_GATHER_INDICES_BINDING, indices.size() * sizeof(std::uint32_t), indices.data());
+    bind_storage(f, rays_, BC_GL_TRACE_RAYS_BINDING, indices.size() * 2 * sizeof(glm::vec4));
+    f.UseProgram(gather_program_->id());
+    f.Uniform1ui(f.GetUniformLocation(gather_program_->id(), "count"), static_cast<GLuint>(indices.size()));
+    f.Uniform1f(f.GetUniformLocation(gather_program_->id(), "offset"), offset);
+    dispatch_items(f, indices.size());
+    f.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    clip_and_trace(view, layers, thickness, built, indices.size(), group_ends, first);
+}
+
+void GlLayerTracer::clip_and_trace(const kernelf::LayerView& view, int layers, float thickness,
+                                   const GlLayerBuilder& built, std::size_t rays,
+                                   const std::vector<std::uint32_t>& group_ends, std::size_t first) const {
+    const gl::Functions& f = *gl_;
     const std::vector<float> view_floats = view_values(view, layers, thickness);
     bind_storage(f, view_, BC_GL_TRACE_VIEW_BINDING, view_floats.size() * sizeof(float), view_floats.data());
-    bind_storage(f, rays_, BC_GL_TRACE_RAYS_BINDING, rays.size() * sizeof(glm::vec4), rays.data());
+    rays_->bind_base(BC_GL_TRACE_RAYS_BINDING);
     bind_storage(f, groups_, BC_GL_TRACE_GROUPS_BINDING, group_ends.size() * sizeof(std::uint32_t), group_ends.data());
-    bind_storage(f, segments_, BC_GL_TRACE_SEGMENTS_BINDING, starts.size() * 10 * sizeof(float));
+    bind_storage(f, segments_, BC_GL_TRACE_SEGMENTS_BINDING, rays * 10 * sizeof(float));
     bounce_hits_->bind_base(BC_GL_TRACE_HITS_BINDING);
     built.depth_buffer().bind_base(BC_GL_TRACE_DEPTHS_BINDING);
     built.triangle_buffer().bind_base(BC_GL_TRACE_TRIANGLE_IDS_BINDING);
@@ -142,7 +174,7 @@ void GlLayerTracer::queue_bounce(const kernelf::LayerView& view, int layers, flo
     f.Uniform1ui(f.GetUniformLocation(clip_program_->id(), "groups"), groups);
     dispatch_items(f, groups);
     f.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    run_trace(starts.size(), true, first);
+    run_trace(rays, true, first);
 }
 
 std::vector<LayerBounceHit> GlLayerTracer::finish_bounces(std::size_t rays) const {

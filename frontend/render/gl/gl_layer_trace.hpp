@@ -52,6 +52,15 @@ public:
     void queue_bounce(const kernelf::LayerView& view, int layers, float thickness, const GlLayerBuilder& built,
                       const std::vector<glm::vec3>& starts, const std::vector<glm::vec3>& directions,
                       const std::vector<std::uint32_t>& group_ends, std::size_t first) const;
+    // queue_bounce with the rays gathered on the GPU instead of uploaded:
+    // ray i is the point indices[i] of `points` (GlClustering's buffer:
+    // position and direction, vec4 each), started at position + offset *
+    // direction (render_secondary_gather.comp; the host's start to the
+    // bit). 4 bytes a ray cross the bus instead of 32.
+    void queue_bounce_gathered(const kernelf::LayerView& view, int layers, float thickness,
+                               const GlLayerBuilder& built, const gl::Buffer& points,
+                               const std::vector<std::uint32_t>& indices, float offset,
+                               const std::vector<std::uint32_t>& group_ends, std::size_t first) const;
     std::vector<LayerBounceHit> finish_bounces(std::size_t rays) const;
 
 private:
@@ -59,15 +68,21 @@ private:
     const gl::Functions* gl_;
     std::unique_ptr<gl::Program> program_;
     std::unique_ptr<gl::Program> clip_program_;
+    std::unique_ptr<gl::Program> gather_program_;
     // The passes' buffers (trace's depths; view, rays, groups, segments,
     // hits; the bounce's hits, 2 words a ray), kept from one cluster to the
     // next.
-    mutable std::optional<gl::Buffer> depths_, view_, rays_, groups_, segments_, hits_, bounce_hits_;
+    mutable std::optional<gl::Buffer> depths_, view_, rays_, groups_, segments_, hits_, bounce_hits_, indices_;
 
     // The trace pass over `count` segments in the bound buffers: trace()'s
     // (8 words a ray at BC_GL_TRACE_HITS_BINDING, not picking surfaces), or
     // the bounce's (picking them; hits from `hit_offset`).
     void run_trace(std::size_t count, bool pick_surface, std::size_t hit_offset) const;
+    // Throws unless begin_bounces made room for `rays` hits from `first`.
+    void check_room(std::size_t first, std::size_t rays) const;
+    // A queued bounce's clipping and traces, its `rays` rays in rays_.
+    void clip_and_trace(const kernelf::LayerView& view, int layers, float thickness, const GlLayerBuilder& built,
+                        std::size_t rays, const std::vector<std::uint32_t>& group_ends, std::size_t first) const;
 };
 
 }  // namespace blurcull::frontend

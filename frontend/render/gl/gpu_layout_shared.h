@@ -117,6 +117,7 @@ using uint = std::uint32_t;
 #define BC_GL_CLUSTER_LABELS_BINDING 9  // Labels: per ray facet * 4 + local cluster
 #define BC_GL_CLUSTER_STATE_BINDING 10  // State: ClusterState (gl_cluster_shared.h)
 #define BC_GL_CLUSTER_VIEWS_BINDING 11  // Views: ClusterViewFit per slot and fit (gl_cluster_shared.h)
+#define BC_GL_GATHER_INDICES_BINDING 12 // Indices: a cluster's rays, as indices of Points (render_secondary_gather.comp)
 
 // What render_setup.comp finds out about triangle i, once per frame.
 struct TriangleInfo {
@@ -297,7 +298,8 @@ static_assert(distinct_bindings({BC_GL_TRACE_DEPTHS_BINDING, BC_GL_TRACE_SEGMENT
                                  BC_GL_TRACE_HITS_BINDING, BC_GL_TRACE_TRIANGLE_IDS_BINDING,
                                  BC_GL_TRACE_PYRAMID_BINDING, BC_GL_TRACE_RAYS_BINDING, BC_GL_TRACE_GROUPS_BINDING,
                                  BC_GL_CLUSTER_POINTS_BINDING, BC_GL_CLUSTER_LABELS_BINDING,
-                                 BC_GL_CLUSTER_STATE_BINDING, BC_GL_CLUSTER_VIEWS_BINDING}),
+                                 BC_GL_CLUSTER_STATE_BINDING, BC_GL_CLUSTER_VIEWS_BINDING,
+                                 BC_GL_GATHER_INDICES_BINDING}),
               "the clustering pass's bindings, past the trace prelude's");
 static_assert(sizeof(TriangleInfo) % 16 == 0 && sizeof(CellBounds) % 16 == 0 && sizeof(MethodBox) % 16 == 0 &&
                   sizeof(MaskTriangle) % 16 == 0 &&

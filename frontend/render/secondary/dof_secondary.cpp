@@ -147,6 +147,8 @@ ClusterRays cluster_rays(const BounceContext& c, std::vector<std::uint32_t>& mem
     ClusterRays rays;
     rays.starts.reserve(members.size());
     rays.directions.reserve(members.size());
+    rays.indices = members;
+    rays.offset = c.offset;
     for (std::size_t i = 0; i < members.size(); ++i) {
         const SecondaryRay& ray = c.rays[members[i]];
         rays.starts.push_back(ray.origin + c.offset * ray.direction);

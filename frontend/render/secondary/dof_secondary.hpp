@@ -76,6 +76,10 @@ struct ClusterRays {
     std::vector<glm::vec3> starts;      // the ray origins moved off their own surface
     std::vector<glm::vec3> directions;  // unit
     std::vector<std::uint32_t> group_ends;
+    // Ray i is ray indices[i] of its batch (the positions and directions a
+    // ClusterBouncer clustered), started at origin + offset * direction.
+    std::vector<std::uint32_t> indices;
+    float offset = 0.0f;
 };
 
 // A cluster's whole image-space bounce in one place: its layers with the
