@@ -35,9 +35,9 @@
 // 4. The GPU-resident bounce (clipping, traces and surfaces on the GPU)
 //    against the host's on the same GL layers: the same hits per ray (the
 //    test case below says how exactly).
-// 4b. The rays clustered, the views fitted and each cluster's rays gathered
-//    on the GPU against the host's clusters, views and uploaded rays: the
-//    same image.
+// 4b. The rays clustered, the views fitted and each cluster's rays and
+//    origins gathered on the GPU against the host's clusters, views and
+//    uploaded rays: the same culls and image.
 // 5. The primary pass and the layers on the compute pipeline: the fragment
 //    pipeline's image.
 // 6. More rays than one row of work groups (over 4.19 million).
@@ -446,7 +446,8 @@ TEST_CASE("dof-secondary: the GPU-resident bounce gives the host's hits on the s
 
 // 4b. The rays clustered and the views fitted in compute passes
 //    (GlClustering, what the bouncer does by default), then each cluster's
-//    rays gathered there by index (queue_bounce_gathered), against the
+//    rays and its in-front cull's origins gathered there by index
+//    (queue_bounce_gathered, GlLayerInput::origin_points), against the
 //    host's clustering and views and the rays uploaded, the rest alike: the
 //    clustering is minima, maxima and exact sums, so on an
 //    IEEE-exact GL the same clusters (tests/test_frontend_gl_secondary_parity.cpp
@@ -459,6 +460,7 @@ TEST_CASE("dof-secondary: the rays clustered on the GPU give the host clustering
     GlRenderer rasterizer;
     const GlDofSecondary passes(rasterizer, *context);
     const RenderSettings settings = quiet_settings(48, 36, 8);
+    std::uint64_t in_front_culls = 0;  // the cull that reads the gathered origins: exercised
     for (const Scene& scene : bounce_scenes()) {
         CAPTURE(scene.name);
         const PrimaryPass primary = passes.primary_pass(scene, {});
@@ -479,14 +481,18 @@ TEST_CASE("dof-secondary: the rays clustered on the GPU give the host clustering
                            << "; image RMSE " << e.rmse << ", max " << e.max_abs);
         CHECK(gpu_stats.rays == host_stats.rays);
         CHECK(gpu_stats.clusters > 0);
+        in_front_culls += host_stats.layers.culled_in_front;
         if (exact) {
             CHECK(gpu_stats.clusters == host_stats.clusters);
             CHECK(gpu_stats.trace_steps == host_stats.trace_steps);
+            CHECK(gpu_stats.layers.culled_in_front == host_stats.layers.culled_in_front);
+            CHECK(gpu_stats.layers.fragments == host_stats.layers.fragments);
             CHECK(e.max_abs == 0.0);
         } else {
             CHECK(e.rmse < 0.002);
         }
     }
+    CHECK(in_front_culls > 0);
 }
 
 // 5. The primary pass on the compute pipeline (GlOptions::pipeline compute,

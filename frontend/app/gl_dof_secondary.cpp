@@ -31,8 +31,8 @@ void add_counts(LayerStats& stats, const GlLayerCounts& counts) {
 // then clipped, traced and the surfaces picked there, cluster after cluster
 // with nothing waited for until finish() reads every hit back.
 // With `clustering` the rays are clustered there too, the clusters' views
-// fitted (GlClustering), and each cluster's rays gathered from there by
-// index instead of uploaded.
+// fitted (GlClustering), and each cluster's rays and origins (for the
+// in-front cull) gathered from there by index instead of uploaded.
 // Its phases: gpu_bounce_layers (the layers and pyramid) and
 // gpu_bounce_trace (clipping, traces and surfaces), on hardware GL only;
 // wall_bounce_layers and wall_bounce_trace (the host's time to issue them:
@@ -80,15 +80,25 @@ public:
     void queue(const WorldTriangles& triangles, const kernelf::LayerView& view, int layers, float thickness,
                const ClusterCulls& culls, const ClusterRays& rays) override {
         context_->make_current();
-        const GlLayerInput input{&triangles.vertices, &triangles.normals, &culls.own, &culls.origins,
-                                 culls.normal_threshold};
+        GlLayerInput input{&triangles.vertices, &triangles.normals, &culls.own, &culls.origins,
+                           culls.normal_threshold};
+        if (rays_on_gpu_) {
+            // The batch's rays are on the GPU: only their indices go, for
+            // the cull's origins and the rays both.
+            const gl::Buffer& indices = gl::reserve_storage(context_->gl(), indices_,
+                                                            rays.indices.size() * sizeof(std::uint32_t),
+                                                            rays.indices.data());
+            input.origin_points = &clustering_->points_buffer();
+            input.origin_indices = &indices;
+            input.origin_count = culls.origins.empty() ? 0 : rays.indices.size();  // the same rays, any order
+        }
         timers_->begin(layers_phase);
         builder_->build_resident(view, layers, input, raster_);
         timers_->end(layers_phase);
         timers_->begin(trace_phase);
-        if (rays_on_gpu_)  // the batch's rays are on the GPU: only their indices go
-            tracer_->queue_bounce_gathered(view, layers, thickness, *builder_, clustering_->points_buffer(),
-                                           rays.indices, rays.offset, rays.group_ends, queued_);
+        if (rays_on_gpu_)
+            tracer_->queue_bounce_gathered(view, layers, thickness, *builder_, clustering_->points_buffer(), *indices_,
+                                           rays.indices.size(), rays.offset, rays.group_ends, queued_);
         else
             tracer_->queue_bounce(view, layers, thickness, *builder_, rays.starts, rays.directions, rays.group_ends,
                                   queued_);
@@ -124,6 +134,7 @@ private:
     GlLayerRaster raster_;
     const GlClustering* clustering_;  // null: the host clusters
     bool rays_on_gpu_ = false;        // cluster() left this batch's rays in clustering_'s points
+    std::optional<gl::Buffer> indices_;  // the queued cluster's rays, as indices of those points
     std::size_t queued_ = 0;  // rays queued since begin()
     mutable std::optional<GlPhaseTimers> timers_;  // made by begin(), on the context; read by add_phases
 };

@@ -125,13 +125,14 @@ void GlLayerBuilder::Passes::upload_triangles(const gl::Functions& f,
 void GlLayerBuilder::Passes::upload(const gl::Functions& f, const kernelf::LayerView& view, int layers,
                                     const GlLayerInput& input, std::size_t pyramid_floats, bool with_triangles) {
     const std::size_t triangles = input.vertices->size();
-    const std::size_t origins = input.origins != nullptr ? input.origins->size() : 0;
+    const bool gathered = input.origin_points != nullptr;
+    const std::size_t origins = gathered ? input.origin_count : input.origins != nullptr ? input.origins->size() : 0;
     const std::size_t plane = static_cast<std::size_t>(view.size) * static_cast<std::size_t>(view.size);
     std::vector<std::uint32_t> own_bits((triangles + 31) / 32, 0u);
     for (std::size_t t = 0; t < triangles; ++t)
         if ((*input.own)[t] != 0) own_bits[t / 32] |= 1u << (t % 32);
-    std::vector<glm::vec4> origin_points(origins);
-    for (std::size_t i = 0; i < origins; ++i) origin_points[i] = glm::vec4((*input.origins)[i], 0.0f);
+    std::vector<glm::vec4> origin_points(gathered ? 0 : origins);
+    for (std::size_t i = 0; i < origin_points.size(); ++i) origin_points[i] = glm::vec4((*input.origins)[i], 0.0f);
     const gpu::LayerPass pass = pass_of(view, layers, triangles, origins, input.normal_threshold);
     if (with_triangles) {
         upload_triangles(f, *input.vertices, *input.normals);
@@ -147,7 +148,15 @@ void GlLayerBuilder::Passes::upload(const gl::Functions& f, const kernelf::Layer
     // build_resident's counts add up from upload_triangles on; build's are its own.
     if (with_triangles) reset_counts(f);
     reset_cluster_counts();
-    buffer(f, origins_binding, origin_points.size() * sizeof(glm::vec4), origin_points.data());
+    if (gathered) {
+        input.origin_points->bind_base(origins_binding);
+        input.origin_indices->bind_base(BC_GL_LAYER_ORIGIN_INDICES_BINDING);
+    } else {
+        buffer(f, origins_binding, origin_points.size() * sizeof(glm::vec4), origin_points.data());
+    }
+    f.UseProgram(cluster_depth.id());
+    f.Uniform1i(f.GetUniformLocation(cluster_depth.id(), "gathered"), gathered ? 1 : 0);
+    f.UseProgram(0);
     buffer(f, pyramid_binding, pyramid_floats * sizeof(float));
     const std::size_t texels = plane * static_cast<std::size_t>(layers);
     fill_words(f, buffer(f, layer_depth_binding, texels * sizeof(std::uint32_t)), BC_LAYER_EMPTY);
@@ -160,8 +169,11 @@ void GlLayerBuilder::Passes::upload(const gl::Functions& f, const kernelf::Layer
 // (no wait for their count: the draws and the compute scan read it).
 void GlLayerBuilder::Passes::make_fans(const gl::Functions& f, std::size_t triangles, std::size_t origins) {
     if (origins > 0) {
+        // In rows of at most 65,535 groups (the least maximum GL 4.3 offers).
+        constexpr GLuint row = 65535;
+        const GLuint groups = groups_of(origins, 64);
         f.UseProgram(cluster_depth.id());
-        f.DispatchCompute(groups_of(origins, 64), 1, 1);
+        f.DispatchCompute(std::min(groups, row), (groups + row - 1) / row, 1);
     }
     if (triangles > 0) {
         f.UseProgram(setup.id());
@@ -315,7 +327,9 @@ void GlLayerBuilder::make_layers(const kernelf::LayerView& view, int layers, con
     const gl::Functions& f = *gl_;
     check_layer_limits(f, view.size, layers, raster);
     passes_->upload(f, view, layers, input, pyramid_floats_of(view.size), with_triangles);
-    passes_->make_fans(f, input.vertices->size(), input.origins != nullptr ? input.origins->size() : 0);
+    passes_->make_fans(f, input.vertices->size(),
+                       input.origin_points != nullptr ? input.origin_count
+                                                      : input.origins != nullptr ? input.origins->size() : 0);
     if (raster == GlLayerRaster::compute)
         passes_->raster_fans(f, input.vertices->size());
     else

@@ -45,6 +45,12 @@ struct GlLayerInput {
     const std::vector<std::uint8_t>* own = nullptr;   // per triangle: the cluster's own
     const std::vector<glm::vec3>* origins = nullptr;  // the cluster's ray origins (none: no in-front cull)
     float normal_threshold = 2.0f;                    // cull n . forward above this
+    // Instead of `origins`, where origin_points is set: origin_count
+    // origins on the GPU, origin i the first vec4 of point origin_indices[i]
+    // of origin_points (GlClustering's buffer, 2 vec4 a ray).
+    const gl::Buffer* origin_points = nullptr;
+    const gl::Buffer* origin_indices = nullptr;
+    std::size_t origin_count = 0;
 };
 
 // What finds the texel centres each projected triangle covers. compute: a

@@ -140,20 +140,20 @@ void GlLayerTracer::queue_bounce(const kernelf::LayerView& view, int layers, flo
 
 void GlLayerTracer::queue_bounce_gathered(const kernelf::LayerView& view, int layers, float thickness,
                                           const GlLayerBuilder& built, const gl::Buffer& points,
-                                          const std::vector<std::uint32_t>& indices, float offset,
+                                          const gl::Buffer& indices, std::size_t rays, float offset,
                                           const std::vector<std::uint32_t>& group_ends, std::size_t first) const {
-    if (indices.empty() || group_ends.empty()) return;
-    check_room(first, indices.size());
+    if (rays == 0 || group_ends.empty()) return;
+    check_room(first, rays);
     const gl::Functions& f = *gl_;
     points.bind_base(BC_GL_CLUSTER_POINTS_BINDING);
-    bind_storage(f, indices_, BC_GL_GATHER_INDICES_BINDING, indices.size() * sizeof(std::uint32_t), indices.data());
-    bind_storage(f, rays_, BC_GL_TRACE_RAYS_BINDING, indices.size() * 2 * sizeof(glm::vec4));
+    indices.bind_base(BC_GL_GATHER_INDICES_BINDING);
+    bind_storage(f, rays_, BC_GL_TRACE_RAYS_BINDING, rays * 2 * sizeof(glm::vec4));
     f.UseProgram(gather_program_->id());
-    f.Uniform1ui(f.GetUniformLocation(gather_program_->id(), "count"), static_cast<GLuint>(indices.size()));
+    f.Uniform1ui(f.GetUniformLocation(gather_program_->id(), "count"), static_cast<GLuint>(rays));
     f.Uniform1f(f.GetUniformLocation(gather_program_->id(), "offset"), offset);
-    dispatch_items(f, indices.size());
+    dispatch_items(f, rays);
     f.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    clip_and_trace(view, layers, thickness, built, indices.size(), group_ends, first);
+    clip_and_trace(view, layers, thickness, built, rays, group_ends, first);
 }
 
 void GlLayerTracer::clip_and_trace(const kernelf::LayerView& view, int layers, float thickness,

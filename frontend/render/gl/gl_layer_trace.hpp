@@ -52,15 +52,16 @@ public:
     void queue_bounce(const kernelf::LayerView& view, int layers, float thickness, const GlLayerBuilder& built,
                       const std::vector<glm::vec3>& starts, const std::vector<glm::vec3>& directions,
                       const std::vector<std::uint32_t>& group_ends, std::size_t first) const;
-    // queue_bounce with the rays gathered on the GPU instead of uploaded:
-    // ray i is the point indices[i] of `points` (GlClustering's buffer:
-    // position and direction, vec4 each), started at position + offset *
-    // direction (render_secondary_gather.comp; the host's start to the
-    // bit). 4 bytes a ray cross the bus instead of 32.
+    // queue_bounce with the `rays` rays gathered on the GPU instead of
+    // uploaded: ray i is the point indices[i] of `points` (GlClustering's
+    // buffer: position and direction, vec4 each), started at position +
+    // offset * direction (render_secondary_gather.comp; the host's start to
+    // the bit). Only the indices (4 bytes a ray, uploaded by the caller)
+    // cross the bus instead of 32 bytes a ray.
     void queue_bounce_gathered(const kernelf::LayerView& view, int layers, float thickness,
-                               const GlLayerBuilder& built, const gl::Buffer& points,
-                               const std::vector<std::uint32_t>& indices, float offset,
-                               const std::vector<std::uint32_t>& group_ends, std::size_t first) const;
+                               const GlLayerBuilder& built, const gl::Buffer& points, const gl::Buffer& indices,
+                               std::size_t rays, float offset, const std::vector<std::uint32_t>& group_ends,
+                               std::size_t first) const;
     std::vector<LayerBounceHit> finish_bounces(std::size_t rays) const;
 
 private:
@@ -72,7 +73,7 @@ private:
     // The passes' buffers (trace's depths; view, rays, groups, segments,
     // hits; the bounce's hits, 2 words a ray), kept from one cluster to the
     // next.
-    mutable std::optional<gl::Buffer> depths_, view_, rays_, groups_, segments_, hits_, bounce_hits_, indices_;
+    mutable std::optional<gl::Buffer> depths_, view_, rays_, groups_, segments_, hits_, bounce_hits_;
 
     // The trace pass over `count` segments in the bound buffers: trace()'s
     // (8 words a ray at BC_GL_TRACE_HITS_BINDING, not picking surfaces), or

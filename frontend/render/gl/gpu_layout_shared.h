@@ -99,6 +99,7 @@ using uint = std::uint32_t;
 #define BC_GL_LAYER_PYRAMID_BINDING 9        // Pyramid: min/max levels
 #define BC_GL_LAYER_TEXEL_COUNTS_BINDING 10  // TexelCounts: fragments per texel
 #define BC_GL_LAYER_BINDINGS 11              // the layer passes' buffers: 0 .. 10
+#define BC_GL_LAYER_ORIGIN_INDICES_BINDING 11  // OriginIndices: with origins gathered, the cluster's rays (not owned)
 // dof-secondary's trace pass (gl_layer_trace.cpp; shaders/render_secondary_trace.comp):
 #define BC_GL_TRACE_DEPTHS_BINDING 0    // Depths: the layers' depths
 #define BC_GL_TRACE_SEGMENTS_BINDING 1  // Segments: 10 floats per ray
