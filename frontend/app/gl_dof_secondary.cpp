@@ -90,7 +90,7 @@ public:
                                                             rays.indices.data());
             input.origin_points = &clustering_->points_buffer();
             input.origin_indices = &indices;
-            input.origin_count = culls.origins.empty() ? 0 : rays.indices.size();  // the same rays, any order
+            input.origin_count = culls.in_front ? rays.indices.size() : 0;  // the cluster's rays, any order
         }
         timers_->begin(layers_phase);
         builder_->build_resident(view, layers, input, raster_);
@@ -103,7 +103,7 @@ public:
             tracer_->queue_bounce(view, layers, thickness, *builder_, rays.starts, rays.directions, rays.group_ends,
                                   queued_);
         timers_->end(trace_phase);
-        queued_ += rays.starts.size();
+        queued_ += rays.indices.size();
     }
 
     std::vector<LayerBounceHit> finish(LayerStats& stats) override {

@@ -70,7 +70,8 @@ K::VirtualView cluster_view(const ClusterViews<float>& views, std::size_t cluste
 
 // The culls of a cluster's layers: its own triangles and surface depth, and
 // the normal threshold from the cone of its directions.
-ClusterCulls cluster_culls(const BounceContext& c, const K::LayerView& view, const std::vector<std::uint32_t>& members) {
+ClusterCulls cluster_culls(const BounceContext& c, const K::LayerView& view, const std::vector<std::uint32_t>& members,
+                           bool rays_resident) {
     ClusterCulls culls;
     culls.own.assign(c.world.vertices.size(), 0);
     float cos_widest = 1.0f;
@@ -78,7 +79,8 @@ ClusterCulls cluster_culls(const BounceContext& c, const K::LayerView& view, con
         culls.own[c.rays[r].triangle] = 1;
         cos_widest = std::min(cos_widest, glm::dot(c.rays[r].direction, view.forward));
     }
-    if (c.options.cull_in_front)
+    culls.in_front = c.options.cull_in_front;
+    if (c.options.cull_in_front && !rays_resident)
         for (std::uint32_t r : members) culls.origins.push_back(c.rays[r].origin);
     if (c.options.cull_normals && cos_widest > 0.0f)
         culls.normal_threshold = std::sqrt(std::max(0.0f, 1.0f - cos_widest * cos_widest));
@@ -126,7 +128,7 @@ void clip_group(const K::LayerView& view, const DepthPyramid& pyramid, float thi
 
 // The cluster's members sorted into groups (one pixel's samples in one lens
 // part), as the bounce takes them.
-ClusterRays cluster_rays(const BounceContext& c, std::vector<std::uint32_t>& members) {
+ClusterRays cluster_rays(const BounceContext& c, std::vector<std::uint32_t>& members, bool rays_resident) {
     const auto spp = static_cast<std::uint32_t>(c.spp);
     auto key = [&](std::uint32_t r) { return std::make_pair(c.rays[r].sample / spp, c.rays[r].lens_part); };
     auto by_key = [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); };
@@ -145,14 +147,18 @@ ClusterRays cluster_rays(const BounceContext& c, std::vector<std::uint32_t>& mem
         std::stable_sort(members.begin(), members.end(), by_key);
     }
     ClusterRays rays;
-    rays.starts.reserve(members.size());
-    rays.directions.reserve(members.size());
     rays.indices = members;
     rays.offset = c.offset;
+    if (!rays_resident) {
+        rays.starts.reserve(members.size());
+        rays.directions.reserve(members.size());
+    }
     for (std::size_t i = 0; i < members.size(); ++i) {
-        const SecondaryRay& ray = c.rays[members[i]];
-        rays.starts.push_back(ray.origin + c.offset * ray.direction);
-        rays.directions.push_back(ray.direction);
+        if (!rays_resident) {
+            const SecondaryRay& ray = c.rays[members[i]];
+            rays.starts.push_back(ray.origin + c.offset * ray.direction);
+            rays.directions.push_back(ray.direction);
+        }
         if (i + 1 == members.size() || key(members[i + 1]) != key(members[i]))
             rays.group_ends.push_back(static_cast<std::uint32_t>(i + 1));
     }
@@ -200,8 +206,11 @@ struct PreparedCluster {
 // The cluster's view fitted, its culls and ray groups; the rays no view
 // holds traced against the scene (their radiance written). False when no ray
 // is left for the layers.
+// With `rays_resident` (the bouncer holds the batch's rays) only their
+// indices: no starts, directions or origins copied.
 bool prepare_cluster(const BounceContext& c, const K::VirtualView& fitted, std::vector<std::uint32_t> members,
-                     std::vector<glm::vec3>& radiance, SecondaryStats& stats, PreparedCluster& out) {
+                     std::vector<glm::vec3>& radiance, SecondaryStats& stats, PreparedCluster& out,
+                     bool rays_resident = false) {
     const Clock::time_point views_start = Clock::now();
     if ((fitted.flags & ~BC_VIEW_DIRECTION_OUTSIDE) != 0) {
         ++stats.clusters_unusable;
@@ -222,8 +231,8 @@ bool prepare_cluster(const BounceContext& c, const K::VirtualView& fitted, std::
         if (members.empty()) return false;
     }
     out.view = view;
-    out.culls = cluster_culls(c, view, members);
-    out.rays = cluster_rays(c, members);
+    out.culls = cluster_culls(c, view, members, rays_resident);
+    out.rays = cluster_rays(c, members, rays_resident);
     out.members = std::move(members);
     stats.views_ms += ms_since(views_start);
     return true;
@@ -260,8 +269,9 @@ void bounce_cluster(const BounceContext& c, const K::VirtualView& view, std::vec
 // in parallel; each thread's statistics go to done(), the rest to `stats`.
 template <class Done>
 void bounce_clusters_resident(const BounceContext& c, const std::vector<K::VirtualView>& views,
-                              std::vector<std::vector<std::uint32_t>>& members, std::vector<glm::vec3>& radiance,
-                              int threads, SecondaryStats& stats, const Done& done) {
+                              std::vector<std::vector<std::uint32_t>>& members, bool rays_resident,
+                              std::vector<glm::vec3>& radiance, int threads, SecondaryStats& stats,
+                              const Done& done) {
     c.bouncer->begin(c.world, c.rays.size());
     std::vector<std::vector<std::uint32_t>> queued;  // each queued cluster's rays, in the order of its hits
     const int clusters = static_cast<int>(views.size());
@@ -275,7 +285,7 @@ void bounce_clusters_resident(const BounceContext& c, const std::vector<K::Virtu
             [&](SecondaryStats& local, int k) {
                 const auto j = static_cast<std::size_t>(first + k);
                 ready[static_cast<std::size_t>(k)] = prepare_cluster(c, views[j], std::move(members[j]), radiance, local,
-                                                                     prepared[static_cast<std::size_t>(k)]);
+                                                                     prepared[static_cast<std::size_t>(k)], rays_resident);
             },
             done);
         for (int k = 0; k < count; ++k) {
@@ -377,7 +387,7 @@ std::vector<glm::vec3> bounce_all(const BounceContext& c, int threads, Secondary
     for (std::size_t r = 0; r < c.rays.size(); ++r)
         members[static_cast<std::size_t>(clustering.cluster_of[r])].push_back(static_cast<std::uint32_t>(r));
     if (c.bouncer != nullptr) {
-        bounce_clusters_resident(c, views, members, radiance, threads, stats, done);
+        bounce_clusters_resident(c, views, members, resident_clustering.has_value(), radiance, threads, stats, done);
         return radiance;
     }
     run_parallel_items(

@@ -73,6 +73,8 @@ using PrimaryPass = std::function<RenderResult(const RenderSettings& settings, s
 // groups that are clipped together (one pixel's samples in one lens part):
 // group g holds rays [g ? group_ends[g - 1] : 0, group_ends[g]).
 struct ClusterRays {
+    // Empty when the ClusterBouncer holds the batch's rays (its cluster()
+    // clustered them): then only `indices` say which.
     std::vector<glm::vec3> starts;      // the ray origins moved off their own surface
     std::vector<glm::vec3> directions;  // unit
     std::vector<std::uint32_t> group_ends;
@@ -95,7 +97,9 @@ public:
     // The batch's rays clustered there: cluster_reflector_pixels's result,
     // and each cluster's views in `views` (fit_cluster_views's; the GL
     // build's compute passes give both bit for bit); nullopt: the host
-    // clusters them and fits the views. Called before begin().
+    // clusters them and fits the views. Called before begin(). A bouncer
+    // that clusters holds the rays: queue() then gets their indices only
+    // (ClusterRays' starts and directions, ClusterCulls' origins empty).
     virtual std::optional<Clustering<float>> cluster(const std::vector<glm::vec3>& /*positions*/,
                                                      const std::vector<glm::vec3>& /*directions*/,
                                                      const ClusterOptions& /*options*/, float /*tan_half_fov*/,

@@ -22,7 +22,9 @@ namespace blurcull::frontend {
 // meets them from behind.
 struct ClusterCulls {
     std::vector<std::uint8_t> own;     // per triangle: hit by a sample of the cluster
-    std::vector<glm::vec3> origins;    // the cluster's ray origins; empty: no in-front cull but `own`
+    std::vector<glm::vec3> origins;    // the cluster's ray origins; empty: no in-front cull but `own`,
+                                       // unless in_front (a ClusterBouncer holding the rays gathers them)
+    bool in_front = false;             // the in-front cull is on
     float normal_threshold = 2.0f;     // cull when n . forward > this (2: never)
 };
 
