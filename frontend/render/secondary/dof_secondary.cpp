@@ -203,9 +203,9 @@ struct PreparedCluster {
     std::vector<std::uint32_t> members;
 };
 
-// The cluster's view fitted, its culls and ray groups; the rays no view
-// holds traced against the scene (their radiance written). False when no ray
-// is left for the layers.
+// From the cluster's fitted view (cluster_view): its layer view, culls and
+// ray groups; the rays no view holds traced against the scene (their
+// radiance written). False when no ray is left for the layers.
 // With `rays_resident` (the bouncer holds the batch's rays) only their
 // indices: no starts, directions or origins copied.
 bool prepare_cluster(const BounceContext& c, const K::VirtualView& fitted, std::vector<std::uint32_t> members,
