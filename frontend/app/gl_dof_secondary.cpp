@@ -57,7 +57,8 @@ public:
     std::optional<Clustering<float>> cluster(const std::vector<glm::vec3>& positions,
                                              const std::vector<glm::vec3>& directions, const ClusterOptions& options,
                                              float tan_half_fov, float min_near, ClusterViews<float>& views) override {
-        if (clustering_ == nullptr) return std::nullopt;
+        // More rays than a storage block holds: the host clusters them (the same clusters).
+        if (clustering_ == nullptr || positions.size() > clustering_->max_rays()) return std::nullopt;
         make_timers();
         timers_->begin(clustering_phase);
         Clustering<float> clusters = clustering_->cluster(positions, directions, options, tan_half_fov, min_near, &views);

@@ -1,6 +1,7 @@
 #include "render/gl/gl_clustering.hpp"
 
 #include "render/gl/gl_cluster_shared.h"
+#include "render/gl/gl_render_targets.hpp"
 #include "render/gl/gpu_layout_shared.h"
 #include "render/gl/shader_stages.hpp"
 
@@ -44,6 +45,11 @@ GlClustering::GlClustering(const gl::HeadlessContext& context)
 // The program's and buffers' glDelete* act on the current context: this one's, with several alive.
 GlClustering::~GlClustering() { context_->make_current_for_release(); }
 
+std::size_t GlClustering::max_rays() const {
+    const auto block = static_cast<std::size_t>(static_cast<unsigned>(get_integer(*gl_, GL_MAX_SHADER_STORAGE_BLOCK_SIZE)));
+    return block / (2 * sizeof(glm::vec4));
+}
+
 const gl::Buffer& GlClustering::points_buffer() const {
     if (!points_) throw gl::GlError("gl: no rays clustered yet, so none on the GPU");
     return *points_;
@@ -57,8 +63,9 @@ Clustering<float> GlClustering::cluster(const std::vector<glm::vec3>& positions,
     const std::size_t n = std::min(positions.size(), directions.size());
     out.cluster_of.assign(n, -1);
     if (n == 0) return out;
-    if (n > 0xffffffffu - 64u)
-        throw gl::GlError("gl: " + std::to_string(n) + " rays to cluster, more than a 32-bit ray index holds");
+    if (n > max_rays() || n > 0xffffffffu - 64u)
+        throw gl::GlError("gl: " + std::to_string(n) + " rays to cluster, more than a storage block of the GL (" +
+                          std::to_string(max_rays()) + ") or a 32-bit ray index holds");
     const gl::Functions& f = *gl_;
     std::vector<glm::vec4> points(2 * n);
     for (std::size_t i = 0; i < n; ++i) {

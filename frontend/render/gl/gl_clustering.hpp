@@ -39,6 +39,12 @@ public:
                               const ClusterOptions& options = {}, float tan_half_fov = 1.0f, float min_near = 1e-3f,
                               ClusterViews<float>* views = nullptr) const;
 
+    // The most rays cluster() takes: as many as the GL's largest shader
+    // storage block holds of its per-ray points (32 bytes a ray; NVIDIA:
+    // 2 GiB, 67 million; llvmpipe says 128 MiB, 4.2 million). More throw;
+    // GlDofSecondary clusters them on the host instead.
+    std::size_t max_rays() const;
+
     // The last cluster() call's rays on the GPU: per ray its position and
     // direction (vec4 each), for GlLayerTracer::queue_bounce_gathered.
     // Throws gl::GlError before the first call.
