@@ -40,8 +40,8 @@ public:
                               ClusterViews<float>* views = nullptr) const;
 
     // The most rays cluster() takes: as many as the GL's largest shader
-    // storage block holds of its per-ray points (32 bytes a ray; NVIDIA:
-    // 2 GiB, 67 million; llvmpipe says 128 MiB, 4.2 million). More throw;
+    // storage block holds of its per-ray points (32 bytes a ray; llvmpipe
+    // says 128 MiB, 4.2 million; NVIDIA's drivers commonly 2 GiB). More throw;
     // GlDofSecondary clusters them on the host instead.
     std::size_t max_rays() const;
 
