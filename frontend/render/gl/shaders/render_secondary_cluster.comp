@@ -2,11 +2,12 @@
 // cluster_reflector_pixels (include/blurcull/secondary_clusters.hpp), one
 // dispatch each, on the kernel's shared text: each ray's dodecahedron
 // facet, the facets' k, the k-means start (the least kmeans_start_key, then
-// the farthest rays), Lloyd's assignments and updates, the final sums. Every
-// choice is a minimum or maximum and every sum exact (64-bit fixed point,
-// added with atomics on its two words), so the order the invocations run
-// in changes nothing: the host's clusters, bit for bit, where the GPU
-// rounds as the host does. The per-ray steps run a run of BC_CLUSTER_RUN
+// the farthest rays), Lloyd's assignments and updates, the final sums, then
+// both view fits of every cluster (fit_cluster_views). Every choice is a
+// minimum or maximum, every sum exact (64-bit fixed point, added with
+// atomics on its two words) and every view field a max, min or or, so the
+// order the invocations run in changes nothing: the host's clusters and
+// views, bit for bit, where the GPU rounds as the host does. The per-ray steps run a run of BC_CLUSTER_RUN
 // consecutive rays an invocation, the per-facet steps one work group.
 layout(local_size_x = BC_TRACE_GROUP) in;
 layout(std430, binding = BC_GL_CLUSTER_POINTS_BINDING) readonly buffer Points { vec4 point[]; };  // position, direction
