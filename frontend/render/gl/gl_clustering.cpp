@@ -92,18 +92,15 @@ Clustering<float> GlClustering::cluster(const std::vector<glm::vec3>& positions,
     f.Uniform1f(f.GetUniformLocation(id, "min_near"), min_near);
     const GLint step_at = f.GetUniformLocation(id, "step");
     // A step over the rays (a run of BC_CLUSTER_RUN rays an invocation, 64
-    // a work group, in rows of at most 65,535 groups:
-    // render_secondary_common.glsl's dispatch_item) or over the facets (one
-    // work group); each sees the last one's writes.
+    // a work group, in rows: render_secondary_common.glsl's dispatch_item)
+    // or over the facets (one work group); each sees the last one's writes.
     auto run = [&](int step) {
         f.Uniform1i(step_at, step);
         const bool per_facet = step == BC_CLUSTER_STEP_SETUP || step == BC_CLUSTER_STEP_PICK ||
                                step == BC_CLUSTER_STEP_UPDATE || step == BC_CLUSTER_STEP_VIEW_BEGIN ||
                                step == BC_CLUSTER_STEP_VIEW_FINISH;
-        constexpr std::size_t row = 65535;
         const std::size_t runs = (n + BC_CLUSTER_RUN - 1) / BC_CLUSTER_RUN;
-        const std::size_t groups = per_facet ? 1 : (runs + 63) / 64;
-        f.DispatchCompute(static_cast<GLuint>(std::min(groups, row)), static_cast<GLuint>((groups + row - 1) / row), 1);
+        gl::dispatch_in_rows(f, per_facet ? 1 : (runs + 63) / 64);
         f.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     };
     run(BC_CLUSTER_STEP_CLASSIFY);

@@ -570,4 +570,9 @@ const Buffer& reserve_storage(const Functions& gl, std::optional<Buffer>& slot, 
     return *slot;
 }
 
+void dispatch_in_rows(const Functions& gl, std::size_t groups) {
+    constexpr std::size_t row = 65535;
+    gl.DispatchCompute(static_cast<GLuint>(std::min(groups, row)), static_cast<GLuint>((groups + row - 1) / row), 1);
+}
+
 }  // namespace blurcull::gl

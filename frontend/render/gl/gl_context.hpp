@@ -215,4 +215,10 @@ private:
 const Buffer& reserve_storage(const Functions& gl, std::optional<Buffer>& slot, std::size_t bytes,
                               const void* data = nullptr);
 
+// glDispatchCompute of `groups` work groups of the bound program in rows of
+// at most 65,535 (the least GL_MAX_COMPUTE_WORK_GROUP_COUNT a GL 4.3
+// context offers): group (x, y) is number y * gl_NumWorkGroups.x + x, and
+// the shader skips those past its count.
+void dispatch_in_rows(const Functions& gl, std::size_t groups);
+
 }  // namespace blurcull::gl

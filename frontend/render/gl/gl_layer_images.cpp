@@ -169,11 +169,8 @@ void GlLayerBuilder::Passes::upload(const gl::Functions& f, const kernelf::Layer
 // (no wait for their count: the draws and the compute scan read it).
 void GlLayerBuilder::Passes::make_fans(const gl::Functions& f, std::size_t triangles, std::size_t origins) {
     if (origins > 0) {
-        // In rows of at most 65,535 groups (the least maximum GL 4.3 offers).
-        constexpr GLuint row = 65535;
-        const GLuint groups = groups_of(origins, 64);
         f.UseProgram(cluster_depth.id());
-        f.DispatchCompute(std::min(groups, row), (groups + row - 1) / row, 1);
+        gl::dispatch_in_rows(f, groups_of(origins, 64));
     }
     if (triangles > 0) {
         f.UseProgram(setup.id());
@@ -190,13 +187,11 @@ void GlLayerBuilder::Passes::make_fans(const gl::Functions& f, std::size_t trian
 void GlLayerBuilder::Passes::raster_fans(const gl::Functions& f, std::size_t triangles) {
     const std::size_t fans = 2 * triangles;
     if (fans == 0) return;
-    const std::size_t row = std::min<std::size_t>(fans, 65535);
-    const GLuint rows = groups_of(fans, row);
     f.UseProgram(raster.id());
     const GLint peel_pass = f.GetUniformLocation(raster.id(), "peel_pass");
     for (int peel = 0; peel < 2; ++peel) {
         f.Uniform1i(peel_pass, peel);
-        f.DispatchCompute(static_cast<GLuint>(row), rows, 1);
+        gl::dispatch_in_rows(f, fans);
         f.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
 }

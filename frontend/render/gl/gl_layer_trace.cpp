@@ -20,17 +20,10 @@ std::unique_ptr<gl::Program> secondary_program(const gl::Functions& f, std::stri
 }
 
 // Dispatches `items` invocations of the bound program's 64-wide work
-// groups, as render_secondary_common.glsl's dispatch_item numbers them:
-// rows of at most 65,535 groups (the least GL_MAX_COMPUTE_WORK_GROUP_COUNT
-// a GL 4.3 context offers), so a cluster of more than 4.2 million rays
-// fits. The shaders skip items past the count.
-void dispatch_items(const gl::Functions& f, std::size_t items) {
-    constexpr std::size_t row = 65535;
-    const std::size_t groups = (items + 63) / 64;
-    const auto x = static_cast<GLuint>(std::min(groups, row));
-    const auto y = static_cast<GLuint>((groups + row - 1) / row);
-    f.DispatchCompute(x, y, 1);
-}
+// groups, as render_secondary_common.glsl's dispatch_item numbers them (in
+// rows, so a cluster of more than 4.2 million rays fits). The shaders skip
+// items past the count.
+void dispatch_items(const gl::Functions& f, std::size_t items) { gl::dispatch_in_rows(f, (items + 63) / 64); }
 
 // `slot`'s buffer with room for `bytes` (gl::reserve_storage; `data` copied
 // in), bound at `binding`.
