@@ -45,6 +45,13 @@ void fill_words(const gl::Functions& f, const gl::Buffer& buffer, std::uint32_t 
 
 GLuint groups_of(std::size_t items, std::size_t group) { return static_cast<GLuint>((items + group - 1) / group); }
 
+// The cluster's ray origins for the in-front cull: gathered on the GPU, or
+// the host's (none: no such cull).
+std::size_t origin_count(const GlLayerInput& input) {
+    if (input.origin_points != nullptr) return input.origin_count;
+    return input.origins != nullptr ? input.origins->size() : 0;
+}
+
 gpu::LayerPass pass_of(const kernelf::LayerView& view, int layers, std::size_t triangles, std::size_t origins,
                        float normal_threshold) {
     gpu::LayerPass pass;
@@ -87,7 +94,7 @@ struct GlLayerBuilder::Passes {
     GlLayerCounts counts(const gl::Functions& f) const;
     void reset_counts(const gl::Functions& f);
     void reset_cluster_counts();
-    void make_fans(const gl::Functions& f, std::size_t triangles, std::size_t origins);
+    void make_fans(const gl::Functions& f, const GlLayerInput& input);
     void draw_fans(const gl::Functions& f, int size);
     void raster_fans(const gl::Functions& f, std::size_t triangles);
     void make_pyramid(const gl::Functions& f, int size);
@@ -126,7 +133,7 @@ void GlLayerBuilder::Passes::upload(const gl::Functions& f, const kernelf::Layer
                                     const GlLayerInput& input, std::size_t pyramid_floats, bool with_triangles) {
     const std::size_t triangles = input.vertices->size();
     const bool gathered = input.origin_points != nullptr;
-    const std::size_t origins = gathered ? input.origin_count : input.origins != nullptr ? input.origins->size() : 0;
+    const std::size_t origins = origin_count(input);
     const std::size_t plane = static_cast<std::size_t>(view.size) * static_cast<std::size_t>(view.size);
     std::vector<std::uint32_t> own_bits((triangles + 31) / 32, 0u);
     for (std::size_t t = 0; t < triangles; ++t)
@@ -154,9 +161,6 @@ void GlLayerBuilder::Passes::upload(const gl::Functions& f, const kernelf::Layer
     } else {
         buffer(f, origins_binding, origin_points.size() * sizeof(glm::vec4), origin_points.data());
     }
-    f.UseProgram(cluster_depth.id());
-    f.Uniform1i(f.GetUniformLocation(cluster_depth.id(), "gathered"), gathered ? 1 : 0);
-    f.UseProgram(0);
     buffer(f, pyramid_binding, pyramid_floats * sizeof(float));
     const std::size_t texels = plane * static_cast<std::size_t>(layers);
     fill_words(f, buffer(f, layer_depth_binding, texels * sizeof(std::uint32_t)), BC_LAYER_EMPTY);
@@ -167,9 +171,12 @@ void GlLayerBuilder::Passes::upload(const gl::Functions& f, const kernelf::Layer
 
 // The cluster's depth map and the fans, with the draws' indirect command
 // (no wait for their count: the draws and the compute scan read it).
-void GlLayerBuilder::Passes::make_fans(const gl::Functions& f, std::size_t triangles, std::size_t origins) {
+void GlLayerBuilder::Passes::make_fans(const gl::Functions& f, const GlLayerInput& input) {
+    const std::size_t triangles = input.vertices->size();
+    const std::size_t origins = origin_count(input);
     if (origins > 0) {
         f.UseProgram(cluster_depth.id());
+        f.Uniform1i(f.GetUniformLocation(cluster_depth.id(), "gathered"), input.origin_points != nullptr ? 1 : 0);
         gl::dispatch_in_rows(f, groups_of(origins, 64));
     }
     if (triangles > 0) {
@@ -322,9 +329,7 @@ void GlLayerBuilder::make_layers(const kernelf::LayerView& view, int layers, con
     const gl::Functions& f = *gl_;
     check_layer_limits(f, view.size, layers, raster);
     passes_->upload(f, view, layers, input, pyramid_floats_of(view.size), with_triangles);
-    passes_->make_fans(f, input.vertices->size(),
-                       input.origin_points != nullptr ? input.origin_count
-                                                      : input.origins != nullptr ? input.origins->size() : 0);
+    passes_->make_fans(f, input);
     if (raster == GlLayerRaster::compute)
         passes_->raster_fans(f, input.vertices->size());
     else
