@@ -127,8 +127,8 @@ void clip_group(const K::LayerView& view, const DepthPyramid& pyramid, float thi
 }
 
 // The cluster's members sorted into groups (one pixel's samples in one lens
-// part), as the bounce takes them.
-ClusterRays cluster_rays(const BounceContext& c, std::vector<std::uint32_t>& members, bool rays_resident) {
+// part), as the bounce takes them: their indices, in that order.
+ClusterRays cluster_rays(const BounceContext& c, std::vector<std::uint32_t> members, bool rays_resident) {
     const auto spp = static_cast<std::uint32_t>(c.spp);
     auto key = [&](std::uint32_t r) { return std::make_pair(c.rays[r].sample / spp, c.rays[r].lens_part); };
     auto by_key = [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); };
@@ -147,7 +147,6 @@ ClusterRays cluster_rays(const BounceContext& c, std::vector<std::uint32_t>& mem
         std::stable_sort(members.begin(), members.end(), by_key);
     }
     ClusterRays rays;
-    rays.indices = members;
     rays.offset = c.offset;
     if (!rays_resident) {
         rays.starts.reserve(members.size());
@@ -162,6 +161,7 @@ ClusterRays cluster_rays(const BounceContext& c, std::vector<std::uint32_t>& mem
         if (i + 1 == members.size() || key(members[i + 1]) != key(members[i]))
             rays.group_ends.push_back(static_cast<std::uint32_t>(i + 1));
     }
+    rays.indices = std::move(members);
     return rays;
 }
 
@@ -194,13 +194,12 @@ float far_plane(const WorldTriangles& world, const K::LayerView& view) {
     return far;
 }
 
-// A cluster ready for its layers: its view, culls and groups of rays, and
-// the rays they are (indices into the context's rays, in group order).
+// A cluster ready for its layers: its view, culls and groups of rays (whose
+// indices are the rays they are, into the context's rays, in group order).
 struct PreparedCluster {
     K::LayerView view{};
     ClusterCulls culls;
     ClusterRays rays;
-    std::vector<std::uint32_t> members;
 };
 
 // From the cluster's fitted view (cluster_view): its layer view, culls and
@@ -232,8 +231,7 @@ bool prepare_cluster(const BounceContext& c, const K::VirtualView& fitted, std::
     }
     out.view = view;
     out.culls = cluster_culls(c, view, members, rays_resident);
-    out.rays = cluster_rays(c, members, rays_resident);
-    out.members = std::move(members);
+    out.rays = cluster_rays(c, std::move(members), rays_resident);
     stats.views_ms += ms_since(views_start);
     return true;
 }
@@ -259,7 +257,7 @@ void bounce_cluster(const BounceContext& c, const K::VirtualView& view, std::vec
                                    : build_cluster_layers_on_host(c.world, p.view, c.options.layers, p.culls, stats.layers);
     stats.layer_build_ms += ms_since(build_start);
     const std::vector<LayerBounceHit> hits = bounce_in_layers(p.view, built, c.thickness, p.rays, c.tracer);
-    shade_cluster(c, p.members, hits.data(), radiance, stats);
+    shade_cluster(c, p.rays.indices, hits.data(), radiance, stats);
 }
 
 // Every cluster through the ClusterBouncer, whose calls run on this thread
@@ -294,7 +292,7 @@ void bounce_clusters_resident(const BounceContext& c, const std::vector<K::Virtu
             const Clock::time_point start = Clock::now();
             c.bouncer->queue(c.world, p.view, c.options.layers, c.thickness, p.culls, p.rays);
             stats.layer_build_ms += ms_since(start);
-            queued.push_back(std::move(p.members));
+            queued.push_back(std::move(p.rays.indices));
         }
     }
     const Clock::time_point start = Clock::now();
