@@ -47,9 +47,7 @@ using uint = std::uint32_t;
 
 struct ClusterState {
     uint largest_bits;     // the largest finite |position coordinate| (float bits; atomicMax)
-    uint rays;             // the rays clustered
     float position_scale;  // cluster_position_scale(largest)
-    uint padding;
     uint facet_count[BC_CLUSTER_FACETS];      // rays per facet
     int facet_k[BC_CLUSTER_FACETS];           // clusters_for_facet, then the centres found
     int facet_chosen[BC_CLUSTER_FACETS];      // centres picked so far
@@ -93,9 +91,9 @@ struct ClusterViewFit {
 static_assert(sizeof(ClusterViewFit) == 25 * 4 && offsetof(ClusterViewFit, backoff_bits) == 60 &&
                   offsetof(ClusterViewFit, eye) == 76,
               "ClusterViewFit: std430 offsets");
-static_assert(offsetof(ClusterState, facet_count) == 16 && offsetof(ClusterState, centres) == 16 + 7 * 48 &&
-                  offsetof(ClusterState, sum_hi) == 16 + 7 * 48 + 432 &&
-                  sizeof(ClusterState) == 16 + 7 * 48 + 432 + 2 * 864 + 2 * 144,
+static_assert(offsetof(ClusterState, facet_count) == 8 && offsetof(ClusterState, centres) == 8 + 7 * 48 &&
+                  offsetof(ClusterState, sum_hi) == 8 + 7 * 48 + 432 &&
+                  sizeof(ClusterState) == 8 + 7 * 48 + 432 + 2 * 864 + 2 * 144,
               "ClusterState: std430 offsets");
 }  // namespace blurcull::frontend::gpu
 #endif

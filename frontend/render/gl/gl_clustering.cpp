@@ -72,8 +72,7 @@ Clustering<float> GlClustering::cluster(const std::vector<glm::vec3>& positions,
         points[2 * i] = glm::vec4(positions[i], 0.0f);
         points[2 * i + 1] = glm::vec4(directions[i], 0.0f);
     }
-    ClusterState initial{};
-    initial.rays = static_cast<std::uint32_t>(n);
+    const ClusterState initial{};
     gl::reserve_storage(f, points_, points.size() * sizeof(glm::vec4), points.data())
         .bind_base(BC_GL_CLUSTER_POINTS_BINDING);
     gl::reserve_storage(f, labels_, n * sizeof(std::uint32_t)).bind_base(BC_GL_CLUSTER_LABELS_BINDING);
