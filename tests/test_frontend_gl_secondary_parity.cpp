@@ -19,6 +19,8 @@
 #include <blurcull/glsl/kernel_glsl.hpp>
 #include <blurcull/layer_trace.hpp>
 #include <blurcull/secondary_clusters.hpp>
+#include "render/common/bounce_shared.h"
+#include "render/gl/gl_cluster_shared.h"
 #include "render/gl/gl_clustering.hpp"
 #include "render/gl/gl_context.hpp"
 
@@ -27,6 +29,8 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <map>
+#include <set>
 #include <optional>
 #include <string>
 #include <vector>
@@ -432,6 +436,102 @@ TEST_CASE("the GPU clustering passes give the host's clusters and views, bit for
             CHECK(host.clusters.size() >= 12);
             check_same_clustering(host, gpu.cluster(p, d, options), tolerant);
         }
+    }
+}
+
+TEST_CASE("the GPU grouping pass lists each cluster's groups, own triangles and normal cone as the host makes them") {
+    auto context = context_or_skip();
+    if (!context) return;
+    const bool tolerant = probe_arithmetic(*context).tolerant();
+    const frontend::GlClustering passes(*context);
+    // 20,000 pixels in order, each with 0 to 16 rays (8 spp, a dielectric's
+    // two a sample) in 16 lens parts; one pixel's 16 rays in one part;
+    // directions spread over the sphere, so clusters split a pixel's rays.
+    Rng rng(0x9e0u);
+    const std::uint32_t triangles = 1000;
+    std::vector<Kf::vec3> p, d;
+    std::vector<frontend::RayGroupKey> keys;
+    for (std::uint32_t pixel = 0; pixel < 20000; ++pixel) {
+        const int rays = pixel == 777 ? 16 : rng.below(17);
+        for (int k = 0; k < rays; ++k) {
+            p.emplace_back(static_cast<float>(rng.uniform(-10.0, 10.0)), static_cast<float>(rng.uniform(-1.0, 1.0)),
+                           static_cast<float>(rng.uniform(-5.0, 5.0)));
+            const dvec3 u = random_unit(rng);
+            d.emplace_back(static_cast<float>(u.x), static_cast<float>(u.y), static_cast<float>(u.z));
+            const auto part = static_cast<std::uint32_t>(pixel == 777 ? 5 : rng.below(16));
+            keys.push_back({static_cast<std::uint32_t>(rng.below(static_cast<int>(triangles))), pixel << 4u | part});
+        }
+    }
+    ClusterOptions options;
+    options.wanted_clusters = 30;
+    ClusterViews<float> views;
+    const Clustering<float> clusters = passes.cluster(p, d, options, 0.8391f, 0.01f, &views, &keys);
+    REQUIRE(clusters.clusters.size() >= 12);
+    std::vector<Kf::vec3> forwards;
+    for (std::size_t j = 0; j < clusters.clusters.size(); ++j)
+        forwards.push_back((views.along_mean[j].flags & BC_VIEW_DIRECTION_OUTSIDE) != 0 ? views.along_normal[j].forward
+                                                                                      : views.along_mean[j].forward);
+    for (bool cull_normals : {true, false}) {
+        CAPTURE(cull_normals);
+        REQUIRE(passes.group(forwards, cull_normals, triangles));
+        // The host's: per cluster its groups (rays by pixel and part), own triangles and least cosine.
+        const std::size_t count = clusters.clusters.size();
+        std::vector<std::map<std::uint32_t, std::vector<std::uint32_t>>> groups(count);
+        std::vector<std::set<std::uint32_t>> own(count);
+        std::vector<float> cos_widest(count, 1.0f);
+        for (std::size_t r = 0; r < p.size(); ++r) {
+            const auto j = static_cast<std::size_t>(clusters.cluster_of[r]);
+            groups[j][keys[r].pixel_part].push_back(static_cast<std::uint32_t>(r));
+            own[j].insert(keys[r].triangle);
+            cos_widest[j] = std::min(cos_widest[j], Kf::bc_dot3(d[r], forwards[j]));
+        }
+        long wrong_groups = 0, wrong_own = 0, wrong_threshold = 0;
+        std::size_t listed = 0, split_pixels = 0;
+        for (std::size_t j = 0; j < count; ++j) {
+            const frontend::GlClustering::GroupedCluster g = passes.grouped(j);
+            std::vector<std::uint32_t> list(g.rays), pairs(2 * g.rays), bits(g.own_bytes / 4);
+            std::uint32_t group_count = 0;
+            float threshold = 0.0f;
+            passes.lists_buffer().read(list.data(), list.size() * 4, g.list_offset);
+            passes.pairs_buffer().read(pairs.data(), pairs.size() * 4, g.pairs_offset);
+            passes.own_buffer().read(bits.data(), bits.size() * 4, g.own_offset);
+            passes.slots_buffer().read(&group_count, 4, g.group_count_offset);
+            passes.slots_buffer().read(&threshold, 4, g.threshold_offset);
+            // Every group once, each one key's rays, all of them.
+            std::set<std::uint32_t> seen;
+            wrong_groups += group_count != groups[j].size();
+            for (std::uint32_t k = 0; k < std::min<std::size_t>(group_count, g.rays); ++k) {
+                const std::uint32_t begin = pairs[2 * k], end = pairs[2 * k + 1];
+                if (!(begin < end && end <= g.rays)) {
+                    ++wrong_groups;
+                    continue;
+                }
+                std::vector<std::uint32_t> rays(list.begin() + begin, list.begin() + end);
+                std::sort(rays.begin(), rays.end());
+                const std::uint32_t key = keys[rays[0]].pixel_part;
+                wrong_groups += !seen.insert(key).second || groups[j].count(key) == 0 || groups[j][key] != rays;
+                listed += rays.size();
+            }
+            for (std::uint32_t t = 0; t < triangles; ++t)
+                wrong_own += (((bits[t / 32] >> (t % 32)) & 1u) != 0u) != (own[j].count(t) != 0);
+            const float expected = frontend::bounce::bc_normal_cone_threshold(cos_widest[j], cull_normals);
+            wrong_threshold += tolerant ? std::fabs(threshold - expected) > 1e-5f : bits_of(threshold) != bits_of(expected);
+        }
+        for (std::uint32_t pixel = 0; pixel < 20000; ++pixel) {
+            std::set<std::size_t> in;  // the clusters holding a ray of the pixel
+            for (std::size_t j = 0; j < count; ++j)
+                for (std::uint32_t part = 0; part < 16; ++part)
+                    if (groups[j].count(pixel << 4u | part) != 0) in.insert(j);
+            split_pixels += in.size() > 1;
+        }
+        MESSAGE(p.size() << " rays, " << count << " clusters, " << split_pixels
+                         << " pixels split between clusters: groups wrong " << wrong_groups << ", own bits wrong "
+                         << wrong_own << ", thresholds wrong " << wrong_threshold);
+        CHECK(split_pixels > 1000);  // the case the sort by slot is for
+        CHECK(listed == p.size());
+        CHECK(wrong_groups == 0);
+        CHECK(wrong_own == 0);
+        CHECK(wrong_threshold == 0);
     }
 }
 

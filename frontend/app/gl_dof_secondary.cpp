@@ -31,15 +31,17 @@ void add_counts(LayerStats& stats, const GlLayerCounts& counts) {
 // then clipped, traced and the surfaces picked there, cluster after cluster
 // with nothing waited for until finish() reads every hit back.
 // With `clustering` the rays are clustered there too, the clusters' views
-// fitted (GlClustering), and each cluster's rays and origins (for the
-// in-front cull) gathered from there by index instead of uploaded.
+// fitted (GlClustering), each cluster's rays and origins (for the in-front
+// cull) gathered from there by index instead of uploaded, and (group())
+// its groups, own triangles and normal cone made there: a cluster whose
+// view holds all its rays is queued with nothing but its view.
 // Its phases: gpu_bounce_layers (the layers and pyramid) and
 // gpu_bounce_trace (clipping, traces and surfaces), on hardware GL only;
 // wall_bounce_layers and wall_bounce_trace (the host's time to issue them:
 // nothing waits), wall_bounce_readback (finish(): waits for all of the
 // batch's GPU work, then reads the hits and counts); with the clustering,
 // gpu_ and wall_bounce_gpu_clustering (its passes, their upload and
-// read-back).
+// read-back, and the grouping pass).
 class GlClusterBouncer final : public ClusterBouncer {
 public:
     GlClusterBouncer(const gl::HeadlessContext& context, const GlLayerBuilder& builder, const GlLayerTracer& tracer,
@@ -55,16 +57,27 @@ public:
     }
 
     std::optional<Clustering<float>> cluster(const std::vector<glm::vec3>& positions,
-                                             const std::vector<glm::vec3>& directions, const ClusterOptions& options,
+                                             const std::vector<glm::vec3>& directions,
+                                             const std::vector<RayGroupKey>& keys, const ClusterOptions& options,
                                              float tan_half_fov, float min_near, ClusterViews<float>& views) override {
         // More rays than a storage block holds: the host clusters them (the same clusters).
         if (clustering_ == nullptr || positions.size() > clustering_->max_rays()) return std::nullopt;
         make_timers();
         timers_->begin(clustering_phase);
-        Clustering<float> clusters = clustering_->cluster(positions, directions, options, tan_half_fov, min_near, &views);
+        Clustering<float> clusters =
+            clustering_->cluster(positions, directions, options, tan_half_fov, min_near, &views, &keys);
         rays_on_gpu_ = true;
         timers_->end(clustering_phase);
         return clusters;
+    }
+
+    bool group(const std::vector<glm::vec3>& forwards, bool cull_normals, std::size_t triangles) override {
+        if (!rays_on_gpu_) return false;
+        context_->make_current();
+        timers_->begin(clustering_phase);
+        const bool grouped = clustering_->group(forwards, cull_normals, triangles);
+        timers_->end(clustering_phase);
+        return grouped;
     }
 
     void begin(const WorldTriangles& triangles, std::size_t max_rays) override {
@@ -72,6 +85,7 @@ public:
         builder_->upload_triangles(triangles.vertices, triangles.normals);
         tracer_->begin_bounces(max_rays);
         queued_ = 0;
+        batch_rays_ = max_rays;
     }
 
     void add_phases(RenderStats& stats) const override {
@@ -83,34 +97,53 @@ public:
         context_->make_current();
         GlLayerInput input{&triangles.vertices, &triangles.normals, &culls.own, &culls.origins,
                            culls.normal_threshold};
-        if (rays_on_gpu_) {
-            // The batch's rays are on the GPU: only their indices go, for
-            // the cull's origins and the rays both.
-            const gl::Buffer& indices = gl::reserve_storage(context_->gl(), indices_,
-                                                            rays.indices.size() * sizeof(std::uint32_t),
-                                                            rays.indices.data());
-            input.origin_points = &clustering_->points_buffer();
-            input.origin_indices = &indices;
-            input.origin_count = culls.in_front ? rays.indices.size() : 0;  // the cluster's rays, any order
-        }
-        timers_->begin(layers_phase);
-        builder_->build_resident(view, layers, input, raster_);
-        timers_->end(layers_phase);
-        timers_->begin(trace_phase);
-        if (rays_on_gpu_)
-            tracer_->queue_bounce_gathered(view, layers, thickness, *builder_, clustering_->points_buffer(), *indices_,
-                                           rays.indices.size(), rays.offset, rays.group_ends, queued_);
-        else
+        if (!rays_on_gpu_) {
+            timers_->begin(layers_phase);
+            builder_->build_resident(view, layers, input, raster_);
+            timers_->end(layers_phase);
+            timers_->begin(trace_phase);
             tracer_->queue_bounce(view, layers, thickness, *builder_, rays.starts, rays.directions, rays.group_ends,
                                   queued_);
-        timers_->end(trace_phase);
-        queued_ += rays.indices.size();
+            timers_->end(trace_phase);
+            queued_ += rays.indices.size();
+            return;
+        }
+        // The batch's rays are on the GPU: only their indices and groups
+        // go, for the cull's origins and the rays both.
+        const gl::Functions& f = context_->gl();
+        gl::reserve_storage(f, indices_, rays.indices.size() * sizeof(std::uint32_t), rays.indices.data());
+        const std::vector<std::uint32_t> words = group_words(rays.group_ends);
+        gl::reserve_storage(f, groups_, words.size() * sizeof(std::uint32_t), words.data());
+        bounce_gathered(view, layers, thickness, input, rays.indices.size(), culls.in_front, rays.offset,
+                        rays.group_ends.size());
+    }
+
+    void queue_grouped(const WorldTriangles& triangles, const kernelf::LayerView& view, int layers, float thickness,
+                       std::size_t cluster, bool cull_in_front, float offset) override {
+        context_->make_current();
+        const gl::Functions& f = context_->gl();
+        const GlClustering::GroupedCluster g = clustering_->grouped(cluster);
+        // The cluster's list, its groups' count and pairs, copied where the
+        // passes read a cluster's; its own bits and threshold by the build.
+        const std::size_t word = sizeof(std::uint32_t);
+        gl::copy_buffer(f, clustering_->lists_buffer(), g.list_offset,
+                        gl::reserve_storage(f, indices_, g.rays * word), 0, g.rays * word);
+        const gl::Buffer& groups = gl::reserve_storage(f, groups_, (1 + 2 * g.rays) * word);
+        gl::copy_buffer(f, clustering_->slots_buffer(), g.group_count_offset, groups, 0, word);
+        gl::copy_buffer(f, clustering_->pairs_buffer(), g.pairs_offset, groups, word, 2 * g.rays * word);
+        GlLayerInput input{&triangles.vertices, &triangles.normals, nullptr, nullptr, 2.0f};
+        input.own_source = &clustering_->own_buffer();
+        input.own_offset = g.own_offset;
+        input.threshold_source = &clustering_->slots_buffer();
+        input.threshold_offset = g.threshold_offset;
+        bounce_gathered(view, layers, thickness, input, g.rays, cull_in_front, offset, g.rays);
     }
 
     std::vector<LayerBounceHit> finish(LayerStats& stats) override {
         context_->make_current();
         timers_->begin(readback_phase);
-        std::vector<LayerBounceHit> hits = tracer_->finish_bounces(queued_);
+        // Gathered rays' hits are by index: one a ray of the batch.
+        std::vector<LayerBounceHit> hits = tracer_->finish_bounces(rays_on_gpu_ ? batch_rays_ : queued_);
         rays_on_gpu_ = false;  // the next batch's, if cluster() puts them there
         add_counts(stats, builder_->read_counts());  // the passes are done: no wait
         timers_->end(readback_phase);
@@ -119,6 +152,24 @@ public:
 
 private:
     enum Phase : std::size_t { layers_phase, trace_phase, readback_phase, clustering_phase };
+
+    // A cluster of `rays` rays whose indices and groups (at most
+    // max_groups) are in indices_ and groups_: its layers with `input`'s
+    // culls (and the in-front cull of those rays' origins), then its clip
+    // and traces, hits by ray index.
+    void bounce_gathered(const kernelf::LayerView& view, int layers, float thickness, GlLayerInput input,
+                         std::size_t rays, bool cull_in_front, float offset, std::size_t max_groups) {
+        input.origin_points = &clustering_->points_buffer();
+        input.origin_indices = &*indices_;
+        input.origin_count = cull_in_front ? rays : 0;  // the cluster's rays, any order
+        timers_->begin(layers_phase);
+        builder_->build_resident(view, layers, input, raster_);
+        timers_->end(layers_phase);
+        timers_->begin(trace_phase);
+        tracer_->queue_bounce_gathered(view, layers, thickness, *builder_, clustering_->points_buffer(), *indices_,
+                                       rays, offset, *groups_, max_groups);
+        timers_->end(trace_phase);
+    }
 
     // The context made current, and the timers made on it the first time.
     void make_timers() {
@@ -135,8 +186,11 @@ private:
     GlLayerRaster raster_;
     const GlClustering* clustering_;  // null: the host clusters
     bool rays_on_gpu_ = false;        // cluster() left this batch's rays in clustering_'s points
-    std::optional<gl::Buffer> indices_;  // the queued cluster's rays, as indices of those points
-    std::size_t queued_ = 0;  // rays queued since begin()
+    // The queued cluster's rays, as indices of those points, and its
+    // groups (group_words' layout).
+    std::optional<gl::Buffer> indices_, groups_;
+    std::size_t queued_ = 0;      // rays queued since begin(), their rays uploaded
+    std::size_t batch_rays_ = 0;  // begin()'s, the batch's rays
     mutable std::optional<GlPhaseTimers> timers_;  // made by begin(), on the context; read by add_phases
 };
 

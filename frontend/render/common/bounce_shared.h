@@ -23,6 +23,7 @@ using glm::clamp;
 using glm::floor;
 using glm::max;
 using glm::min;
+using glm::sqrt;
 #define BC_BOUNCE_FN inline
 #define BC_BOUNCE_PRECISE
 #else
@@ -78,6 +79,16 @@ BC_BOUNCE_FN bool bc_hit_surface_closer(float gap, float best, bool own_texel) {
     return gap < best || (own_texel && gap <= best);
 }
 
+// The layers' normal cull of a cluster whose rays' least cosine to its
+// view's forward axis is `cos_widest` (their cone's half angle): a triangle
+// whose unit normal has n . forward above the returned sine faces away from
+// every ray (the paper's normal cone); 2 (no cull) when the cone is wider
+// than a hemisphere or `cull` is off.
+BC_BOUNCE_FN float bc_normal_cone_threshold(float cos_widest, bool cull) {
+    BC_BOUNCE_PRECISE float sine2 = 1.0f - cos_widest * cos_widest;
+    return cull && cos_widest > 0.0f ? sqrt(max(0.0f, sine2)) : 2.0f;
+}
+
 #ifdef __cplusplus
 }  // namespace blurcull::frontend::bounce
 
@@ -90,6 +101,14 @@ struct LayerBounceHit {
     bool hit = false;
     std::uint32_t triangle = 0;  // the scene triangle of the surface hit
     int steps = 0;               // texels the trace visited
+};
+
+// What sorts a bounced ray into its cluster's groups and culls on the GPU
+// (render/gl's GlClustering::group): the reflector triangle it starts on,
+// and its pixel << 4 | lens part (pixels below 2^28).
+struct RayGroupKey {
+    std::uint32_t triangle = 0;
+    std::uint32_t pixel_part = 0;
 };
 
 }  // namespace blurcull::frontend

@@ -87,7 +87,48 @@ struct ClusterViewFit {
     int flags;
 };
 
+// The grouping pass's step (render_secondary_group.comp, uniform `step`).
+#define BC_GROUP_STEP_RAYS 0        // per ray: own triangle, widest cosine; per pixel run: its groups listed
+#define BC_GROUP_STEP_THRESHOLDS 1  // per slot: the normal cone's threshold
+// The most rays one pixel spawns per sample (a dielectric: reflected and refracted).
+#define BC_GROUP_RAYS_PER_SAMPLE 2
+// A ray's key word (the direction's w in Points): pixel << BC_GROUP_PART_BITS | lens part.
+#define BC_GROUP_PART_BITS 4u
+
+// One slot's rays as the grouping pass sorts them (gl_clustering.cpp,
+// GlClustering::group): where its list starts and how many rays it holds
+// (the host's, from the clustering's counts), the list and groups filled so
+// far (atomics), its chosen view's forward axis, the least cosine of a ray
+// to it (bc_float_order bits; atomicMin) and the normal cone's threshold
+// made from it (cluster_culls' rule, bc_normal_cone_threshold).
+struct ClusterSlotGroups {
+    uint first;
+    uint rays;
+    uint filled;
+    uint groups;
+    float forward[3];
+    uint cos_key;
+    float normal_threshold;
+};
+
+#ifndef __cplusplus
+// A float's bits as a key that orders as the floats do, negative ones
+// included (NaN apart): the sign bit flipped for positive floats, every bit
+// for negative ones; for atomicMin and atomicMax of floats.
+uint bc_float_order(float x) {
+    uint bits = floatBitsToUint(x);
+    return (bits & 0x80000000u) != 0u ? ~bits : bits | 0x80000000u;
+}
+
+float bc_float_of_order(uint key) {
+    return uintBitsToFloat((key & 0x80000000u) != 0u ? key & 0x7fffffffu : ~key);
+}
+#endif
+
 #ifdef __cplusplus
+static_assert(sizeof(ClusterSlotGroups) == 9 * 4 && offsetof(ClusterSlotGroups, groups) == 12 &&
+                  offsetof(ClusterSlotGroups, normal_threshold) == 32,
+              "ClusterSlotGroups: std430 offsets");
 static_assert(sizeof(ClusterViewFit) == 25 * 4 && offsetof(ClusterViewFit, backoff_bits) == 60 &&
                   offsetof(ClusterViewFit, eye) == 76,
               "ClusterViewFit: std430 offsets");

@@ -8,10 +8,12 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <cstring>
 #include <string>
 
 namespace blurcull::frontend {
 
+using gpu::ClusterSlotGroups;
 using gpu::ClusterState;
 using gpu::ClusterViewFit;
 
@@ -33,6 +35,20 @@ kernelf::VirtualView view_of(const ClusterViewFit& fit) {
     return v;
 }
 
+// The bits of a float as a word (the points' w carry the keys' words).
+float float_of_bits(std::uint32_t bits) {
+    float value;
+    std::memcpy(&value, &bits, sizeof value);
+    return value;
+}
+
+// render_secondary_group.comp's bc_float_order of a float.
+std::uint32_t float_order(float x) {
+    std::uint32_t bits;
+    std::memcpy(&bits, &x, sizeof bits);
+    return (bits & 0x80000000u) != 0u ? ~bits : bits | 0x80000000u;
+}
+
 }  // namespace
 
 GlClustering::GlClustering(const gl::HeadlessContext& context)
@@ -40,6 +56,9 @@ GlClustering::GlClustering(const gl::HeadlessContext& context)
       gl_(&context.gl()),
       program_(std::make_unique<gl::Program>(
           context.gl(), std::vector<gl::ShaderStage>{gl::shader_stage(GL_COMPUTE_SHADER, "render_secondary_cluster.comp",
+                                                                      gl::Prelude::clusters)})),
+      group_program_(std::make_unique<gl::Program>(
+          context.gl(), std::vector<gl::ShaderStage>{gl::shader_stage(GL_COMPUTE_SHADER, "render_secondary_group.comp",
                                                                       gl::Prelude::clusters)})) {}
 
 // The program's and buffers' glDelete* act on the current context: this one's, with several alive.
@@ -57,9 +76,12 @@ const gl::Buffer& GlClustering::points_buffer() const {
 
 Clustering<float> GlClustering::cluster(const std::vector<glm::vec3>& positions,
                                         const std::vector<glm::vec3>& directions, const ClusterOptions& options,
-                                        float tan_half_fov, float min_near, ClusterViews<float>* views) const {
+                                        float tan_half_fov, float min_near, ClusterViews<float>* views,
+                                        const std::vector<RayGroupKey>* keys) const {
     using K = kernelf;
     Clustering<float> out;
+    keyed_ = false;  // until this call's rays are on the GPU
+    slot_of_cluster_.clear();
     const std::size_t n = std::min(positions.size(), directions.size());
     out.cluster_of.assign(n, -1);
     if (n == 0) return out;
@@ -67,10 +89,14 @@ Clustering<float> GlClustering::cluster(const std::vector<glm::vec3>& positions,
         throw gl::GlError("gl: " + std::to_string(n) + " rays to cluster, more than a storage block of the GL (" +
                           std::to_string(max_rays()) + ") or a 32-bit ray index holds");
     const gl::Functions& f = *gl_;
+    const bool keyed = keys != nullptr && keys->size() == n;
+    rays_ = n;
+    // Each w holds a key's word as its bits (group() reads them as words;
+    // no pass does arithmetic on them).
     std::vector<glm::vec4> points(2 * n);
     for (std::size_t i = 0; i < n; ++i) {
-        points[2 * i] = glm::vec4(positions[i], 0.0f);
-        points[2 * i + 1] = glm::vec4(directions[i], 0.0f);
+        points[2 * i] = glm::vec4(positions[i], float_of_bits(keyed ? (*keys)[i].triangle : 0u));
+        points[2 * i + 1] = glm::vec4(directions[i], float_of_bits(keyed ? (*keys)[i].pixel_part : 0u));
     }
     const ClusterState initial{};
     gl::reserve_storage(f, points_, points.size() * sizeof(glm::vec4), points.data())
@@ -137,6 +163,8 @@ Clustering<float> GlClustering::cluster(const std::vector<glm::vec3>& positions,
     }
     // The clusters as the host numbers them: by facet, then local index, the empty ones dropped.
     std::array<int, BC_CLUSTER_SLOTS> global{};
+    slot_of_cluster_.clear();
+    slot_rays_.assign(BC_CLUSTER_SLOTS, 0u);
     for (int facet = 0; facet < BC_CLUSTER_FACETS; ++facet) {
         const int k = state.facet_k[facet];
         if (k == 0) continue;
@@ -156,6 +184,8 @@ Clustering<float> GlClustering::cluster(const std::vector<glm::vec3>& positions,
             global[static_cast<std::size_t>(slot)] = static_cast<int>(out.clusters.size());
             if (s.count + s.unfit == 0u) continue;
             out.clusters.push_back({facet, s});
+            slot_of_cluster_.push_back(slot);
+            slot_rays_[static_cast<std::size_t>(slot)] = s.count + s.unfit;
             if (views != nullptr) {
                 views->along_mean.push_back(view_of(fits[static_cast<std::size_t>(2 * slot)]));
                 views->along_normal.push_back(view_of(fits[static_cast<std::size_t>(2 * slot + 1)]));
@@ -168,7 +198,88 @@ Clustering<float> GlClustering::cluster(const std::vector<glm::vec3>& positions,
             throw gl::GlError("gl: the clustering passes left ray " + std::to_string(i) + " without a cluster");
         out.cluster_of[i] = global[facet * BC_CLUSTERS_PER_FACET_MAX + local];
     }
+    keyed_ = keyed;
     return out;
 }
+
+bool GlClustering::group(const std::vector<glm::vec3>& forwards, bool cull_normals, std::size_t triangles) const {
+    if (!keyed_ || !points_ || forwards.size() != slot_of_cluster_.size()) return false;
+    const std::size_t block = max_rays() * 2 * sizeof(glm::vec4);
+    const std::size_t own_words = (triangles + 31) / 32;
+    if (own_words * BC_CLUSTER_SLOTS * sizeof(std::uint32_t) > block || triangles > 0xffffffffu) return false;
+    const gl::Functions& f = *gl_;
+    own_words_ = own_words;
+    // Each slot's list from its first ray, in slot order; its forward axis
+    // the cluster's; its least cosine 1, a cone of one direction, so far.
+    std::vector<ClusterSlotGroups> slots(BC_CLUSTER_SLOTS, ClusterSlotGroups{});
+    std::uint32_t first = 0;
+    for (std::size_t slot = 0; slot < slots.size(); ++slot) {
+        slots[slot].first = first;
+        slots[slot].rays = slot_rays_[slot];
+        slots[slot].cos_key = float_order(1.0f);
+        slots[slot].normal_threshold = 2.0f;
+        first += slot_rays_[slot];
+    }
+    for (std::size_t j = 0; j < forwards.size(); ++j) {
+        ClusterSlotGroups& slot = slots[static_cast<std::size_t>(slot_of_cluster_[j])];
+        for (int a = 0; a < 3; ++a) slot.forward[a] = forwards[j][a];
+    }
+    const std::size_t n = rays_;
+    gl::reserve_storage(f, slots_, slots.size() * sizeof(ClusterSlotGroups), slots.data())
+        .bind_base(BC_GL_GROUP_SLOTS_BINDING);
+    gl::reserve_storage(f, lists_, n * sizeof(std::uint32_t)).bind_base(BC_GL_GROUP_LISTS_BINDING);
+    gl::reserve_storage(f, pairs_, 3 * n * sizeof(std::uint32_t)).bind_base(BC_GL_GROUP_PAIRS_BINDING);
+    const std::vector<std::uint32_t> no_bits(own_words * BC_CLUSTER_SLOTS, 0u);
+    gl::reserve_storage(f, own_, no_bits.size() * sizeof(std::uint32_t), no_bits.data())
+        .bind_base(BC_GL_GROUP_OWN_BINDING);
+    points_->bind_base(BC_GL_CLUSTER_POINTS_BINDING);
+    labels_->bind_base(BC_GL_CLUSTER_LABELS_BINDING);
+
+    const GLuint id = group_program_->id();
+    f.UseProgram(id);
+    f.Uniform1ui(f.GetUniformLocation(id, "rays"), static_cast<GLuint>(n));
+    f.Uniform1ui(f.GetUniformLocation(id, "own_words"), static_cast<GLuint>(own_words));
+    f.Uniform1ui(f.GetUniformLocation(id, "triangles"), static_cast<GLuint>(triangles));
+    f.Uniform1i(f.GetUniformLocation(id, "cull_normals"), cull_normals ? 1 : 0);
+    const GLint step = f.GetUniformLocation(id, "step");
+    f.Uniform1i(step, BC_GROUP_STEP_RAYS);
+    gl::dispatch_in_rows(f, (n + 63) / 64);
+    f.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    f.Uniform1i(step, BC_GROUP_STEP_THRESHOLDS);
+    f.DispatchCompute(1, 1, 1);
+    // The cluster passes read the lists and pairs, and copy from every buffer.
+    f.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    f.UseProgram(0);
+    return true;
+}
+
+GlClustering::GroupedCluster GlClustering::grouped(std::size_t cluster) const {
+    if (cluster >= slot_of_cluster_.size() || !slots_)
+        throw gl::GlError("gl: cluster " + std::to_string(cluster) + " was not grouped on the GPU");
+    const auto slot = static_cast<std::size_t>(slot_of_cluster_[cluster]);
+    std::size_t first = 0;
+    for (std::size_t s = 0; s < slot; ++s) first += slot_rays_[s];
+    GroupedCluster g;
+    g.rays = slot_rays_[slot];
+    g.list_offset = first * sizeof(std::uint32_t);
+    g.pairs_offset = 2 * first * sizeof(std::uint32_t);
+    g.group_count_offset = slot * sizeof(ClusterSlotGroups) + offsetof(ClusterSlotGroups, groups);
+    g.threshold_offset = slot * sizeof(ClusterSlotGroups) + offsetof(ClusterSlotGroups, normal_threshold);
+    g.own_offset = slot * own_words_ * sizeof(std::uint32_t);
+    g.own_bytes = own_words_ * sizeof(std::uint32_t);
+    return g;
+}
+
+namespace {
+const gl::Buffer& grouped_buffer(const std::optional<gl::Buffer>& buffer) {
+    if (!buffer) throw gl::GlError("gl: no rays grouped yet");
+    return *buffer;
+}
+}  // namespace
+
+const gl::Buffer& GlClustering::lists_buffer() const { return grouped_buffer(lists_); }
+const gl::Buffer& GlClustering::pairs_buffer() const { return grouped_buffer(pairs_); }
+const gl::Buffer& GlClustering::slots_buffer() const { return grouped_buffer(slots_); }
+const gl::Buffer& GlClustering::own_buffer() const { return grouped_buffer(own_); }
 
 }  // namespace blurcull::frontend

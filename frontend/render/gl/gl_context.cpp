@@ -570,6 +570,20 @@ const Buffer& reserve_storage(const Functions& gl, std::optional<Buffer>& slot, 
     return *slot;
 }
 
+void copy_buffer(const Functions& gl, const Buffer& from, std::size_t from_offset, const Buffer& to,
+                 std::size_t to_offset, std::size_t bytes) {
+    if (bytes == 0) return;
+    if (from_offset > from.size() || bytes > from.size() - from_offset || to_offset > to.size() ||
+        bytes > to.size() - to_offset)
+        throw GlError("gl: a buffer copy of " + std::to_string(bytes) + " bytes out of range");
+    gl.BindBuffer(GL_COPY_READ_BUFFER, from.id());
+    gl.BindBuffer(GL_COPY_WRITE_BUFFER, to.id());
+    gl.CopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, static_cast<GLintptr>(from_offset),
+                         static_cast<GLintptr>(to_offset), static_cast<GLsizeiptr>(bytes));
+    gl.BindBuffer(GL_COPY_READ_BUFFER, 0);
+    gl.BindBuffer(GL_COPY_WRITE_BUFFER, 0);
+}
+
 void dispatch_in_rows(const Functions& gl, std::size_t groups) {
     constexpr std::size_t row = 65535;
     gl.DispatchCompute(static_cast<GLuint>(std::min(groups, row)), static_cast<GLuint>((groups + row - 1) / row), 1);

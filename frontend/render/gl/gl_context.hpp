@@ -215,6 +215,13 @@ private:
 const Buffer& reserve_storage(const Functions& gl, std::optional<Buffer>& slot, std::size_t bytes,
                               const void* data = nullptr);
 
+// Copies bytes [from_offset, from_offset + bytes) of `from` to `to` at
+// `to_offset` on the GPU (glCopyBufferSubData: ordered after the commands
+// before it, as a dispatch is; shader writes before it need
+// GL_BUFFER_UPDATE_BARRIER_BIT). Throws GlError when out of range.
+void copy_buffer(const Functions& gl, const Buffer& from, std::size_t from_offset, const Buffer& to,
+                 std::size_t to_offset, std::size_t bytes);
+
 // glDispatchCompute of `groups` work groups of the bound program in rows of
 // at most 65,535 (the least GL_MAX_COMPUTE_WORK_GROUP_COUNT a GL 4.3
 // context offers): group (x, y) is number y * gl_NumWorkGroups.x + x, and

@@ -78,6 +78,7 @@
     X(PFNGLCOLORMASKPROC, ColorMask)                               \
     X(PFNGLDEPTHMASKPROC, DepthMask)                               \
     X(PFNGLCLEARBUFFERDATAPROC, ClearBufferData)                   \
+    X(PFNGLCOPYBUFFERSUBDATAPROC, CopyBufferSubData)               \
     X(PFNGLGENQUERIESPROC, GenQueries)                             \
     X(PFNGLDELETEQUERIESPROC, DeleteQueries)                       \
     X(PFNGLBEGINQUERYPROC, BeginQuery)                             \

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <optional>
+#include <cstddef>
 #include <cstring>
 #include <string>
 
@@ -135,8 +136,9 @@ void GlLayerBuilder::Passes::upload(const gl::Functions& f, const kernelf::Layer
     const bool gathered = input.origin_points != nullptr;
     const std::size_t origins = origin_count(input);
     const std::size_t plane = static_cast<std::size_t>(view.size) * static_cast<std::size_t>(view.size);
-    std::vector<std::uint32_t> own_bits((triangles + 31) / 32, 0u);
-    for (std::size_t t = 0; t < triangles; ++t)
+    const std::size_t own_words = (triangles + 31) / 32;
+    std::vector<std::uint32_t> own_bits(input.own_source != nullptr ? 0 : own_words, 0u);
+    for (std::size_t t = 0; t < triangles && !own_bits.empty(); ++t)
         if ((*input.own)[t] != 0) own_bits[t / 32] |= 1u << (t % 32);
     std::vector<glm::vec4> origin_points(gathered ? 0 : origins);
     for (std::size_t i = 0; i < origin_points.size(); ++i) origin_points[i] = glm::vec4((*input.origins)[i], 0.0f);
@@ -149,8 +151,15 @@ void GlLayerBuilder::Passes::upload(const gl::Functions& f, const kernelf::Layer
                               " triangles");
         at(triangles_binding).bind_base(triangles_binding);
     }
-    buffer(f, pass_binding, sizeof pass, &pass);
-    buffer(f, own_binding, own_bits.size() * sizeof(std::uint32_t), own_bits.data());
+    const gl::Buffer& pass_buffer = buffer(f, pass_binding, sizeof pass, &pass);
+    if (input.threshold_source != nullptr)
+        gl::copy_buffer(f, *input.threshold_source, input.threshold_offset, pass_buffer,
+                        offsetof(gpu::LayerPass, frustum) + 3 * sizeof(float), sizeof(float));
+    if (input.own_source != nullptr)
+        gl::copy_buffer(f, *input.own_source, input.own_offset,
+                        buffer(f, own_binding, own_words * sizeof(std::uint32_t)), 0, own_words * sizeof(std::uint32_t));
+    else
+        buffer(f, own_binding, own_bits.size() * sizeof(std::uint32_t), own_bits.data());
     buffer(f, fans_binding, 2 * triangles * sizeof(gpu::LayerFan));
     // build_resident's counts add up from upload_triangles on; build's are its own.
     if (with_triangles) reset_counts(f);

@@ -51,6 +51,14 @@ struct GlLayerInput {
     const gl::Buffer* origin_points = nullptr;
     const gl::Buffer* origin_indices = nullptr;
     std::size_t origin_count = 0;
+    // Instead of `own` and normal_threshold, where own_source is set: the
+    // own bits ((triangles + 31) / 32 words from byte own_offset) and the
+    // threshold (a float at byte threshold_offset of threshold_source)
+    // copied on the GPU (GlClustering::group's), nothing read back.
+    const gl::Buffer* own_source = nullptr;
+    std::size_t own_offset = 0;
+    const gl::Buffer* threshold_source = nullptr;
+    std::size_t threshold_offset = 0;
 };
 
 // What finds the texel centres each projected triangle covers. compute: a

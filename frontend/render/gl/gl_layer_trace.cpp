@@ -41,6 +41,18 @@ std::vector<float> view_values(const kernelf::LayerView& view, int layers, float
 
 }  // namespace
 
+std::vector<std::uint32_t> group_words(const std::vector<std::uint32_t>& group_ends) {
+    std::vector<std::uint32_t> words{static_cast<std::uint32_t>(group_ends.size())};
+    words.reserve(1 + 2 * group_ends.size());
+    std::uint32_t begin = 0;
+    for (std::uint32_t end : group_ends) {
+        words.push_back(begin);
+        words.push_back(end);
+        begin = end;
+    }
+    return words;
+}
+
 GlLayerTracer::GlLayerTracer(const gl::HeadlessContext& context)
     : context_((context.make_current(), &context)),
       gl_(&context.gl()),
@@ -53,12 +65,14 @@ GlLayerTracer::GlLayerTracer(const gl::HeadlessContext& context)
 // The programs' and buffers' glDelete* act on the current context: this one's, with several alive.
 GlLayerTracer::~GlLayerTracer() { context_->make_current_for_release(); }
 
-void GlLayerTracer::run_trace(std::size_t count, bool pick_surface, std::size_t hit_offset) const {
+void GlLayerTracer::run_trace(std::size_t count, bool pick_surface, std::size_t hit_offset,
+                              bool hits_by_index) const {
     const gl::Functions& f = *gl_;
     f.UseProgram(program_->id());
     f.Uniform1ui(f.GetUniformLocation(program_->id(), "count"), static_cast<GLuint>(count));
     f.Uniform1i(f.GetUniformLocation(program_->id(), "pick_surface"), pick_surface ? 1 : 0);
     f.Uniform1ui(f.GetUniformLocation(program_->id(), "hit_offset"), static_cast<GLuint>(hit_offset));
+    f.Uniform1i(f.GetUniformLocation(program_->id(), "hits_by_index"), hits_by_index ? 1 : 0);
     dispatch_items(f, count);
     // Its hits for the read-back, its reads before the next cluster's layer passes write.
     f.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
@@ -81,6 +95,7 @@ std::vector<kernelf::LayerHit> GlLayerTracer::trace(const kernelf::LayerView& vi
     const gl::Buffer& depth_buffer = gl::reserve_storage(f, depths_, depth.size() * sizeof(float), depth.data());
     depth_buffer.bind_base(BC_GL_TRACE_DEPTHS_BINDING);
     depth_buffer.bind_base(BC_GL_TRACE_TRIANGLE_IDS_BINDING);  // never read: no surface picked here
+    depth_buffer.bind_base(BC_GL_GATHER_INDICES_BINDING);      // nor hits stored by index
     bind_storage(f, segments_, BC_GL_TRACE_SEGMENTS_BINDING, packed.size() * sizeof(float), packed.data());
     bind_storage(f, view_, BC_GL_TRACE_VIEW_BINDING, view_floats.size() * sizeof(float), view_floats.data());
     bind_storage(f, hits_, BC_GL_TRACE_HITS_BINDING, segments.size() * 8 * sizeof(std::uint32_t));
@@ -128,15 +143,18 @@ void GlLayerTracer::queue_bounce(const kernelf::LayerView& view, int layers, flo
         rays[2 * i + 1] = glm::vec4(directions[i], 0.0f);
     }
     bind_storage(*gl_, rays_, BC_GL_TRACE_RAYS_BINDING, rays.size() * sizeof(glm::vec4), rays.data());
-    clip_and_trace(view, layers, thickness, built, starts.size(), group_ends, first);
+    const std::vector<std::uint32_t> words = group_words(group_ends);
+    const gl::Buffer& groups = gl::reserve_storage(*gl_, groups_, words.size() * sizeof(std::uint32_t), words.data());
+    rays_->bind_base(BC_GL_GATHER_INDICES_BINDING);  // never read: hits stored from `first`
+    clip_and_trace(view, layers, thickness, built, starts.size(), groups, group_ends.size(), false, first);
 }
 
 void GlLayerTracer::queue_bounce_gathered(const kernelf::LayerView& view, int layers, float thickness,
                                           const GlLayerBuilder& built, const gl::Buffer& points,
                                           const gl::Buffer& indices, std::size_t rays, float offset,
-                                          const std::vector<std::uint32_t>& group_ends, std::size_t first) const {
-    if (rays == 0 || group_ends.empty()) return;
-    check_room(first, rays);
+                                          const gl::Buffer& groups, std::size_t max_groups) const {
+    if (rays == 0 || max_groups == 0) return;
+    check_room(0, rays);  // the indices are the batch's rays, fewer than begin_bounces made room for
     const gl::Functions& f = *gl_;
     points.bind_base(BC_GL_CLUSTER_POINTS_BINDING);
     indices.bind_base(BC_GL_GATHER_INDICES_BINDING);
@@ -146,28 +164,26 @@ void GlLayerTracer::queue_bounce_gathered(const kernelf::LayerView& view, int la
     f.Uniform1f(f.GetUniformLocation(gather_program_->id(), "offset"), offset);
     dispatch_items(f, rays);
     f.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    clip_and_trace(view, layers, thickness, built, rays, group_ends, first);
+    clip_and_trace(view, layers, thickness, built, rays, groups, max_groups, true, 0);
 }
 
 void GlLayerTracer::clip_and_trace(const kernelf::LayerView& view, int layers, float thickness,
-                                   const GlLayerBuilder& built, std::size_t rays,
-                                   const std::vector<std::uint32_t>& group_ends, std::size_t first) const {
+                                   const GlLayerBuilder& built, std::size_t rays, const gl::Buffer& groups,
+                                   std::size_t max_groups, bool hits_by_index, std::size_t first) const {
     const gl::Functions& f = *gl_;
     const std::vector<float> view_floats = view_values(view, layers, thickness);
     bind_storage(f, view_, BC_GL_TRACE_VIEW_BINDING, view_floats.size() * sizeof(float), view_floats.data());
     rays_->bind_base(BC_GL_TRACE_RAYS_BINDING);
-    bind_storage(f, groups_, BC_GL_TRACE_GROUPS_BINDING, group_ends.size() * sizeof(std::uint32_t), group_ends.data());
+    groups.bind_base(BC_GL_TRACE_GROUPS_BINDING);
     bind_storage(f, segments_, BC_GL_TRACE_SEGMENTS_BINDING, rays * 10 * sizeof(float));
     bounce_hits_->bind_base(BC_GL_TRACE_HITS_BINDING);
     built.depth_buffer().bind_base(BC_GL_TRACE_DEPTHS_BINDING);
     built.triangle_buffer().bind_base(BC_GL_TRACE_TRIANGLE_IDS_BINDING);
     built.pyramid_buffer().bind_base(BC_GL_TRACE_PYRAMID_BINDING);
-    const auto groups = static_cast<GLuint>(group_ends.size());
     f.UseProgram(clip_program_->id());
-    f.Uniform1ui(f.GetUniformLocation(clip_program_->id(), "groups"), groups);
-    dispatch_items(f, groups);
+    dispatch_items(f, max_groups);  // those past the groups' count return at once
     f.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    run_trace(rays, true, first);
+    run_trace(rays, true, first, hits_by_index);
 }
 
 std::vector<LayerBounceHit> GlLayerTracer::finish_bounces(std::size_t rays) const {

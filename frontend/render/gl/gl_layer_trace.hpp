@@ -20,6 +20,11 @@
 
 namespace blurcull::frontend {
 
+// Groups of rays as the clip pass reads them: how many, then each one's
+// (begin, end); from the host's group ends (group g: rays
+// [g ? group_ends[g - 1] : 0, group_ends[g])).
+std::vector<std::uint32_t> group_words(const std::vector<std::uint32_t>& group_ends);
+
 class GlLayerTracer {
 public:
     // On `context` (kept alive by the caller; made current here, and by its
@@ -56,12 +61,15 @@ public:
     // uploaded: ray i is the point indices[i] of `points` (GlClustering's
     // buffer: position and direction, vec4 each), started at position +
     // offset * direction (render_secondary_gather.comp; the host's start to
-    // the bit). Only the indices (4 bytes a ray, uploaded by the caller)
-    // cross the bus instead of 32 bytes a ray.
+    // the bit), and its hit stored at indices[i], the batch's ray it is
+    // (finish_bounces then reads one hit per ray of the batch). The groups
+    // are in `groups` on the GPU, group_words' layout, at most `max_groups`
+    // of them. Only what the caller put in `indices` and `groups` crossed
+    // the bus, if anything.
     void queue_bounce_gathered(const kernelf::LayerView& view, int layers, float thickness,
                                const GlLayerBuilder& built, const gl::Buffer& points, const gl::Buffer& indices,
-                               std::size_t rays, float offset, const std::vector<std::uint32_t>& group_ends,
-                               std::size_t first) const;
+                               std::size_t rays, float offset, const gl::Buffer& groups,
+                               std::size_t max_groups) const;
     std::vector<LayerBounceHit> finish_bounces(std::size_t rays) const;
 
 private:
@@ -78,12 +86,15 @@ private:
     // The trace pass over `count` segments in the bound buffers: trace()'s
     // (8 words a ray at BC_GL_TRACE_HITS_BINDING, not picking surfaces), or
     // the bounce's (picking them; hits from `hit_offset`).
-    void run_trace(std::size_t count, bool pick_surface, std::size_t hit_offset) const;
+    void run_trace(std::size_t count, bool pick_surface, std::size_t hit_offset, bool hits_by_index = false) const;
     // Throws unless begin_bounces made room for `rays` hits from `first`.
     void check_room(std::size_t first, std::size_t rays) const;
-    // A queued bounce's clipping and traces, its `rays` rays in rays_.
+    // A queued bounce's clipping and traces, its `rays` rays in rays_, its
+    // groups in `groups` (at most max_groups); hits from `first`, or by the
+    // ray indices bound at BC_GL_GATHER_INDICES_BINDING.
     void clip_and_trace(const kernelf::LayerView& view, int layers, float thickness, const GlLayerBuilder& built,
-                        std::size_t rays, const std::vector<std::uint32_t>& group_ends, std::size_t first) const;
+                        std::size_t rays, const gl::Buffer& groups, std::size_t max_groups, bool hits_by_index,
+                        std::size_t first) const;
 };
 
 }  // namespace blurcull::frontend

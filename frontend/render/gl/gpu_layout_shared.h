@@ -119,6 +119,11 @@ using uint = std::uint32_t;
 #define BC_GL_CLUSTER_STATE_BINDING 10  // State: ClusterState (gl_cluster_shared.h)
 #define BC_GL_CLUSTER_VIEWS_BINDING 11  // Views: ClusterViewFit per slot and fit (gl_cluster_shared.h)
 #define BC_GL_GATHER_INDICES_BINDING 12 // Indices: a cluster's rays, as indices of Points (render_secondary_gather.comp)
+// The grouping pass (render_secondary_group.comp), beside Points and Labels:
+#define BC_GL_GROUP_SLOTS_BINDING 13    // Slots: ClusterSlotGroups per slot (gl_cluster_shared.h)
+#define BC_GL_GROUP_LISTS_BINDING 14    // Lists: each slot's rays, group after group, from its first
+#define BC_GL_GROUP_PAIRS_BINDING 15    // Pairs: each slot's groups (begin, end in its list), then scratch
+#define BC_GL_GROUP_OWN_BINDING 16      // Own: each slot's own triangles, a bit each
 
 // What render_setup.comp finds out about triangle i, once per frame.
 struct TriangleInfo {
@@ -300,8 +305,9 @@ static_assert(distinct_bindings({BC_GL_TRACE_DEPTHS_BINDING, BC_GL_TRACE_SEGMENT
                                  BC_GL_TRACE_PYRAMID_BINDING, BC_GL_TRACE_RAYS_BINDING, BC_GL_TRACE_GROUPS_BINDING,
                                  BC_GL_CLUSTER_POINTS_BINDING, BC_GL_CLUSTER_LABELS_BINDING,
                                  BC_GL_CLUSTER_STATE_BINDING, BC_GL_CLUSTER_VIEWS_BINDING,
-                                 BC_GL_GATHER_INDICES_BINDING}),
-              "the clustering pass's bindings, past the trace prelude's");
+                                 BC_GL_GATHER_INDICES_BINDING, BC_GL_GROUP_SLOTS_BINDING,
+                                 BC_GL_GROUP_LISTS_BINDING, BC_GL_GROUP_PAIRS_BINDING, BC_GL_GROUP_OWN_BINDING}),
+              "the clustering and grouping passes' bindings, past the trace prelude's");
 static_assert(sizeof(TriangleInfo) % 16 == 0 && sizeof(CellBounds) % 16 == 0 && sizeof(MethodBox) % 16 == 0 &&
                   sizeof(MaskTriangle) % 16 == 0 &&
                   sizeof(GpuMovingTriangle) % 16 == 0,

@@ -77,13 +77,12 @@ ClusterCulls cluster_culls(const BounceContext& c, const K::LayerView& view, con
     float cos_widest = 1.0f;
     for (std::uint32_t r : members) {
         culls.own[c.rays[r].triangle] = 1;
-        cos_widest = std::min(cos_widest, glm::dot(c.rays[r].direction, view.forward));
+        cos_widest = std::min(cos_widest, K::bc_dot3(c.rays[r].direction, view.forward));
     }
     culls.in_front = c.options.cull_in_front;
     if (c.options.cull_in_front && !rays_resident)
         for (std::uint32_t r : members) culls.origins.push_back(c.rays[r].origin);
-    if (c.options.cull_normals && cos_widest > 0.0f)
-        culls.normal_threshold = std::sqrt(std::max(0.0f, 1.0f - cos_widest * cos_widest));
+    culls.normal_threshold = bounce::bc_normal_cone_threshold(cos_widest, c.options.cull_normals);
     return culls;
 }
 
@@ -165,12 +164,13 @@ ClusterRays cluster_rays(const BounceContext& c, std::vector<std::uint32_t> memb
     return rays;
 }
 
-// The rays' radiance from their hits in the layers (the environment on a miss).
+// The rays' radiance from their hits in the layers (the environment on a
+// miss): ray members[i]'s hit is hits[i], or with `by_ray` hits[members[i]].
 void shade_hits(const BounceContext& c, const std::vector<std::uint32_t>& members, const LayerBounceHit* hits,
-                std::vector<glm::vec3>& radiance, SecondaryStats& stats) {
+                bool by_ray, std::vector<glm::vec3>& radiance, SecondaryStats& stats) {
     for (std::size_t i = 0; i < members.size(); ++i) {
         const SecondaryRay& ray = c.rays[members[i]];
-        const LayerBounceHit& hit = hits[i];
+        const LayerBounceHit& hit = hits[by_ray ? members[i] : i];
         ++stats.rays_image_space;
         stats.trace_steps += static_cast<std::uint64_t>(std::max(hit.steps, 0));
         if (!hit.hit) {
@@ -195,21 +195,26 @@ float far_plane(const WorldTriangles& world, const K::LayerView& view) {
 }
 
 // A cluster ready for its layers: its view, culls and groups of rays (whose
-// indices are the rays they are, into the context's rays, in group order).
+// indices are the rays they are, into the context's rays, in group order);
+// or, `grouped`, its view and rays only (the bouncer's group() made the
+// rest, for every ray of the cluster).
 struct PreparedCluster {
     K::LayerView view{};
     ClusterCulls culls;
     ClusterRays rays;
+    bool grouped = false;
 };
 
 // From the cluster's fitted view (cluster_view): its layer view, culls and
 // ray groups; the rays no view holds traced against the scene (their
 // radiance written). False when no ray is left for the layers.
 // With `rays_resident` (the bouncer holds the batch's rays) only their
-// indices: no starts, directions or origins copied.
+// indices: no starts, directions or origins copied; with `grouped` (the
+// bouncer grouped them too) neither culls nor groups where the view holds
+// every ray.
 bool prepare_cluster(const BounceContext& c, const K::VirtualView& fitted, std::vector<std::uint32_t> members,
                      std::vector<glm::vec3>& radiance, SecondaryStats& stats, PreparedCluster& out,
-                     bool rays_resident = false) {
+                     bool rays_resident = false, bool grouped = false) {
     const Clock::time_point views_start = Clock::now();
     if ((fitted.flags & ~BC_VIEW_DIRECTION_OUTSIDE) != 0) {
         ++stats.clusters_unusable;
@@ -230,17 +235,23 @@ bool prepare_cluster(const BounceContext& c, const K::VirtualView& fitted, std::
         if (members.empty()) return false;
     }
     out.view = view;
-    out.culls = cluster_culls(c, view, members, rays_resident);
-    out.rays = cluster_rays(c, std::move(members), rays_resident);
+    out.grouped = grouped && (fitted.flags & BC_VIEW_DIRECTION_OUTSIDE) == 0;
+    if (out.grouped) {
+        out.rays.indices = std::move(members);
+        out.rays.offset = c.offset;
+    } else {
+        out.culls = cluster_culls(c, view, members, rays_resident);
+        out.rays = cluster_rays(c, std::move(members), rays_resident);
+    }
     stats.views_ms += ms_since(views_start);
     return true;
 }
 
-// The prepared cluster's hits shaded into `radiance`.
+// The prepared cluster's hits shaded into `radiance` (shade_hits).
 void shade_cluster(const BounceContext& c, const std::vector<std::uint32_t>& members, const LayerBounceHit* hits,
-                   std::vector<glm::vec3>& radiance, SecondaryStats& stats) {
+                   bool by_ray, std::vector<glm::vec3>& radiance, SecondaryStats& stats) {
     const Clock::time_point shading_start = Clock::now();
-    shade_hits(c, members, hits, radiance, stats);
+    shade_hits(c, members, hits, by_ray, radiance, stats);
     stats.shading_ms += ms_since(shading_start);
 }
 
@@ -257,7 +268,7 @@ void bounce_cluster(const BounceContext& c, const K::VirtualView& view, std::vec
                                    : build_cluster_layers_on_host(c.world, p.view, c.options.layers, p.culls, stats.layers);
     stats.layer_build_ms += ms_since(build_start);
     const std::vector<LayerBounceHit> hits = bounce_in_layers(p.view, built, c.thickness, p.rays, c.tracer);
-    shade_cluster(c, p.rays.indices, hits.data(), radiance, stats);
+    shade_cluster(c, p.rays.indices, hits.data(), false, radiance, stats);
 }
 
 // Every cluster through the ClusterBouncer, whose calls run on this thread
@@ -265,9 +276,11 @@ void bounce_cluster(const BounceContext& c, const K::VirtualView& view, std::vec
 // parallel and queues them in order (the GPU builds and traces them while
 // the host prepares the next), the hits are read once at the end and shaded
 // in parallel; each thread's statistics go to done(), the rest to `stats`.
+// `rays_resident`: the bouncer clustered the rays (its hits come by ray
+// index); `grouped`: and grouped them (group() returned true).
 template <class Done>
 void bounce_clusters_resident(const BounceContext& c, const std::vector<K::VirtualView>& views,
-                              std::vector<std::vector<std::uint32_t>>& members, bool rays_resident,
+                              std::vector<std::vector<std::uint32_t>>& members, bool rays_resident, bool grouped,
                               std::vector<glm::vec3>& radiance, int threads, SecondaryStats& stats,
                               const Done& done) {
     c.bouncer->begin(c.world, c.rays.size());
@@ -282,15 +295,20 @@ void bounce_clusters_resident(const BounceContext& c, const std::vector<K::Virtu
             threads, count, [] { return SecondaryStats{}; },
             [&](SecondaryStats& local, int k) {
                 const auto j = static_cast<std::size_t>(first + k);
-                ready[static_cast<std::size_t>(k)] = prepare_cluster(c, views[j], std::move(members[j]), radiance, local,
-                                                                     prepared[static_cast<std::size_t>(k)], rays_resident);
+                ready[static_cast<std::size_t>(k)] =
+                    prepare_cluster(c, views[j], std::move(members[j]), radiance, local,
+                                    prepared[static_cast<std::size_t>(k)], rays_resident, grouped);
             },
             done);
         for (int k = 0; k < count; ++k) {
             if (!ready[static_cast<std::size_t>(k)]) continue;
             PreparedCluster& p = prepared[static_cast<std::size_t>(k)];
             const Clock::time_point start = Clock::now();
-            c.bouncer->queue(c.world, p.view, c.options.layers, c.thickness, p.culls, p.rays);
+            if (p.grouped)
+                c.bouncer->queue_grouped(c.world, p.view, c.options.layers, c.thickness,
+                                         static_cast<std::size_t>(first + k), c.options.cull_in_front, c.offset);
+            else
+                c.bouncer->queue(c.world, p.view, c.options.layers, c.thickness, p.culls, p.rays);
             stats.layer_build_ms += ms_since(start);
             queued.push_back(std::move(p.rays.indices));
         }
@@ -298,13 +316,15 @@ void bounce_clusters_resident(const BounceContext& c, const std::vector<K::Virtu
     const Clock::time_point start = Clock::now();
     const std::vector<LayerBounceHit> hits = c.bouncer->finish(stats.layers);
     stats.layer_build_ms += ms_since(start);  // the layers, clipping and traces, waited for here
+    // The hits in queue order, or by ray index (rays_resident).
     std::vector<std::size_t> first_hit(queued.size(), 0);
     for (std::size_t k = 1; k < queued.size(); ++k) first_hit[k] = first_hit[k - 1] + queued[k - 1].size();
     run_parallel_items(
         threads, static_cast<int>(queued.size()), [] { return SecondaryStats{}; },
         [&](SecondaryStats& local, int k) {
             const auto at = static_cast<std::size_t>(k);
-            shade_cluster(c, queued[at], hits.data() + first_hit[at], radiance, local);
+            shade_cluster(c, queued[at], hits.data() + (rays_resident ? 0 : first_hit[at]), rays_resident, radiance,
+                          local);
         },
         done);
 }
@@ -326,6 +346,17 @@ void add_stats(SecondaryStats& into, const SecondaryStats& from) {
     into.clustering_ms += from.clustering_ms;
     into.views_ms += from.views_ms;
     into.shading_ms += from.shading_ms;
+}
+
+// Each ray's group key (ClusterBouncer::cluster): its reflector triangle,
+// pixel and lens part; none where a pixel index does not fit its 28 bits.
+std::vector<RayGroupKey> group_keys(const BounceContext& c) {
+    std::vector<RayGroupKey> keys;
+    const auto spp = static_cast<std::uint32_t>(c.spp);
+    if (c.rays.empty() || c.rays.back().sample / spp >= (1u << 28)) return keys;  // rays in sample order
+    keys.reserve(c.rays.size());
+    for (const SecondaryRay& ray : c.rays) keys.push_back({ray.triangle, (ray.sample / spp) << 4u | ray.lens_part});
+    return keys;
 }
 
 // Every ray's radiance by the options' bounce mode, in parallel over
@@ -367,7 +398,8 @@ std::vector<glm::vec3> bounce_all(const BounceContext& c, int threads, Secondary
     std::optional<Clustering<float>> resident_clustering;
     ClusterViews<float> fitted;
     if (c.bouncer != nullptr)
-        resident_clustering = c.bouncer->cluster(positions, directions, cluster_options, c.tan_half_fov, c.min_near, fitted);
+        resident_clustering =
+            c.bouncer->cluster(positions, directions, group_keys(c), cluster_options, c.tan_half_fov, c.min_near, fitted);
     const Clustering<float> clustering =
         resident_clustering ? std::move(*resident_clustering)
                             : cluster_reflector_pixels<float>(positions, directions, cluster_options, parallel_for);
@@ -385,7 +417,17 @@ std::vector<glm::vec3> bounce_all(const BounceContext& c, int threads, Secondary
     for (std::size_t r = 0; r < c.rays.size(); ++r)
         members[static_cast<std::size_t>(clustering.cluster_of[r])].push_back(static_cast<std::uint32_t>(r));
     if (c.bouncer != nullptr) {
-        bounce_clusters_resident(c, views, members, resident_clustering.has_value(), radiance, threads, stats, done);
+        // Where it clustered them: each cluster's groups and culls there too, for its view.
+        bool grouped = false;
+        if (resident_clustering) {
+            const Clock::time_point start = Clock::now();
+            std::vector<glm::vec3> forwards;
+            for (const K::VirtualView& view : views) forwards.push_back(view.forward);
+            grouped = c.bouncer->group(forwards, c.options.cull_normals, c.world.vertices.size());
+            stats.views_ms += ms_since(start);
+        }
+        bounce_clusters_resident(c, views, members, resident_clustering.has_value(), grouped, radiance, threads, stats,
+                                 done);
         return radiance;
     }
     run_parallel_items(

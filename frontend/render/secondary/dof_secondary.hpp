@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <stdexcept>
 #include <vector>
 
 namespace blurcull::frontend {
@@ -90,7 +91,8 @@ struct ClusterRays {
 // the hits come back). Per batch of clusters (a render's, or one time
 // slice's): begin() with the scene's triangles and the most rays the batch
 // queues, queue() once per cluster (nothing waits for its work), finish()
-// for every queued ray's hit, in the order queued.
+// for every queued ray's hit, in the order queued (by ray index where
+// cluster() clustered the batch there).
 class ClusterBouncer {
 public:
     virtual ~ClusterBouncer() = default;
@@ -99,16 +101,36 @@ public:
     // build's compute passes give both bit for bit); nullopt: the host
     // clusters them and fits the views. Called before begin(). A bouncer
     // that clusters holds the rays: queue() then gets their indices only
-    // (ClusterRays' starts and directions, ClusterCulls' origins empty).
+    // (ClusterRays' starts and directions, ClusterCulls' origins empty), and
+    // finish() gives the hits by ray index. `keys`: each ray's (in pixel
+    // order), for group().
     virtual std::optional<Clustering<float>> cluster(const std::vector<glm::vec3>& /*positions*/,
                                                      const std::vector<glm::vec3>& /*directions*/,
+                                                     const std::vector<RayGroupKey>& /*keys*/,
                                                      const ClusterOptions& /*options*/, float /*tan_half_fov*/,
                                                      float /*min_near*/, ClusterViews<float>& /*views*/) {
         return std::nullopt;
     }
+    // After cluster() clustered the batch there: every cluster's groups,
+    // own triangles and normal threshold (cluster_rays' and cluster_culls'
+    // for the view along forwards[j], with `cull_normals`) made there too,
+    // so queue_grouped() needs only a cluster's view. False where it cannot
+    // (the host prepares each cluster then, as without it).
+    virtual bool group(const std::vector<glm::vec3>& /*forwards*/, bool /*cull_normals*/,
+                       std::size_t /*triangles*/) {
+        return false;
+    }
     virtual void begin(const WorldTriangles& triangles, std::size_t max_rays) = 0;
     virtual void queue(const WorldTriangles& triangles, const kernelf::LayerView& view, int layers, float thickness,
                        const ClusterCulls& culls, const ClusterRays& rays) = 0;
+    // queue() of cluster `cluster` (of cluster()'s result) as group() made
+    // it, every ray of it in `view` (no split); its rays start `offset`
+    // along their direction. Only after group() returned true.
+    virtual void queue_grouped(const WorldTriangles& /*triangles*/, const kernelf::LayerView& /*view*/,
+                               int /*layers*/, float /*thickness*/, std::size_t /*cluster*/, bool /*cull_in_front*/,
+                               float /*offset*/) {
+        throw std::logic_error("ClusterBouncer: queue_grouped without group()");
+    }
     // Adds the batch's layer counts to `stats`.
     virtual std::vector<LayerBounceHit> finish(LayerStats& stats) = 0;
     // Its own phases (e.g. GPU time), added to the render's ms_per_phase

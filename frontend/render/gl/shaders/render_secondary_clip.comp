@@ -1,6 +1,6 @@
 // dof-secondary's interval clipping on the GPU (gl_layer_trace.cpp): one
 // invocation per group of rays clipped together (one pixel's samples in one
-// lens part). Each ray's segment starts clipped to the view only; then, for
+// lens part; the host's groups, or GlClustering::group's, in any order). Each ray's segment starts clipped to the view only; then, for
 // BC_BOUNCE_CLIP_ROUNDS rounds, the union of the group's footprints is
 // looked up in the layers' min/max pyramid where GlLayerBuilder made it, and
 // every non-empty segment is clipped to that interval again: clip_group in
@@ -9,8 +9,8 @@
 layout(local_size_x = BC_TRACE_GROUP) in;
 layout(std430, binding = BC_GL_TRACE_PYRAMID_BINDING) readonly buffer Pyramid { float pyramid[]; };  // levels, finest first, (lo, hi) a cell
 layout(std430, binding = BC_GL_TRACE_RAYS_BINDING) readonly buffer Rays { vec4 ray_in[]; };          // start, direction per ray
-layout(std430, binding = BC_GL_TRACE_GROUPS_BINDING) readonly buffer Groups { uint group_end[]; };
-uniform uint groups;
+// How many groups, then per group the (begin, end) of its rays.
+layout(std430, binding = BC_GL_TRACE_GROUPS_BINDING) readonly buffer Groups { uint group_word[]; };
 
 // The (min, max) depth of the surfaces in texel box [x0, x1] x [y0, y1]
 // (DepthPyramid::interval over GlLayerBuilder's levels); min > max for none.
@@ -37,9 +37,9 @@ vec2 pyramid_interval(int x0, int y0, int x1, int y1, int size) {
 
 void main() {
     uint g = dispatch_item();
-    if (g >= groups) return;
-    uint first = g == 0u ? 0u : group_end[g - 1u];
-    uint last = group_end[g];
+    if (g >= group_word[0]) return;
+    uint first = group_word[1u + 2u * g];
+    uint last = group_word[2u + 2u * g];
     LayerView v = trace_view();
     float huge = float(BC_BOUNCE_HUGE_DEPTH);
     for (uint i = first; i < last; ++i)

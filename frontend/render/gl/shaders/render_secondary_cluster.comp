@@ -97,18 +97,6 @@ void clear_facet_sums(int facet) {
     }
 }
 
-// A float's bits as a key that orders as the floats do, negative ones
-// included (NaN apart): the sign bit flipped for positive floats, every bit
-// for negative ones.
-uint float_order(float x) {
-    uint bits = floatBitsToUint(x);
-    return (bits & 0x80000000u) != 0u ? ~bits : bits | 0x80000000u;
-}
-
-float float_of_order(uint key) {
-    return uintBitsToFloat((key & 0x80000000u) != 0u ? key & 0x7fffffffu : ~key);
-}
-
 vec3 load3(float v[3]) { return vec3(v[0], v[1], v[2]); }
 
 // Fit i as virtual_view_begin left it.
@@ -138,7 +126,7 @@ void begin_fit(int i, VirtualViewFit f) {
     fits[i].min_near = f.min_near;
     fits[i].begin_flags = f.flags;
     fits[i].backoff_bits = floatBitsToUint(f.backoff);
-    fits[i].depth_min_key = float_order(f.depth_min);
+    fits[i].depth_min_key = bc_float_order(f.depth_min);
     fits[i].magnitude_bits = floatBitsToUint(f.magnitude);
     fits[i].add_flags = 0;
 }
@@ -157,7 +145,7 @@ void slot_view_step(int slot) {
     for (int i = along_mean; i <= along_normal; ++i) {
         VirtualViewFit f = begun_fit(i);
         f.backoff = uintBitsToFloat(fits[i].backoff_bits);
-        f.depth_min = float_of_order(fits[i].depth_min_key);
+        f.depth_min = bc_float_of_order(fits[i].depth_min_key);
         f.magnitude = uintBitsToFloat(fits[i].magnitude_bits);
         f.flags |= fits[i].add_flags;
         VirtualView v = bc_virtual_view_finish(f);
@@ -175,7 +163,7 @@ void flush_view(int i, VirtualViewFit g) {
     if (i < 0) return;
     if (g.backoff > 0.0 && floatBitsToUint(g.backoff) > fits[i].backoff_bits)
         atomicMax(fits[i].backoff_bits, floatBitsToUint(g.backoff));
-    uint key = float_order(g.depth_min);
+    uint key = bc_float_order(g.depth_min);
     if (key < fits[i].depth_min_key) atomicMin(fits[i].depth_min_key, key);
     if (floatBitsToUint(g.magnitude) > fits[i].magnitude_bits)
         atomicMax(fits[i].magnitude_bits, floatBitsToUint(g.magnitude));

@@ -8,14 +8,16 @@
 // surface is picked from the layers' triangles as the host's hit_triangle
 // does (bounce_shared.h), so only it need come back: two words per ray at
 // ray hit_offset + r of a render's bounce (the clusters' hits side by side,
-// read back once).
+// read back once), or with the rays gathered at the batch's ray index.
 layout(local_size_x = BC_TRACE_GROUP) in;
 layout(std430, binding = BC_GL_TRACE_DEPTHS_BINDING) readonly buffer Depths { float depth_in[]; };  // layer, y, x
 layout(std430, binding = BC_GL_TRACE_HITS_BINDING) writeonly buffer Hits { uint hit_out[]; };     // 8 per ray, or 2 with pick_surface
 layout(std430, binding = BC_GL_TRACE_TRIANGLE_IDS_BINDING) readonly buffer TriangleIds { uint triangle_in[]; };  // layer, y, x
 uniform uint count;
 uniform int pick_surface;  // 1: the surface's triangle picked (TriangleIds bound), the hit in two words
-uniform uint hit_offset;   // with pick_surface: ray r's hit at hit_offset + r
+uniform uint hit_offset;   // with pick_surface: ray r's hit at hit_offset + r,
+uniform int hits_by_index; // or with this at ray_index[r] (the batch's ray it is)
+layout(std430, binding = BC_GL_GATHER_INDICES_BINDING) readonly buffer Indices { uint ray_index[]; };
 
 // The triangle stored at (layer, x, y); none (the k-buffer's ~0) reads as 0, the host's default.
 uint stored_triangle(int plane, int size, int layer, int x, int y) {
@@ -60,7 +62,7 @@ void main() {
     }
     LayerHit h = t.hit;
     if (pick_surface != 0) {
-        uint at = 2u * (hit_offset + r);
+        uint at = 2u * (hits_by_index != 0 ? ray_index[r] : hit_offset + r);
         hit_out[at] = (uint(h.steps) << 1u) | (h.hit ? 1u : 0u);
         hit_out[at + 1u] = h.hit ? hit_surface(v, h) : 0u;
         return;
