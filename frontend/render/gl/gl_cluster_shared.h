@@ -88,8 +88,9 @@ struct ClusterViewFit {
 };
 
 // The grouping pass's step (render_secondary_group.comp, uniform `step`).
-#define BC_GROUP_STEP_RAYS 0        // per ray: own triangle, widest cosine; per pixel run: its groups listed
-#define BC_GROUP_STEP_THRESHOLDS 1  // per slot: the normal cone's threshold
+#define BC_GROUP_STEP_RAYS 0        // per ray: own triangle, widest cosine; a pixel's first ray lists its run
+#define BC_GROUP_STEP_RUNS 1        // per listed run: its groups sorted and listed in their slots
+#define BC_GROUP_STEP_THRESHOLDS 2  // per slot: the normal cone's threshold
 // The most rays one pixel spawns per sample (a dielectric: reflected and refracted).
 #define BC_GROUP_RAYS_PER_SAMPLE 2
 // A ray's key word (the direction's w in Points): pixel << BC_GROUP_PART_BITS | lens part.

@@ -91,6 +91,10 @@ Clustering<float> GlClustering::cluster(const std::vector<glm::vec3>& positions,
     const gl::Functions& f = *gl_;
     const bool keyed = keys != nullptr && keys->size() == n;
     rays_ = n;
+    // The pixels' runs (group() dispatches one invocation each).
+    runs_ = 0;
+    for (std::size_t i = 0; keyed && i < n; ++i)
+        runs_ += i == 0 || ((*keys)[i].pixel_part >> BC_GROUP_PART_BITS) != ((*keys)[i - 1].pixel_part >> BC_GROUP_PART_BITS);
     // Each w holds a key's word as its bits (group() reads them as words;
     // no pass does arithmetic on them).
     std::vector<glm::vec4> points(2 * n);
@@ -228,7 +232,11 @@ bool GlClustering::group(const std::vector<glm::vec3>& forwards, bool cull_norma
     gl::reserve_storage(f, slots_, slots.size() * sizeof(ClusterSlotGroups), slots.data())
         .bind_base(BC_GL_GROUP_SLOTS_BINDING);
     gl::reserve_storage(f, lists_, n * sizeof(std::uint32_t)).bind_base(BC_GL_GROUP_LISTS_BINDING);
-    gl::reserve_storage(f, pairs_, 3 * n * sizeof(std::uint32_t)).bind_base(BC_GL_GROUP_PAIRS_BINDING);
+    // Pairs, scratch, the runs' count (0) and first rays: 5 n + 1 words.
+    const std::uint32_t no_runs = 0;
+    const gl::Buffer& pairs = gl::reserve_storage(f, pairs_, (5 * n + 1) * sizeof(std::uint32_t));
+    pairs.write(&no_runs, sizeof no_runs, 4 * n * sizeof(std::uint32_t));
+    pairs.bind_base(BC_GL_GROUP_PAIRS_BINDING);
     const std::vector<std::uint32_t> no_bits(own_words * BC_CLUSTER_SLOTS, 0u);
     gl::reserve_storage(f, own_, no_bits.size() * sizeof(std::uint32_t), no_bits.data())
         .bind_base(BC_GL_GROUP_OWN_BINDING);
@@ -244,6 +252,9 @@ bool GlClustering::group(const std::vector<glm::vec3>& forwards, bool cull_norma
     const GLint step = f.GetUniformLocation(id, "step");
     f.Uniform1i(step, BC_GROUP_STEP_RAYS);
     gl::dispatch_in_rows(f, (n + 63) / 64);
+    f.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    f.Uniform1i(step, BC_GROUP_STEP_RUNS);
+    gl::dispatch_in_rows(f, (runs_ + 63) / 64);
     f.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     f.Uniform1i(step, BC_GROUP_STEP_THRESHOLDS);
     f.DispatchCompute(1, 1, 1);

@@ -91,7 +91,7 @@ private:
     mutable std::optional<gl::Buffer> slots_, lists_, pairs_, own_;
     // The last cluster()'s rays, whether they came with keys, each
     // cluster's slot, and each slot's rays.
-    mutable std::size_t rays_ = 0;
+    mutable std::size_t rays_ = 0, runs_ = 0;  // and its pixels' runs of rays
     mutable bool keyed_ = false;
     mutable std::vector<int> slot_of_cluster_;
     mutable std::vector<std::uint32_t> slot_rays_;
