@@ -417,14 +417,13 @@ std::vector<glm::vec3> bounce_all(const BounceContext& c, int threads, Secondary
     for (std::size_t r = 0; r < c.rays.size(); ++r)
         members[static_cast<std::size_t>(clustering.cluster_of[r])].push_back(static_cast<std::uint32_t>(r));
     if (c.bouncer != nullptr) {
-        // Where it clustered them: each cluster's groups and culls there too, for its view.
+        // Where it clustered them: each cluster's groups and culls there too,
+        // for its view (timed among the bouncer's phases).
         bool grouped = false;
         if (resident_clustering) {
-            const Clock::time_point start = Clock::now();
             std::vector<glm::vec3> forwards;
             for (const K::VirtualView& view : views) forwards.push_back(view.forward);
             grouped = c.bouncer->group(forwards, c.options.cull_normals, c.world.vertices.size());
-            stats.views_ms += ms_since(start);
         }
         bounce_clusters_resident(c, views, members, resident_clustering.has_value(), grouped, radiance, threads, stats,
                                  done);
