@@ -447,8 +447,12 @@ TEST_CASE("dof-secondary: the GPU-resident bounce gives the host's hits on the s
 // 4b. The rays clustered and the views fitted in compute passes
 //    (GlClustering, what the bouncer does by default), then each cluster's
 //    rays and its in-front cull's origins gathered there by index
-//    (queue_bounce_gathered, GlLayerInput::origin_points), against the
-//    host's clustering and views and the rays uploaded, the rest alike: the
+//    (queue_bounce_gathered, GlLayerInput::origin_points), and each
+//    cluster's groups, own triangles and normal cone made there
+//    (GlClustering::group), against the host's clustering, views, groups
+//    and culls and the rays uploaded, the rest alike; with a field of view
+//    that splits clusters too (their rays outside traced against the scene,
+//    the rest prepared on the host, their clusters read back). The
 //    clustering is minima, maxima and exact sums, so on an
 //    IEEE-exact GL the same clusters (tests/test_frontend_gl_secondary_parity.cpp
 //    asserts it cluster by cluster), hence the same trace steps and image
@@ -460,14 +464,17 @@ TEST_CASE("dof-secondary: the rays clustered on the GPU give the host clustering
     GlRenderer rasterizer;
     const GlDofSecondary passes(rasterizer, *context);
     const RenderSettings settings = quiet_settings(48, 36, 8);
-    std::uint64_t in_front_culls = 0;  // the cull that reads the gathered origins: exercised
-    for (const Scene& scene : bounce_scenes()) {
+    std::uint64_t in_front_culls = 0, normal_culls = 0, split = 0;  // the culls and the split: exercised
+    SecondaryOptions narrow = small_options();
+    narrow.fov_degrees = 60.0f;  // under 74.76 degrees: some clusters split
+    for (const Scene& scene : bounce_scenes())
+    for (const SecondaryOptions& options : {small_options(), narrow}) {
         CAPTURE(scene.name);
+        CAPTURE(options.fov_degrees);
         const PrimaryPass primary = passes.primary_pass(scene, {});
         auto render_with = [&](GlDofSecondary::ClustersOn on, SecondaryStats& stats) {
             const std::unique_ptr<ClusterBouncer> bouncer = passes.cluster_bouncer(GlLayerRaster::graphics, on);
-            return render_dof_secondary(scene, settings, small_options(), &stats, nullptr, &primary, nullptr,
-                                        bouncer.get());
+            return render_dof_secondary(scene, settings, options, &stats, nullptr, &primary, nullptr, bouncer.get());
         };
         SecondaryStats gpu_stats, host_stats;
         const RenderResult gpu = render_with(GlDofSecondary::ClustersOn::gl, gpu_stats);
@@ -482,10 +489,16 @@ TEST_CASE("dof-secondary: the rays clustered on the GPU give the host clustering
         CHECK(gpu_stats.rays == host_stats.rays);
         CHECK(gpu_stats.clusters > 0);
         in_front_culls += host_stats.layers.culled_in_front;
+        normal_culls += host_stats.layers.culled_normal;
+        split += host_stats.clusters_split;
         if (exact) {
             CHECK(gpu_stats.clusters == host_stats.clusters);
+            CHECK(gpu_stats.clusters_split == host_stats.clusters_split);
+            CHECK(gpu_stats.rays_exact == host_stats.rays_exact);
+            CHECK(gpu_stats.rays_hit == host_stats.rays_hit);
             CHECK(gpu_stats.trace_steps == host_stats.trace_steps);
             CHECK(gpu_stats.layers.culled_in_front == host_stats.layers.culled_in_front);
+            CHECK(gpu_stats.layers.culled_normal == host_stats.layers.culled_normal);
             CHECK(gpu_stats.layers.fragments == host_stats.layers.fragments);
             CHECK(e.max_abs == 0.0);
         } else {
@@ -493,6 +506,8 @@ TEST_CASE("dof-secondary: the rays clustered on the GPU give the host clustering
         }
     }
     CHECK(in_front_culls > 0);
+    CHECK(normal_culls > 0);
+    CHECK(split > 0);
 }
 
 // 5. The primary pass on the compute pipeline (GlOptions::pipeline compute,

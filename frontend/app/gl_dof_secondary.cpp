@@ -64,9 +64,19 @@ public:
         if (clustering_ == nullptr || positions.size() > clustering_->max_rays()) return std::nullopt;
         make_timers();
         timers_->begin(clustering_phase);
+        // The rays' clusters stay on the GPU unless the host asks (cluster_of()).
         Clustering<float> clusters =
-            clustering_->cluster(positions, directions, options, tan_half_fov, min_near, &views, &keys);
+            clustering_->cluster(positions, directions, options, tan_half_fov, min_near, &views, &keys, false);
         rays_on_gpu_ = true;
+        timers_->end(clustering_phase);
+        return clusters;
+    }
+
+    std::vector<int> cluster_of() override {
+        if (!rays_on_gpu_) return {};
+        context_->make_current();
+        timers_->begin(clustering_phase);
+        std::vector<int> clusters = clustering_->cluster_of();
         timers_->end(clustering_phase);
         return clusters;
     }

@@ -101,6 +101,7 @@ struct LayerBounceHit {
     bool hit = false;
     std::uint32_t triangle = 0;  // the scene triangle of the surface hit
     int steps = 0;               // texels the trace visited
+    bool traced = true;          // false: the ray was not queued (a batch's hits by ray index)
 };
 
 // What sorts a bounced ray into its cluster's groups and culls on the GPU

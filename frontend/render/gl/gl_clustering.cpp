@@ -6,7 +6,6 @@
 #include "render/gl/shader_stages.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -77,13 +76,14 @@ const gl::Buffer& GlClustering::points_buffer() const {
 Clustering<float> GlClustering::cluster(const std::vector<glm::vec3>& positions,
                                         const std::vector<glm::vec3>& directions, const ClusterOptions& options,
                                         float tan_half_fov, float min_near, ClusterViews<float>* views,
-                                        const std::vector<RayGroupKey>* keys) const {
+                                        const std::vector<RayGroupKey>* keys, bool read_labels) const {
     using K = kernelf;
     Clustering<float> out;
     keyed_ = false;  // until this call's rays are on the GPU
+    rays_ = 0;
     slot_of_cluster_.clear();
     const std::size_t n = std::min(positions.size(), directions.size());
-    out.cluster_of.assign(n, -1);
+    out.cluster_of.assign(read_labels ? n : 0, -1);
     if (n == 0) return out;
     if (n > max_rays() || n > 0xffffffffu - 64u)
         throw gl::GlError("gl: " + std::to_string(n) + " rays to cluster, more than a storage block of the GL (" +
@@ -158,15 +158,13 @@ Clustering<float> GlClustering::cluster(const std::vector<glm::vec3>& positions,
 
     ClusterState state{};
     state_->read(&state, sizeof state);
-    std::vector<std::uint32_t> labels(n);
-    labels_->read(labels.data(), n * sizeof(std::uint32_t));
     if (views != nullptr) {
         views_->read(fits.data(), fits.size() * sizeof(ClusterViewFit));
         views->along_mean.clear();
         views->along_normal.clear();
     }
     // The clusters as the host numbers them: by facet, then local index, the empty ones dropped.
-    std::array<int, BC_CLUSTER_SLOTS> global{};
+    cluster_of_slot_.assign(BC_CLUSTER_SLOTS, -1);
     slot_of_cluster_.clear();
     slot_rays_.assign(BC_CLUSTER_SLOTS, 0u);
     for (int facet = 0; facet < BC_CLUSTER_FACETS; ++facet) {
@@ -185,8 +183,8 @@ Clustering<float> GlClustering::cluster(const std::vector<glm::vec3>& positions,
             }
             s.count = state.sum_count[slot];
             s.unfit = state.sum_unfit[slot];
-            global[static_cast<std::size_t>(slot)] = static_cast<int>(out.clusters.size());
             if (s.count + s.unfit == 0u) continue;
+            cluster_of_slot_[static_cast<std::size_t>(slot)] = static_cast<int>(out.clusters.size());
             out.clusters.push_back({facet, s});
             slot_of_cluster_.push_back(slot);
             slot_rays_[static_cast<std::size_t>(slot)] = s.count + s.unfit;
@@ -196,13 +194,24 @@ Clustering<float> GlClustering::cluster(const std::vector<glm::vec3>& positions,
             }
         }
     }
-    for (std::size_t i = 0; i < n; ++i) {
-        const std::uint32_t facet = labels[i] >> 2u, local = labels[i] & 3u;
-        if (facet >= BC_CLUSTER_FACETS || local >= BC_CLUSTERS_PER_FACET_MAX)
-            throw gl::GlError("gl: the clustering passes left ray " + std::to_string(i) + " without a cluster");
-        out.cluster_of[i] = global[facet * BC_CLUSTERS_PER_FACET_MAX + local];
-    }
     keyed_ = keyed;
+    if (read_labels) out.cluster_of = cluster_of();
+    return out;
+}
+
+std::vector<int> GlClustering::cluster_of() const {
+    std::vector<std::uint32_t> labels(rays_);
+    if (rays_ > 0) labels_->read(labels.data(), rays_ * sizeof(std::uint32_t));
+    std::vector<int> out(rays_, -1);
+    for (std::size_t i = 0; i < rays_; ++i) {
+        const std::uint32_t facet = labels[i] >> 2u, local = labels[i] & 3u;
+        const int cluster = facet < BC_CLUSTER_FACETS && local < BC_CLUSTERS_PER_FACET_MAX
+                                ? cluster_of_slot_[facet * BC_CLUSTERS_PER_FACET_MAX + local]
+                                : -1;
+        if (cluster < 0)
+            throw gl::GlError("gl: the clustering passes left ray " + std::to_string(i) + " without a cluster");
+        out[i] = cluster;
+    }
     return out;
 }
 

@@ -37,11 +37,16 @@ public:
     // back each ray's cluster and the 36 sums. With `views`, each cluster's
     // two views too (fit_cluster_views's with tan_half_fov and min_near:
     // three more passes, read back with the rest). With `keys` (one per
-    // ray, the rays in pixel order), group() may follow.
+    // ray, the rays in pixel order), group() may follow. Without
+    // `read_labels` the rays' clusters stay on the GPU (cluster_of empty;
+    // cluster_of() reads them).
     Clustering<float> cluster(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& directions,
                               const ClusterOptions& options = {}, float tan_half_fov = 1.0f, float min_near = 1e-3f,
-                              ClusterViews<float>* views = nullptr,
-                              const std::vector<RayGroupKey>* keys = nullptr) const;
+                              ClusterViews<float>* views = nullptr, const std::vector<RayGroupKey>* keys = nullptr,
+                              bool read_labels = true) const;
+
+    // The last cluster()'s Clustering::cluster_of, read back (4 bytes a ray).
+    std::vector<int> cluster_of() const;
 
     // After cluster() with keys, on the GPU and without a wait: each
     // cluster's rays sorted into its groups (one pixel's rays in one lens
@@ -93,7 +98,7 @@ private:
     // cluster's slot, and each slot's rays.
     mutable std::size_t rays_ = 0, runs_ = 0;  // and its pixels' runs of rays
     mutable bool keyed_ = false;
-    mutable std::vector<int> slot_of_cluster_;
+    mutable std::vector<int> slot_of_cluster_, cluster_of_slot_;  // -1: an empty slot
     mutable std::vector<std::uint32_t> slot_rays_;
     mutable std::size_t own_words_ = 0;  // group()'s, per slot
 };

@@ -121,8 +121,15 @@ std::vector<kernelf::LayerHit> GlLayerTracer::trace(const kernelf::LayerView& vi
     return hits;
 }
 
+// A hit's first word before a trace writes it: no trace writes all ones (steps < 2^31).
+constexpr std::uint32_t not_traced = 0xFFFFFFFFu;
+
 void GlLayerTracer::begin_bounces(std::size_t rays) const {
-    gl::reserve_storage(*gl_, bounce_hits_, rays * 2 * sizeof(std::uint32_t));
+    const gl::Functions& f = *gl_;
+    const gl::Buffer& hits = gl::reserve_storage(f, bounce_hits_, rays * 2 * sizeof(std::uint32_t));
+    f.BindBuffer(GL_SHADER_STORAGE_BUFFER, hits.id());
+    f.ClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &not_traced);
+    f.BindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
 }
 
 void GlLayerTracer::check_room(std::size_t first, std::size_t rays) const {
@@ -193,6 +200,8 @@ std::vector<LayerBounceHit> GlLayerTracer::finish_bounces(std::size_t rays) cons
     std::vector<std::uint32_t> out(rays * 2);
     bounce_hits_->read(out.data(), out.size() * sizeof(std::uint32_t));
     for (std::size_t i = 0; i < rays; ++i) {
+        hits[i].traced = out[2 * i] != not_traced;
+        if (!hits[i].traced) continue;
         hits[i].hit = (out[2 * i] & 1u) != 0u;
         hits[i].steps = static_cast<int>(out[2 * i] >> 1u);
         hits[i].triangle = out[2 * i + 1];

@@ -50,7 +50,8 @@ public:
     // group_ends[g]), is clipped together by the pyramid (the host's
     // clip_group), then each ray is traced and its hit's surface picked (the
     // host's hit_triangle), its hit stored at first + i; finish_bounces reads
-    // the first `rays` hits back, waiting for the GPU once. The next
+    // the first `rays` hits back, waiting for the GPU once (a hit no queued
+    // ray wrote: LayerBounceHit::traced false). The next
     // build_resident may follow queue_bounce at once: GL runs the passes in
     // order.
     void begin_bounces(std::size_t rays) const;

@@ -164,23 +164,18 @@ ClusterRays cluster_rays(const BounceContext& c, std::vector<std::uint32_t> memb
     return rays;
 }
 
-// The rays' radiance from their hits in the layers (the environment on a
-// miss): ray members[i]'s hit is hits[i], or with `by_ray` hits[members[i]].
-void shade_hits(const BounceContext& c, const std::vector<std::uint32_t>& members, const LayerBounceHit* hits,
-                bool by_ray, std::vector<glm::vec3>& radiance, SecondaryStats& stats) {
-    for (std::size_t i = 0; i < members.size(); ++i) {
-        const SecondaryRay& ray = c.rays[members[i]];
-        const LayerBounceHit& hit = hits[by_ray ? members[i] : i];
-        ++stats.rays_image_space;
-        stats.trace_steps += static_cast<std::uint64_t>(std::max(hit.steps, 0));
-        if (!hit.hit) {
-            radiance[members[i]] = environment_radiance(c.scene, ray.direction);
-            continue;
-        }
-        ++stats.rays_hit;
-        radiance[members[i]] =
-            bounce_hit_radiance(c.scene, c.colours, hit.triangle, ray.direction, c.world.normals[hit.triangle]);
+// Ray r's radiance from its hit in the layers (the environment on a miss).
+void shade_hit(const BounceContext& c, std::uint32_t r, const LayerBounceHit& hit, std::vector<glm::vec3>& radiance,
+               SecondaryStats& stats) {
+    const SecondaryRay& ray = c.rays[r];
+    ++stats.rays_image_space;
+    stats.trace_steps += static_cast<std::uint64_t>(std::max(hit.steps, 0));
+    if (!hit.hit) {
+        radiance[r] = environment_radiance(c.scene, ray.direction);
+        return;
     }
+    ++stats.rays_hit;
+    radiance[r] = bounce_hit_radiance(c.scene, c.colours, hit.triangle, ray.direction, c.world.normals[hit.triangle]);
 }
 
 // The far plane of a view: beyond every vertex of the scene.
@@ -247,11 +242,11 @@ bool prepare_cluster(const BounceContext& c, const K::VirtualView& fitted, std::
     return true;
 }
 
-// The prepared cluster's hits shaded into `radiance` (shade_hits).
+// The prepared cluster's hits shaded into `radiance`: ray members[i]'s is hits[i].
 void shade_cluster(const BounceContext& c, const std::vector<std::uint32_t>& members, const LayerBounceHit* hits,
-                   bool by_ray, std::vector<glm::vec3>& radiance, SecondaryStats& stats) {
+                   std::vector<glm::vec3>& radiance, SecondaryStats& stats) {
     const Clock::time_point shading_start = Clock::now();
-    shade_hits(c, members, hits, by_ray, radiance, stats);
+    for (std::size_t i = 0; i < members.size(); ++i) shade_hit(c, members[i], hits[i], radiance, stats);
     stats.shading_ms += ms_since(shading_start);
 }
 
@@ -268,7 +263,7 @@ void bounce_cluster(const BounceContext& c, const K::VirtualView& view, std::vec
                                    : build_cluster_layers_on_host(c.world, p.view, c.options.layers, p.culls, stats.layers);
     stats.layer_build_ms += ms_since(build_start);
     const std::vector<LayerBounceHit> hits = bounce_in_layers(p.view, built, c.thickness, p.rays, c.tracer);
-    shade_cluster(c, p.rays.indices, hits.data(), false, radiance, stats);
+    shade_cluster(c, p.rays.indices, hits.data(), radiance, stats);
 }
 
 // Every cluster through the ClusterBouncer, whose calls run on this thread
@@ -284,7 +279,7 @@ void bounce_clusters_resident(const BounceContext& c, const std::vector<K::Virtu
                               std::vector<glm::vec3>& radiance, int threads, SecondaryStats& stats,
                               const Done& done) {
     c.bouncer->begin(c.world, c.rays.size());
-    std::vector<std::vector<std::uint32_t>> queued;  // each queued cluster's rays, in the order of its hits
+    std::vector<std::vector<std::uint32_t>> queued;  // each queued cluster's rays, in the order of its hits (not rays_resident)
     const int clusters = static_cast<int>(views.size());
     const int window = std::max(1, threads);
     for (int first = 0; first < clusters; first += window) {
@@ -310,21 +305,36 @@ void bounce_clusters_resident(const BounceContext& c, const std::vector<K::Virtu
             else
                 c.bouncer->queue(c.world, p.view, c.options.layers, c.thickness, p.culls, p.rays);
             stats.layer_build_ms += ms_since(start);
-            queued.push_back(std::move(p.rays.indices));
+            if (!rays_resident) queued.push_back(std::move(p.rays.indices));  // else its hits come by ray index
         }
     }
     const Clock::time_point start = Clock::now();
     const std::vector<LayerBounceHit> hits = c.bouncer->finish(stats.layers);
     stats.layer_build_ms += ms_since(start);  // the layers, clipping and traces, waited for here
-    // The hits in queue order, or by ray index (rays_resident).
+    if (rays_resident) {
+        // One hit a ray of the batch, by index: those the layers traced are
+        // shaded (the others were traced against the scene).
+        const int chunks = static_cast<int>(std::min<std::size_t>(c.rays.size() / 4096 + 1, 1024));
+        run_parallel_items(
+            threads, chunks, [] { return SecondaryStats{}; },
+            [&](SecondaryStats& local, int chunk) {
+                const Clock::time_point shading_start = Clock::now();
+                for (std::size_t r = c.rays.size() * std::size_t(chunk) / std::size_t(chunks);
+                     r < c.rays.size() * std::size_t(chunk + 1) / std::size_t(chunks); ++r)
+                    if (hits[r].traced) shade_hit(c, static_cast<std::uint32_t>(r), hits[r], radiance, local);
+                local.shading_ms += ms_since(shading_start);
+            },
+            done);
+        return;
+    }
+    // The hits in queue order.
     std::vector<std::size_t> first_hit(queued.size(), 0);
     for (std::size_t k = 1; k < queued.size(); ++k) first_hit[k] = first_hit[k - 1] + queued[k - 1].size();
     run_parallel_items(
         threads, static_cast<int>(queued.size()), [] { return SecondaryStats{}; },
         [&](SecondaryStats& local, int k) {
             const auto at = static_cast<std::size_t>(k);
-            shade_cluster(c, queued[at], hits.data() + (rays_resident ? 0 : first_hit[at]), rays_resident, radiance,
-                          local);
+            shade_cluster(c, queued[at], hits.data() + first_hit[at], radiance, local);
         },
         done);
 }
@@ -400,7 +410,7 @@ std::vector<glm::vec3> bounce_all(const BounceContext& c, int threads, Secondary
     if (c.bouncer != nullptr)
         resident_clustering =
             c.bouncer->cluster(positions, directions, group_keys(c), cluster_options, c.tan_half_fov, c.min_near, fitted);
-    const Clustering<float> clustering =
+    Clustering<float> clustering =
         resident_clustering ? std::move(*resident_clustering)
                             : cluster_reflector_pixels<float>(positions, directions, cluster_options, parallel_for);
     stats.clustering_ms += ms_since(clustering_start);
@@ -413,18 +423,30 @@ std::vector<glm::vec3> bounce_all(const BounceContext& c, int threads, Secondary
     std::vector<K::VirtualView> views;
     for (std::size_t j = 0; j < clustering.clusters.size(); ++j) views.push_back(cluster_view(fitted, j, stats));
     stats.views_ms += ms_since(views_start);
+    // Where the bouncer clustered them: each cluster's groups and culls
+    // there too, for its view (timed among the bouncer's phases).
+    bool grouped = false;
+    if (resident_clustering) {
+        std::vector<glm::vec3> forwards;
+        for (const K::VirtualView& view : views) forwards.push_back(view.forward);
+        grouped = c.bouncer->group(forwards, c.options.cull_normals, c.world.vertices.size());
+    }
+    // Each cluster's rays, on the host: all of them, or with the groups
+    // made there only those of a cluster its view does not hold whole (the
+    // rays' clusters then read back only for those).
     std::vector<std::vector<std::uint32_t>> members(clustering.clusters.size());
-    for (std::size_t r = 0; r < c.rays.size(); ++r)
-        members[static_cast<std::size_t>(clustering.cluster_of[r])].push_back(static_cast<std::uint32_t>(r));
-    if (c.bouncer != nullptr) {
-        // Where it clustered them: each cluster's groups and culls there too,
-        // for its view (timed among the bouncer's phases).
-        bool grouped = false;
-        if (resident_clustering) {
-            std::vector<glm::vec3> forwards;
-            for (const K::VirtualView& view : views) forwards.push_back(view.forward);
-            grouped = c.bouncer->group(forwards, c.options.cull_normals, c.world.vertices.size());
+    std::vector<char> wanted(clustering.clusters.size(), 1);
+    for (std::size_t j = 0; j < views.size(); ++j) wanted[j] = !grouped || views[j].flags != 0;
+    if (std::find(wanted.begin(), wanted.end(), 1) != wanted.end()) {
+        if (clustering.cluster_of.empty()) clustering.cluster_of = c.bouncer->cluster_of();
+        if (clustering.cluster_of.size() != c.rays.size())
+            throw std::logic_error("dof-secondary: the bouncer gave no cluster for each ray");
+        for (std::size_t r = 0; r < c.rays.size(); ++r) {
+            const auto j = static_cast<std::size_t>(clustering.cluster_of[r]);
+            if (wanted[j]) members[j].push_back(static_cast<std::uint32_t>(r));
         }
+    }
+    if (c.bouncer != nullptr) {
         bounce_clusters_resident(c, views, members, resident_clustering.has_value(), grouped, radiance, threads, stats,
                                  done);
         return radiance;

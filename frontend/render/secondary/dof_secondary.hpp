@@ -103,7 +103,9 @@ public:
     // that clusters holds the rays: queue() then gets their indices only
     // (ClusterRays' starts and directions, ClusterCulls' origins empty), and
     // finish() gives the hits by ray index. `keys`: each ray's (in pixel
-    // order), for group().
+    // order), for group(). The result's cluster_of may be empty (the rays'
+    // clusters left there): cluster_of() reads it.
+    virtual std::vector<int> cluster_of() { return {}; }
     virtual std::optional<Clustering<float>> cluster(const std::vector<glm::vec3>& /*positions*/,
                                                      const std::vector<glm::vec3>& /*directions*/,
                                                      const std::vector<RayGroupKey>& /*keys*/,

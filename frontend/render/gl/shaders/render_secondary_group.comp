@@ -36,14 +36,18 @@ uniform uint own_words;  // per slot: (triangles + 31) / 32
 uniform uint triangles;
 uniform int cull_normals;
 
+// Ray r's slot; BC_CLUSTER_SLOTS for a label naming none (the clustering
+// leaves none such: the host checks where it reads the labels back).
 uint slot_of(uint r) {
     uint l = label[r];
-    return (l >> 2u) * uint(BC_CLUSTERS_PER_FACET_MAX) + (l & 3u);
+    uint facet = l >> 2u, local = l & 3u;
+    bool valid = facet < uint(BC_CLUSTER_FACETS) && local < uint(BC_CLUSTERS_PER_FACET_MAX);
+    return valid ? facet * uint(BC_CLUSTERS_PER_FACET_MAX) + local : uint(BC_CLUSTER_SLOTS);
 }
 uint pixel_of(uint r) { return point_word[2u * r + 1u].w >> BC_GROUP_PART_BITS; }
 uint part_of(uint r) { return point_word[2u * r + 1u].w & ((1u << BC_GROUP_PART_BITS) - 1u); }
 // Lens part, then slot: the sort key of a run.
-uint group_key(uint r) { return part_of(r) * uint(BC_CLUSTER_SLOTS) + slot_of(r); }
+uint group_key(uint r) { return part_of(r) * uint(BC_CLUSTER_SLOTS + 1) + slot_of(r); }
 
 // Scratch: 2 words a ray from word 2 * rays, the run's rays sorted with
 // their keys (group_key), each run in its own rays' words.
@@ -52,7 +56,8 @@ uint scratch_at(uint r) { return 2u * rays + 2u * r; }
 // The group of sorted rays [begin, end) of a run (one slot and lens part
 // of one pixel) listed in its slot.
 void list_group(uint begin, uint end) {
-    uint slot = pair[scratch_at(begin) + 1u] % uint(BC_CLUSTER_SLOTS);
+    uint slot = pair[scratch_at(begin) + 1u] % uint(BC_CLUSTER_SLOTS + 1);
+    if (slot >= uint(BC_CLUSTER_SLOTS)) return;
     uint count = end - begin;
     uint at = atomicAdd(slots[slot].filled, count);
     uint g = atomicAdd(slots[slot].groups, 1u);
@@ -81,7 +86,7 @@ void group_run(uint r) {
     }
     for (uint i = r; i < end; ++i) {
         uint key = group_key(i);
-        uint at = scratch_at(starts[key / uint(BC_CLUSTER_SLOTS)]++);
+        uint at = scratch_at(starts[key / uint(BC_CLUSTER_SLOTS + 1)]++);
         pair[at] = i;
         pair[at + 1u] = key;
     }
@@ -118,7 +123,9 @@ void main() {
         return;
     }
     if (i >= rays) return;
+    if (i == 0u || pixel_of(i - 1u) != pixel_of(i)) pair[runs + 1u + atomicAdd(pair[runs], 1u)] = i;
     uint slot = slot_of(i);
+    if (slot >= uint(BC_CLUSTER_SLOTS)) return;
     uint triangle = point_word[2u * i].w;
     // The atomics only where they would change something (a slot's rays
     // share a few triangles and soon its least cosine): a read that misses
@@ -129,5 +136,4 @@ void main() {
     vec3 forward = vec3(slots[slot].forward[0], slots[slot].forward[1], slots[slot].forward[2]);
     uint cos_key = bc_float_order(bc_dot3(direction, forward));
     if (cos_key < slots[slot].cos_key) atomicMin(slots[slot].cos_key, cos_key);
-    if (i == 0u || pixel_of(i - 1u) != pixel_of(i)) pair[runs + 1u + atomicAdd(pair[runs], 1u)] = i;
 }
