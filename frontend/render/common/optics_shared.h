@@ -7,6 +7,13 @@
 // Conventions: directions are world space; `incident` points TOWARDS the
 // surface (the ray's direction), `normal` is the unit geometric normal on
 // either side (the functions orient it against `incident` themselves).
+//
+// Every operation is spelt out in one order, each value `precise` in GLSL
+// (no fused or reordered products): dot products summed left to right as
+// GLM sums them (GLSL's dot() may not: llvmpipe adds the last two terms
+// first), mix as GLM's x (1 - a) + y a. So a GL that rounds as IEEE floats
+// do gives the host's values bit for bit (tests/test_frontend_gl_optics_parity.cpp),
+// and the host's are GLM's, unchanged.
 #ifndef BLURCULL_OPTICS_SHARED_H
 #define BLURCULL_OPTICS_SHARED_H
 
@@ -15,27 +22,39 @@
 
 namespace blurcull::frontend::optics {
 using glm::vec3;
-using glm::dot;
 using glm::max;
 using glm::min;
-using glm::mix;
 using glm::clamp;
 using glm::abs;
-using glm::normalize;
 using glm::sqrt;
 #define BC_OPTICS_FN inline
+#define BC_OPTICS_PRECISE
 #else
 #define BC_OPTICS_FN
+#define BC_OPTICS_PRECISE precise
 #endif
+
+// a . b, summed left to right (GLM's order).
+BC_OPTICS_FN float bc_optics_dot(vec3 a, vec3 b) {
+    BC_OPTICS_PRECISE float sum = a.x * b.x + a.y * b.y + a.z * b.z;
+    return sum;
+}
+
+// GLM's mix of two colours: x (1 - a) + y a.
+BC_OPTICS_FN vec3 bc_optics_mix(vec3 x, vec3 y, float a) {
+    BC_OPTICS_PRECISE vec3 mixed = x * (1.0f - a) + y * a;
+    return mixed;
+}
 
 // The normal facing the incident ray (dot(result, incident) <= 0).
 BC_OPTICS_FN vec3 bc_facing_normal(vec3 normal, vec3 incident) {
-    return dot(normal, incident) > 0.0f ? -normal : normal;
+    return bc_optics_dot(normal, incident) > 0.0f ? -normal : normal;
 }
 
 // Perfect mirror: incident - 2 (n . incident) n, for a unit normal on either side.
 BC_OPTICS_FN vec3 bc_mirror_direction(vec3 incident, vec3 normal) {
-    return incident - 2.0f * dot(normal, incident) * normal;
+    BC_OPTICS_PRECISE vec3 mirrored = incident - 2.0f * bc_optics_dot(normal, incident) * normal;
+    return mirrored;
 }
 
 // Unpolarised Fresnel reflectance of a smooth dielectric boundary (the mean of
@@ -45,12 +64,14 @@ BC_OPTICS_FN vec3 bc_mirror_direction(vec3 incident, vec3 normal) {
 // is invisible; the formula's rounding of cos_t would leave ~1e-8).
 BC_OPTICS_FN float bc_fresnel_dielectric(float cos_i, float eta) {
     if (eta == 1.0f) return 0.0f;
-    float sin_t2 = eta * eta * max(0.0f, 1.0f - cos_i * cos_i);
+    BC_OPTICS_PRECISE float cos_i2 = 1.0f - cos_i * cos_i;
+    BC_OPTICS_PRECISE float sin_t2 = eta * eta * max(0.0f, cos_i2);
     if (sin_t2 >= 1.0f) return 1.0f;
-    float cos_t = sqrt(1.0f - sin_t2);
-    float r_s = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
-    float r_p = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
-    return clamp(0.5f * (r_s * r_s + r_p * r_p), 0.0f, 1.0f);
+    BC_OPTICS_PRECISE float cos_t = sqrt(1.0f - sin_t2);
+    BC_OPTICS_PRECISE float r_s = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+    BC_OPTICS_PRECISE float r_p = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+    BC_OPTICS_PRECISE float mean = 0.5f * (r_s * r_s + r_p * r_p);
+    return clamp(mean, 0.0f, 1.0f);
 }
 
 // Refraction through a boundary between air (index 1) and a medium of index
@@ -59,21 +80,25 @@ BC_OPTICS_FN float bc_fresnel_dielectric(float cos_i, float eta) {
 // vector under total internal reflection; the incident direction itself for
 // index 1.
 BC_OPTICS_FN vec3 bc_refract_direction(vec3 incident, vec3 normal, float ior) {
-    bool entering = dot(normal, incident) < 0.0f;
+    bool entering = bc_optics_dot(normal, incident) < 0.0f;
     vec3 n = entering ? normal : -normal;
-    float eta = entering ? 1.0f / ior : ior;
+    BC_OPTICS_PRECISE float inverse = 1.0f / ior;
+    float eta = entering ? inverse : ior;
     if (eta == 1.0f) return incident;  // index-matched: straight on, even at grazing angles where 1 - cos^2 rounds to 1
-    float cos_i = -dot(n, incident);
-    float sin_t2 = eta * eta * max(0.0f, 1.0f - cos_i * cos_i);
+    float cos_i = -bc_optics_dot(n, incident);
+    BC_OPTICS_PRECISE float cos_i2 = 1.0f - cos_i * cos_i;
+    BC_OPTICS_PRECISE float sin_t2 = eta * eta * max(0.0f, cos_i2);
     if (sin_t2 >= 1.0f) return vec3(0.0f);
-    return eta * incident + (eta * cos_i - sqrt(1.0f - sin_t2)) * n;
+    BC_OPTICS_PRECISE vec3 refracted = eta * incident + (eta * cos_i - sqrt(1.0f - sin_t2)) * n;
+    return refracted;
 }
 
 // Fresnel reflectance of the same boundary for a unit incident direction.
 BC_OPTICS_FN float bc_dielectric_reflectance(vec3 incident, vec3 normal, float ior) {
-    bool entering = dot(normal, incident) < 0.0f;
-    float eta = entering ? 1.0f / ior : ior;
-    return bc_fresnel_dielectric(min(1.0f, abs(dot(normal, incident))), eta);
+    float cosine = bc_optics_dot(normal, incident);
+    BC_OPTICS_PRECISE float inverse = 1.0f / ior;
+    float eta = cosine < 0.0f ? inverse : ior;
+    return bc_fresnel_dielectric(min(1.0f, abs(cosine)), eta);
 }
 
 // Environment kinds: BC_ENVIRONMENT_NONE / BC_ENVIRONMENT_SKY, defined with
@@ -89,21 +114,25 @@ BC_OPTICS_FN vec3 bc_sky_radiance(vec3 direction) {
     vec3 horizon = vec3(0.85f, 0.88f, 0.92f);
     vec3 zenith = vec3(0.25f, 0.45f, 0.85f);
     vec3 ground = vec3(0.30f, 0.26f, 0.22f);
-    float across = direction.x * direction.x + direction.z * direction.z;
+    BC_OPTICS_PRECISE float across = direction.x * direction.x + direction.z * direction.z;
     float bands = 0.0f;
     if (across > 0.0f) {
         // cos(8 phi) from (x, z) without trigonometry: Chebyshev T8 of cos(phi).
-        float c = direction.x / sqrt(across);
-        float c2 = c * c;
-        float t8 = 1.0f + c2 * (-32.0f + c2 * (160.0f + c2 * (-256.0f + c2 * 128.0f)));
-        bands = 0.08f * t8;
+        BC_OPTICS_PRECISE float c = direction.x / sqrt(across);
+        BC_OPTICS_PRECISE float c2 = c * c;
+        BC_OPTICS_PRECISE float t8 = 1.0f + c2 * (-32.0f + c2 * (160.0f + c2 * (-256.0f + c2 * 128.0f)));
+        BC_OPTICS_PRECISE float scaled = 0.08f * t8;
+        bands = scaled;
     }
-    vec3 sky = y >= 0.0f ? mix(horizon, zenith, sqrt(y)) : mix(horizon, ground, min(1.0f, -8.0f * y));
-    return sky * (1.0f + bands);
+    BC_OPTICS_PRECISE float below = -8.0f * y;
+    vec3 sky = y >= 0.0f ? bc_optics_mix(horizon, zenith, sqrt(y)) : bc_optics_mix(horizon, ground, min(1.0f, below));
+    BC_OPTICS_PRECISE vec3 banded = sky * (1.0f + bands);
+    return banded;
 }
 
 #ifdef __cplusplus
 }  // namespace blurcull::frontend::optics
 #endif
 #undef BC_OPTICS_FN
+#undef BC_OPTICS_PRECISE
 #endif  // BLURCULL_OPTICS_SHARED_H
