@@ -4,6 +4,7 @@
 #include "render/common/optics_shared.h"
 #include "render/common/shading.hpp"
 #include "render/common/parallel_items.hpp"
+#include "render/common/resolve_shared.h"
 
 #include <blurcull/kernel.hpp>
 #include <blurcull/patterns.hpp>
@@ -14,22 +15,16 @@
 namespace blurcull::frontend {
 namespace {
 
-// A sample's hit in world space: the point, the unit incident direction and
-// the unit geometric normal of the triangle at the sample's time.
-struct SurfaceHit {
-    glm::vec3 point, incident, normal;
-    bool valid;
-};
+using resolve::SampleHit;
 
-// The sample's lens ray (view space at time t) meets the plane of the
-// triangle's view-space vertices at t; the world point has the same
-// barycentric coordinates on the world triangle at t (exact for a static
-// camera). The world incident direction runs from the world lens point.
-// `inverse_open` and `inverse_close`: the inverses of the model's views, in
-// double (made once per frame by the caller).
-SurfaceHit sample_hit(const Scene& scene, const CameraModel& model, const glm::dmat4& inverse_open,
-                      const glm::dmat4& inverse_close, std::uint32_t triangle, glm::vec2 ndc, glm::vec2 lens,
-                      float time) {
+// The sample's hit (resolve::bc_sample_hit) on triangle `triangle` through
+// lens position `lens` and NDC point `ndc` at `time`: the view-space
+// vertices as the camera model moves them, the world ones mixed over the
+// shutter. `inverse_open` and `inverse_close`: the inverses of the model's
+// views, in double (made once per frame by the caller).
+SampleHit sample_hit(const Scene& scene, const CameraModel& model, const glm::dmat4& inverse_open,
+                     const glm::dmat4& inverse_close, std::uint32_t triangle, glm::vec2 ndc, glm::vec2 lens,
+                     float time) {
     const glm::uvec3& tri = scene.triangles[triangle];
     glm::dvec3 view[3], world[3];
     for (int k = 0; k < 3; ++k) {
@@ -37,36 +32,14 @@ SurfaceHit sample_hit(const Scene& scene, const CameraModel& model, const glm::d
         world[k] = glm::dvec3(glm::mix(scene.position_open[tri[k]], scene.position_close[tri[k]], time));
     }
     const Ray ray = model.lens_ray(ndc, lens);
-    const glm::dvec3 o(ray.origin), d(ray.direction);
-    const glm::dvec3 e1 = view[1] - view[0], e2 = view[2] - view[0];
-    const glm::dvec3 n = glm::cross(e1, e2);
-    const double denom = glm::dot(n, d);
-    SurfaceHit hit{};
-    if (denom == 0.0 || !std::isfinite(denom)) return hit;
-    const double s = glm::dot(n, view[0] - o) / denom;
-    const glm::dvec3 p = o + s * d - view[0];
-    // Barycentrics of p in the plane (least squares via the Gram matrix).
-    const double d11 = glm::dot(e1, e1), d12 = glm::dot(e1, e2), d22 = glm::dot(e2, e2);
-    const double p1 = glm::dot(p, e1), p2 = glm::dot(p, e2);
-    const double det = d11 * d22 - d12 * d12;
-    if (!(det > 0.0)) return hit;
-    const double b1 = (d22 * p1 - d12 * p2) / det, b2 = (d11 * p2 - d12 * p1) / det;
-    const glm::dvec3 point = world[0] + b1 * (world[1] - world[0]) + b2 * (world[2] - world[0]);
-    const glm::dvec4 lens_view(o, 1.0);
-    const glm::dvec3 lens_world =
-        glm::mix(glm::dvec3(inverse_open * lens_view), glm::dvec3(inverse_close * lens_view), double(time));
-    const glm::dvec3 normal = glm::cross(world[1] - world[0], world[2] - world[0]);
-    const double normal_length = glm::length(normal), incident_length = glm::length(point - lens_world);
-    if (!(normal_length > 0.0) || !(incident_length > 0.0) || !std::isfinite(point.x + point.y + point.z)) return hit;
-    hit.point = glm::vec3(point);
-    hit.incident = glm::vec3((point - lens_world) / incident_length);
-    hit.normal = glm::vec3(normal / normal_length);
-    hit.valid = true;
-    return hit;
+    const glm::dvec3 o(ray.origin);
+    return resolve::bc_sample_hit(view[0], view[1], view[2], world[0], world[1], world[2], o,
+                                  glm::dvec3(ray.direction),
+                                  resolve::bc_lens_world(inverse_open, inverse_close, o, double(time)));
 }
 
 // The rays a reflector sample spawns (one for a mirror, up to two for a dielectric).
-void spawn_rays(const Material& material, const SurfaceHit& hit, std::uint32_t sample, std::uint32_t part,
+void spawn_rays(const Material& material, const SampleHit& hit, std::uint32_t sample, std::uint32_t part,
                 std::uint32_t triangle, float time, std::vector<SecondaryRay>& rays) {
     using namespace optics;
     if (material.kind == MaterialKind::mirror) {
@@ -130,7 +103,7 @@ PrimaryResolve resolve_primary(const Scene& scene, const CameraModel& model, con
                 }
                 ++row.reflector_samples;
                 const kernelf::PixelSample s = patternsf::sampler_sample(pattern, j);
-                const SurfaceHit hit = sample_hit(scene, model, inverse_open, inverse_close, id,
+                const SampleHit hit = sample_hit(scene, model, inverse_open, inverse_close, id,
                                                   model.sample_ndc(px, py, s.offset), s.lens, s.time);
                 // A degenerate hit (grazing to the rounding) sees the environment straight on.
                 if (!hit.valid) continue;
