@@ -191,8 +191,8 @@ float far_plane(const WorldTriangles& world, const K::LayerView& view) {
 
 // A cluster ready for its layers: its view, culls and groups of rays (whose
 // indices are the rays they are, into the context's rays, in group order);
-// or, `grouped`, its view and rays only (the bouncer's group() made the
-// rest, for every ray of the cluster).
+// or, `grouped`, its view only (the bouncer's group() made the rest, for
+// every ray of the cluster).
 struct PreparedCluster {
     K::LayerView view{};
     ClusterCulls culls;
@@ -231,10 +231,7 @@ bool prepare_cluster(const BounceContext& c, const K::VirtualView& fitted, std::
     }
     out.view = view;
     out.grouped = grouped && (fitted.flags & BC_VIEW_DIRECTION_OUTSIDE) == 0;
-    if (out.grouped) {
-        out.rays.indices = std::move(members);
-        out.rays.offset = c.offset;
-    } else {
+    if (!out.grouped) {
         out.culls = cluster_culls(c, view, members, rays_resident);
         out.rays = cluster_rays(c, std::move(members), rays_resident);
     }
