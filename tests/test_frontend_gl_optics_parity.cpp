@@ -255,7 +255,9 @@ namespace {
 
 // resolve_shared.h's sample hit on the GPU: item i's 25 floats (view and
 // world vertices, lens origin and direction, time) after the two inverse
-// views (32 floats), out: point, incident, normal and valid, 10 words.
+// views (32 floats), out: point, incident, normal and valid, then the rays
+// spawned at a valid hit (a mirror for every third item, else glass of one
+// of five indices): count, direction and weight of each, 19 words.
 const char* const kResolveMain = R"glsl(
 layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer Inputs { float in_[]; };
@@ -273,18 +275,26 @@ void main() {
     dvec3 lens_world = bc_lens_world(matrix(0u), matrix(16u), at(a + 18u), double(in_[a + 24u]));
     SampleHit h = bc_sample_hit(at(a), at(a + 3u), at(a + 6u), at(a + 9u), at(a + 12u), at(a + 15u), at(a + 18u),
                                 at(a + 21u), lens_world);
-    uint o = 10u * i;
+    uint o = 19u * i;
     out_[o] = floatBitsToUint(h.point.x); out_[o + 1u] = floatBitsToUint(h.point.y); out_[o + 2u] = floatBitsToUint(h.point.z);
     out_[o + 3u] = floatBitsToUint(h.incident.x); out_[o + 4u] = floatBitsToUint(h.incident.y);
     out_[o + 5u] = floatBitsToUint(h.incident.z);
     out_[o + 6u] = floatBitsToUint(h.normal.x); out_[o + 7u] = floatBitsToUint(h.normal.y); out_[o + 8u] = floatBitsToUint(h.normal.z);
     out_[o + 9u] = h.valid ? 1u : 0u;
+    float iors[5] = float[5](1.0, 1.33, 1.5, 2.4, 0.75);
+    SpawnedRays r = bc_spawn_rays(i % 3u == 0u, iors[i % 5u], h.incident, h.normal);
+    if (!h.valid) r.count = 0;
+    out_[o + 10u] = uint(r.count);
+    out_[o + 11u] = floatBitsToUint(r.direction0.x); out_[o + 12u] = floatBitsToUint(r.direction0.y);
+    out_[o + 13u] = floatBitsToUint(r.direction0.z); out_[o + 14u] = floatBitsToUint(r.weight0);
+    out_[o + 15u] = floatBitsToUint(r.direction1.x); out_[o + 16u] = floatBitsToUint(r.direction1.y);
+    out_[o + 17u] = floatBitsToUint(r.direction1.z); out_[o + 18u] = floatBitsToUint(r.weight1);
 }
 )glsl";
 
 }  // namespace
 
-TEST_CASE("GLSL resolve_shared.h (fp64) equals the host's sample hits on 2^16 samples, degenerate ones included") {
+TEST_CASE("GLSL resolve_shared.h (fp64) equals the host's sample hits and spawned rays on 2^16 samples, degenerate ones included") {
     std::optional<gl::HeadlessContext> context = context_or_skip();
     if (!context) return;
     constexpr std::uint32_t count = 1u << 16;
@@ -320,7 +330,7 @@ TEST_CASE("GLSL resolve_shared.h (fp64) equals the host's sample hits on 2^16 sa
         return m;
     };
     std::vector<std::uint32_t> host;
-    long invalid = 0;
+    long invalid = 0, spawned = 0;
     for (std::uint32_t i = 0; i < count; ++i) {
         const std::size_t a = 32 + 25 * std::size_t{i};
         auto at = [&](std::size_t k) { return glm::dvec3(in[a + k], in[a + k + 1], in[a + k + 2]); };
@@ -331,11 +341,21 @@ TEST_CASE("GLSL resolve_shared.h (fp64) equals the host's sample hits on 2^16 sa
             for (int c = 0; c < 3; ++c) host.push_back(bits_of(x[c]));
         host.push_back(h.valid ? 1u : 0u);
         invalid += h.valid ? 0 : 1;
+        const float iors[5] = {1.0f, 1.33f, 1.5f, 2.4f, 0.75f};
+        resolve::SpawnedRays r = resolve::bc_spawn_rays(i % 3u == 0u, iors[i % 5u], h.incident, h.normal);
+        if (!h.valid) r.count = 0;
+        host.push_back(static_cast<std::uint32_t>(r.count));
+        spawned += r.count;
+        for (float x : {r.direction0.x, r.direction0.y, r.direction0.z, r.weight0, r.direction1.x, r.direction1.y,
+                        r.direction1.z, r.weight1})
+            host.push_back(bits_of(x));
     }
     const gl::Functions& f = context->gl();
+    const std::string_view optics_source = glsl::render_shader_source("optics_shared.h");
     const std::string_view resolve_source = glsl::render_shader_source("resolve_shared.h");
     REQUIRE_FALSE(resolve_source.empty());
-    gl::Program program(f, {{GL_COMPUTE_SHADER, {glsl::kernel_source(), resolve_source, kResolveMain}}});
+    gl::Program program(f,
+                        {{GL_COMPUTE_SHADER, {glsl::kernel_source(), optics_source, resolve_source, kResolveMain}}});
     gl::Buffer inputs(f, GL_SHADER_STORAGE_BUFFER, in.size() * 4, in.data());
     std::vector<std::uint32_t> gpu(host.size(), 0u);
     gl::Buffer result(f, GL_SHADER_STORAGE_BUFFER, gpu.size() * 4);
@@ -352,21 +372,23 @@ TEST_CASE("GLSL resolve_shared.h (fp64) equals the host's sample hits on 2^16 sa
     long valid_differ = 0, values_differ = 0;
     float worst = 0.0f;
     for (std::uint32_t i = 0; i < count; ++i) {
-        const std::size_t o = 10 * std::size_t{i};
-        if (host[o + 9] != gpu[o + 9]) {
-            ++valid_differ;
+        const std::size_t o = 19 * std::size_t{i};
+        if (host[o + 9] != gpu[o + 9] || host[o + 10] != gpu[o + 10]) {
+            ++valid_differ;  // or a different count of rays
             continue;
         }
-        for (int k = 0; k < 9; ++k) {
+        for (int k : {0, 1, 2, 3, 4, 5, 6, 7, 8, 11, 12, 13, 14, 15, 16, 17, 18}) {
             const float h = float_of(host[o + k]), g = float_of(gpu[o + k]);
             const float gap = std::abs(h - g) / std::max(1.0f, std::abs(h));
             worst = std::max(worst, gap);
             values_differ += tolerant ? gap > 1e-5f : host[o + k] != gpu[o + k];
         }
     }
-    MESSAGE(count << " samples, " << invalid << " without a hit; " << valid_differ << " validities and "
-                  << values_differ << " values differ (largest relative difference " << worst << ")");
+    MESSAGE(count << " samples, " << invalid << " without a hit, " << spawned << " rays spawned; " << valid_differ
+                  << " validities or ray counts and " << values_differ << " values differ (largest relative difference "
+                  << worst << ")");
     CHECK(invalid > 1000);  // the degenerate cases are exercised
+    CHECK(spawned > count);  // glass spawns two rays where it does not reflect totally
     // A double-precision decision may differ only where a GL's doubles are not IEEE.
     CHECK(valid_differ <= (tolerant ? long(count / 10000) : 0L));
     CHECK(values_differ == 0);

@@ -1,5 +1,6 @@
-// Where a primary sample meets the reflector it shows, written once for C++
-// and GLSL (like optics_shared.h): the dof-secondary resolve
+// Where a primary sample meets the reflector it shows, and the rays it
+// spawns there, written once for C++ and GLSL (like optics_shared.h, whose
+// text GLSL includes first): the dof-secondary resolve
 // (render/secondary/secondary_rays.cpp) calls it on the host, and a GPU
 // resolve runs the same text in fp64 (GL 4.0), so both start the bounced
 // rays at the same points. The arithmetic is double, every operation spelt
@@ -12,11 +13,17 @@
 #define BLURCULL_RESOLVE_SHARED_H
 
 #ifdef __cplusplus
+#include "render/common/optics_shared.h"
+
 #include <glm/glm.hpp>
 
 #include <cmath>
 
 namespace blurcull::frontend::resolve {
+using optics::bc_dielectric_reflectance;
+using optics::bc_mirror_direction;
+using optics::bc_optics_dot;
+using optics::bc_refract_direction;
 using glm::dmat4;
 using glm::dvec3;
 using glm::dvec4;
@@ -114,6 +121,63 @@ BC_RESOLVE_FN SampleHit bc_sample_hit(dvec3 v0, dvec3 v1, dvec3 v2, dvec3 w0, dv
     hit.normal = vec3(unit_normal);
     hit.valid = true;
     return hit;
+}
+
+// GLM's normalize: v (1 / sqrt(v . v)).
+BC_RESOLVE_FN vec3 bc_resolve_normalize(vec3 v) {
+    BC_RESOLVE_PRECISE float inverse = 1.0f / sqrt(bc_optics_dot(v, v));
+    BC_RESOLVE_PRECISE vec3 unit = v * inverse;
+    return unit;
+}
+
+// The rays a reflector sample spawns at its hit (`incident` and `normal`
+// unit, as bc_sample_hit gives them): a mirror one of weight 1 along the
+// mirrored direction; a dielectric of index `ior` a reflected ray of weight
+// R (bc_dielectric_reflectance) when R > 0 and a refracted one of weight
+// 1 - R when R < 1 and there is one (none under total internal
+// reflection); directions normalised.
+struct SpawnedRays {
+    int count;
+    vec3 direction0;
+    float weight0;
+    vec3 direction1;
+    float weight1;
+};
+
+BC_RESOLVE_FN SpawnedRays bc_spawn_rays(bool mirror, float ior, vec3 incident, vec3 normal) {
+    SpawnedRays spawned;
+    spawned.count = 0;
+    spawned.direction0 = vec3(0.0f);
+    spawned.weight0 = 0.0f;
+    spawned.direction1 = vec3(0.0f);
+    spawned.weight1 = 0.0f;
+    vec3 reflected = bc_resolve_normalize(bc_mirror_direction(incident, normal));
+    if (mirror) {
+        spawned.count = 1;
+        spawned.direction0 = reflected;
+        spawned.weight0 = 1.0f;
+        return spawned;
+    }
+    float reflectance = bc_dielectric_reflectance(incident, normal, ior);
+    if (reflectance > 0.0f) {
+        spawned.count = 1;
+        spawned.direction0 = reflected;
+        spawned.weight0 = reflectance;
+    }
+    vec3 t = bc_refract_direction(incident, normal, ior);
+    if (reflectance < 1.0f && bc_optics_dot(t, t) > 0.0f) {
+        BC_RESOLVE_PRECISE float rest = 1.0f - reflectance;
+        vec3 refracted = bc_resolve_normalize(t);
+        if (spawned.count == 0) {
+            spawned.direction0 = refracted;
+            spawned.weight0 = rest;
+        } else {
+            spawned.direction1 = refracted;
+            spawned.weight1 = rest;
+        }
+        spawned.count += 1;
+    }
+    return spawned;
 }
 
 #ifdef __cplusplus

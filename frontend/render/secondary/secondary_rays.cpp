@@ -1,7 +1,6 @@
 #include "render/secondary/secondary_rays.hpp"
 
 #include "render/common/method_plan.hpp"
-#include "render/common/optics_shared.h"
 #include "render/common/shading.hpp"
 #include "render/common/parallel_items.hpp"
 #include "render/common/resolve_shared.h"
@@ -38,24 +37,16 @@ SampleHit sample_hit(const Scene& scene, const CameraModel& model, const glm::dm
                                   resolve::bc_lens_world(inverse_open, inverse_close, o, double(time)));
 }
 
-// The rays a reflector sample spawns (one for a mirror, up to two for a dielectric).
+// The rays a reflector sample spawns (resolve::bc_spawn_rays: one for a
+// mirror, up to two for a dielectric).
 void spawn_rays(const Material& material, const SampleHit& hit, std::uint32_t sample, std::uint32_t part,
                 std::uint32_t triangle, float time, std::vector<SecondaryRay>& rays) {
-    using namespace optics;
-    if (material.kind == MaterialKind::mirror) {
-        const glm::vec3 r = glm::normalize(bc_mirror_direction(hit.incident, hit.normal));
-        rays.push_back({hit.point, r, glm::vec3(1.0f), sample, part, triangle, time});
-        return;
-    }
-    const float reflectance = bc_dielectric_reflectance(hit.incident, hit.normal, material.ior);
-    if (reflectance > 0.0f) {
-        const glm::vec3 r = glm::normalize(bc_mirror_direction(hit.incident, hit.normal));
-        rays.push_back({hit.point, r, glm::vec3(reflectance), sample, part, triangle, time});
-    }
-    const glm::vec3 t = bc_refract_direction(hit.incident, hit.normal, material.ior);
-    if (reflectance < 1.0f && glm::dot(t, t) > 0.0f)
-        rays.push_back(
-            {hit.point, glm::normalize(t), glm::vec3(1.0f - reflectance), sample, part, triangle, time});
+    const resolve::SpawnedRays spawned =
+        resolve::bc_spawn_rays(material.kind == MaterialKind::mirror, material.ior, hit.incident, hit.normal);
+    if (spawned.count > 0)
+        rays.push_back({hit.point, spawned.direction0, glm::vec3(spawned.weight0), sample, part, triangle, time});
+    if (spawned.count > 1)
+        rays.push_back({hit.point, spawned.direction1, glm::vec3(spawned.weight1), sample, part, triangle, time});
 }
 
 }  // namespace
