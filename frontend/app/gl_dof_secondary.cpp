@@ -1,5 +1,6 @@
 #include "app/gl_dof_secondary.hpp"
 
+#include "render/common/shading.hpp"
 #include "render/gl/gl_phase_timers.hpp"
 
 #include <cstdint>
@@ -215,6 +216,38 @@ ClusterLayers to_cluster_layers(GlClusterLayers&& built, LayerStats& stats) {
     images.triangle = std::move(built.triangle);
     DepthPyramid pyramid = DepthPyramid::from_levels(built.size, built.pyramid);
     return ClusterLayers{std::move(images), std::move(pyramid)};
+}
+
+GlResolveInput resolve_input(const Scene& scene, const CameraModel& model, const RenderSettings& settings,
+                             int lens_parts) {
+    GlResolveInput in;
+    in.width = settings.width;
+    in.height = settings.height;
+    in.spp = settings.spp;
+    in.sampler = settings.sampler;
+    in.seed = settings.seed;
+    in.lens_parts = lens_parts;
+    in.k_x = model.k_x;
+    in.k_y = model.k_y;
+    in.lens_radius = model.lens_radius;
+    in.lens_slope = kernelf::camera_coc(1.0f, model.lens_radius, model.focus_distance).y;  // CameraModel::lens_ray's
+    in.background = scene.background;
+    for (std::size_t v = 0; v < scene.position_open.size(); ++v) {
+        in.view_open.push_back(model.view_position(scene, v, 0));
+        in.view_close.push_back(model.view_position(scene, v, 1));
+    }
+    in.world_open = scene.position_open;
+    in.world_close = scene.position_close;
+    in.triangles = scene.triangles;
+    for (std::size_t t = 0; t < scene.triangles.size(); ++t) {
+        const Material& material = scene.materials[scene.triangle_material[t]];
+        in.kinds.push_back(static_cast<std::uint32_t>(material.kind));
+        in.iors.push_back(material.ior);
+    }
+    in.colours = shade_all(scene);
+    in.inverse_open = glm::inverse(glm::dmat4(model.view_open));
+    in.inverse_close = glm::inverse(glm::dmat4(model.view_close));
+    return in;
 }
 
 GlDofSecondary::GlDofSecondary(GlRenderer& rasterizer, const gl::HeadlessContext& trace_context)

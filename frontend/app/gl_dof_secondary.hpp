@@ -11,12 +11,14 @@
 // gl backend runs").
 #pragma once
 
+#include "render/common/camera_model.hpp"
 #include "render/common/render_types.hpp"
 #include "render/gl/gl_backend.hpp"
 #include "render/gl/gl_clustering.hpp"
 #include "render/gl/gl_context.hpp"
 #include "render/gl/gl_layer_images.hpp"
 #include "render/gl/gl_layer_trace.hpp"
+#include "render/gl/gl_secondary_resolve.hpp"
 #include "render/secondary/dof_secondary.hpp"
 #include "render/secondary/secondary_options.hpp"
 #include "scene/scene.hpp"
@@ -27,6 +29,14 @@ namespace blurcull::frontend {
 
 // render/secondary's layers from the GL build's read-back, its counts added to `stats`.
 ClusterLayers to_cluster_layers(GlClusterLayers&& built, LayerStats& stats);
+
+// What GlSecondaryResolve needs to resolve `scene`'s samples as
+// resolve_primary does with `model`, `settings` and `lens_parts`: the
+// camera's constants, each vertex's view positions (the model's) and world
+// ones, each triangle's material and shade() colour, the views' inverses in
+// double.
+GlResolveInput resolve_input(const Scene& scene, const CameraModel& model, const RenderSettings& settings,
+                             int lens_parts);
 
 class GlDofSecondary {
 public:

@@ -35,6 +35,7 @@
     X(PFNGLUNIFORM1IPROC, Uniform1i)                               \
     X(PFNGLUNIFORM1UIPROC, Uniform1ui)                             \
     X(PFNGLUNIFORM1FPROC, Uniform1f)                               \
+    X(PFNGLUNIFORM3FPROC, Uniform3f)                               \
     X(PFNGLGENBUFFERSPROC, GenBuffers)                             \
     X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                       \
     X(PFNGLBINDBUFFERPROC, BindBuffer)                             \

@@ -124,6 +124,16 @@ using uint = std::uint32_t;
 #define BC_GL_GROUP_LISTS_BINDING 14    // Lists: each slot's rays, group after group, from its first
 #define BC_GL_GROUP_PAIRS_BINDING 15    // Pairs: each slot's groups (begin, end in its list), then scratch
 #define BC_GL_GROUP_OWN_BINDING 16      // Own: each slot's own triangles, a bit each
+//
+// dof-secondary's primary resolve (gl_secondary_resolve.cpp, shaders/
+// render_secondary_resolve.comp), writing the clustering's Points (8):
+#define BC_GL_RESOLVE_IDS_BINDING 0       // SampleIds: per sample its winning triangle
+#define BC_GL_RESOLVE_VERTICES_BINDING 1  // Vertices: per vertex view and world positions at open and close
+#define BC_GL_RESOLVE_TRIANGLES_BINDING 2 // Triangles: per triangle its vertices, material, colour
+#define BC_GL_RESOLVE_FRAME_BINDING 3     // Frame: the inverse views (double)
+#define BC_GL_RESOLVE_COLOURS_BINDING 4   // Colours: per sample its direct colour
+#define BC_GL_RESOLVE_COUNTS_BINDING 5    // Counts: per sample its rays; per chunk their sum, then its first ray
+#define BC_GL_RESOLVE_RAYS_BINDING 6      // RayInfo: per ray its sample, time and weight
 
 // What render_setup.comp finds out about triangle i, once per frame.
 struct TriangleInfo {
@@ -308,6 +318,11 @@ static_assert(distinct_bindings({BC_GL_TRACE_DEPTHS_BINDING, BC_GL_TRACE_SEGMENT
                                  BC_GL_GATHER_INDICES_BINDING, BC_GL_GROUP_SLOTS_BINDING,
                                  BC_GL_GROUP_LISTS_BINDING, BC_GL_GROUP_PAIRS_BINDING, BC_GL_GROUP_OWN_BINDING}),
               "the clustering and grouping passes' bindings, past the trace prelude's");
+static_assert(distinct_bindings({BC_GL_RESOLVE_IDS_BINDING, BC_GL_RESOLVE_VERTICES_BINDING,
+                                 BC_GL_RESOLVE_TRIANGLES_BINDING, BC_GL_RESOLVE_FRAME_BINDING,
+                                 BC_GL_RESOLVE_COLOURS_BINDING, BC_GL_RESOLVE_COUNTS_BINDING,
+                                 BC_GL_RESOLVE_RAYS_BINDING, BC_GL_CLUSTER_POINTS_BINDING}),
+              "the resolve pass's bindings");
 static_assert(sizeof(TriangleInfo) % 16 == 0 && sizeof(CellBounds) % 16 == 0 && sizeof(MethodBox) % 16 == 0 &&
                   sizeof(MaskTriangle) % 16 == 0 &&
                   sizeof(GpuMovingTriangle) % 16 == 0,

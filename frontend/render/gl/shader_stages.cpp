@@ -41,6 +41,12 @@ ShaderStage shader_stage(GLenum type, std::string_view main_name, Prelude prelud
             add("render_secondary_common.glsl");
             if (prelude == Prelude::clusters) add("gl_cluster_shared.h");
             break;
+        case Prelude::resolve:
+            add("gpu_layout_shared.h");
+            add("gl_cluster_shared.h");
+            add("optics_shared.h");
+            add("resolve_shared.h");
+            break;
     }
     add(main_name);
     return stage;

@@ -36,6 +36,9 @@ enum class Prelude {
     // secondary's, then gl_cluster_shared.h: dof-secondary's clustering
     // pass (gl_clustering.cpp).
     clusters,
+    // gpu_layout_shared.h, gl_cluster_shared.h, optics_shared.h and
+    // resolve_shared.h: dof-secondary's primary resolve (gl_secondary_resolve.cpp).
+    resolve,
 };
 
 // A stage of `type` (GL_COMPUTE_SHADER, GL_VERTEX_SHADER, ...): the kernel's
