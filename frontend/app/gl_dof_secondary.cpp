@@ -4,6 +4,7 @@
 #include "render/gl/gl_phase_timers.hpp"
 
 #include <cstdint>
+#include <cstring>
 #include <memory>
 #include <optional>
 #include <string>
@@ -12,6 +13,32 @@
 
 namespace blurcull::frontend {
 namespace {
+
+// resolve_primary's result from the GPU resolve's read-back (its rays'
+// words decoded; the lens part from the pixel key).
+PrimaryResolve to_primary_resolve(const GlResolved& gpu, int lens_parts) {
+    auto float_of = [](std::uint32_t bits) {
+        float value;
+        std::memcpy(&value, &bits, sizeof value);
+        return value;
+    };
+    PrimaryResolve out;
+    out.sample_colour = gpu.sample_colour;
+    out.reflector_samples = gpu.reflector_samples;
+    out.rays.resize(gpu.info.size());
+    for (std::size_t r = 0; r < gpu.info.size(); ++r) {
+        const glm::uvec4 p = gpu.points[2 * r], d = gpu.points[2 * r + 1], info = gpu.info[r];
+        SecondaryRay& ray = out.rays[r];
+        ray.origin = glm::vec3(float_of(p.x), float_of(p.y), float_of(p.z));
+        ray.direction = glm::vec3(float_of(d.x), float_of(d.y), float_of(d.z));
+        ray.weight = glm::vec3(float_of(info.z));
+        ray.sample = info.x;
+        ray.lens_part = lens_parts > 1 ? d.w & 15u : 0u;
+        ray.triangle = p.w;
+        ray.time = float_of(info.y);
+    }
+    return out;
+}
 
 // The context, made current: the passes compile on it.
 const gl::HeadlessContext& made_current(const gl::HeadlessContext& context) {
@@ -42,12 +69,19 @@ void add_counts(LayerStats& stats, const GlLayerCounts& counts) {
 // nothing waits), wall_bounce_readback (finish(): waits for all of the
 // batch's GPU work, then reads the hits and counts); with the clustering,
 // gpu_ and wall_bounce_gpu_clustering (its passes, their upload and
-// read-back, and the grouping pass).
+// read-back, and the grouping pass). With `resolve` the primary samples
+// are resolved there too (GlSecondaryResolve): gpu_ and
+// wall_primary_resolve (the passes, the ids' upload, the read-back).
 class GlClusterBouncer final : public ClusterBouncer {
 public:
     GlClusterBouncer(const gl::HeadlessContext& context, const GlLayerBuilder& builder, const GlLayerTracer& tracer,
-                     GlLayerRaster raster, const GlClustering* clustering)
-        : context_(&context), builder_(&builder), tracer_(&tracer), raster_(raster), clustering_(clustering) {}
+                     GlLayerRaster raster, const GlClustering* clustering, const GlSecondaryResolve* resolve)
+        : context_(&context),
+          builder_(&builder),
+          tracer_(&tracer),
+          raster_(raster),
+          clustering_(clustering),
+          resolve_(resolve) {}
     GlClusterBouncer(const GlClusterBouncer&) = delete;
     GlClusterBouncer& operator=(const GlClusterBouncer&) = delete;
     // The timers' queries are deleted on the current context: this one's.
@@ -55,6 +89,17 @@ public:
         if (!timers_) return;
         context_->make_current_for_release();
         timers_.reset();
+    }
+
+    std::optional<PrimaryResolve> resolve(const Scene& scene, const CameraModel& model, const RenderSettings& settings,
+                                          const std::vector<std::uint32_t>& ids, int lens_parts) override {
+        if (resolve_ == nullptr) return std::nullopt;
+        make_timers();
+        timers_->begin(resolve_phase);
+        const GlResolved gpu = resolve_->resolve(resolve_input(scene, model, settings, lens_parts), ids);
+        timers_->end(resolve_phase);
+        resolved_rays_ = gpu.info.size();
+        return to_primary_resolve(gpu, lens_parts);
     }
 
     std::optional<Clustering<float>> cluster(const std::vector<glm::vec3>& positions,
@@ -66,8 +111,12 @@ public:
         make_timers();
         timers_->begin(clustering_phase);
         // The rays' clusters stay on the GPU unless the host asks (cluster_of()).
+        // A batch of all the resolved rays (one shutter slice) is already
+        // there, in the resolve's order: copied, not uploaded.
+        const bool resolved_there = resolve_ != nullptr && resolved_rays_ > 0 && positions.size() == resolved_rays_;
         Clustering<float> clusters =
-            clustering_->cluster(positions, directions, options, tan_half_fov, min_near, &views, &keys, false);
+            clustering_->cluster(positions, directions, options, tan_half_fov, min_near, &views, &keys, false,
+                                 resolved_there ? &resolve_->points_buffer() : nullptr);
         rays_on_gpu_ = true;
         timers_->end(clustering_phase);
         return clusters;
@@ -162,7 +211,7 @@ public:
     }
 
 private:
-    enum Phase : std::size_t { layers_phase, trace_phase, readback_phase, clustering_phase };
+    enum Phase : std::size_t { layers_phase, trace_phase, readback_phase, clustering_phase, resolve_phase };
 
     // A cluster of `rays` rays whose indices and groups (at most
     // max_groups) are in indices_ and groups_: its layers with `input`'s
@@ -188,6 +237,7 @@ private:
         if (timers_) return;
         std::vector<std::string> names{"bounce_layers", "bounce_trace", "bounce_readback"};
         if (clustering_ != nullptr) names.emplace_back("bounce_gpu_clustering");
+        if (resolve_ != nullptr) names.emplace_back("primary_resolve");
         timers_.emplace(context_->gl(), std::move(names), !context_->software(), false);  // no wait between the passes
     }
 
@@ -196,6 +246,8 @@ private:
     const GlLayerTracer* tracer_;
     GlLayerRaster raster_;
     const GlClustering* clustering_;  // null: the host clusters
+    const GlSecondaryResolve* resolve_;  // null: the host resolves
+    std::size_t resolved_rays_ = 0;      // the rays resolve() left on the GPU
     bool rays_on_gpu_ = false;        // cluster() left this batch's rays in clustering_'s points
     // The queued cluster's rays, as indices of those points, and its
     // groups (group_words' layout).
@@ -255,7 +307,8 @@ GlDofSecondary::GlDofSecondary(GlRenderer& rasterizer, const gl::HeadlessContext
       trace_context_(&trace_context),
       tracer_(made_current(trace_context)),
       builder_(trace_context),
-      clustering_(trace_context) {}
+      clustering_(trace_context),
+      resolve_(trace_context) {}
 
 PrimaryPass GlDofSecondary::primary_pass(const Scene& scene, const GlOptions& gl_options) const {
     return [this, &scene, gl_options](const RenderSettings& primary_settings, std::vector<std::uint32_t>& ids) {
@@ -283,8 +336,9 @@ LayerBuilder GlDofSecondary::layer_builder(GlLayerRaster raster) const {
 }
 
 std::unique_ptr<ClusterBouncer> GlDofSecondary::cluster_bouncer(GlLayerRaster raster, ClustersOn clusters_on) const {
+    const bool on_gl = clusters_on == ClustersOn::gl;
     return std::make_unique<GlClusterBouncer>(*trace_context_, builder_, tracer_, raster,
-                                              clusters_on == ClustersOn::gl ? &clustering_ : nullptr);
+                                              on_gl ? &clustering_ : nullptr, on_gl ? &resolve_ : nullptr);
 }
 
 RenderResult GlDofSecondary::render(const Scene& scene, const RenderSettings& settings, const GlOptions& gl_options,

@@ -63,9 +63,10 @@ public:
     PrimaryPass primary_pass(const Scene& scene, const GlOptions& gl_options) const;
     LayerTracer layer_tracer() const;
     LayerBuilder layer_builder(GlLayerRaster raster = GlLayerRaster::graphics) const;
-    // The bouncer clusters the rays in compute passes too (GlClustering)
-    // unless `clusters_on` says host. render() clusters in compute with the
-    // compute pipeline, on the host with the fragment pipeline.
+    // The bouncer resolves the primary samples (GlSecondaryResolve) and
+    // clusters the rays (GlClustering) in compute passes too unless
+    // `clusters_on` says host. render() does with the compute pipeline,
+    // not with the fragment pipeline.
     enum class ClustersOn { gl, host };
     std::unique_ptr<ClusterBouncer> cluster_bouncer(GlLayerRaster raster = GlLayerRaster::graphics,
                                                     ClustersOn clusters_on = ClustersOn::gl) const;
@@ -76,6 +77,7 @@ private:
     GlLayerTracer tracer_;
     GlLayerBuilder builder_;
     GlClustering clustering_;
+    GlSecondaryResolve resolve_;
 };
 
 }  // namespace blurcull::frontend

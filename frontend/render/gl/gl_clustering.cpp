@@ -76,7 +76,8 @@ const gl::Buffer& GlClustering::points_buffer() const {
 Clustering<float> GlClustering::cluster(const std::vector<glm::vec3>& positions,
                                         const std::vector<glm::vec3>& directions, const ClusterOptions& options,
                                         float tan_half_fov, float min_near, ClusterViews<float>* views,
-                                        const std::vector<RayGroupKey>* keys, bool read_labels) const {
+                                        const std::vector<RayGroupKey>* keys, bool read_labels,
+                                        const gl::Buffer* on_gpu) const {
     using K = kernelf;
     Clustering<float> out;
     keyed_ = false;  // until this call's rays are on the GPU
@@ -97,14 +98,20 @@ Clustering<float> GlClustering::cluster(const std::vector<glm::vec3>& positions,
         runs_ += i == 0 || ((*keys)[i].pixel_part >> BC_GROUP_PART_BITS) != ((*keys)[i - 1].pixel_part >> BC_GROUP_PART_BITS);
     // Each w holds a key's word as its bits (group() reads them as words;
     // no pass does arithmetic on them).
-    std::vector<glm::vec4> points(2 * n);
-    for (std::size_t i = 0; i < n; ++i) {
-        points[2 * i] = glm::vec4(positions[i], float_of_bits(keyed ? (*keys)[i].triangle : 0u));
-        points[2 * i + 1] = glm::vec4(directions[i], float_of_bits(keyed ? (*keys)[i].pixel_part : 0u));
+    if (on_gpu != nullptr && on_gpu->size() >= 2 * n * sizeof(glm::vec4)) {
+        // The same rays already there in this layout: copied on the GPU, nothing uploaded.
+        gl::copy_buffer(f, *on_gpu, 0, gl::reserve_storage(f, points_, 2 * n * sizeof(glm::vec4)), 0,
+                        2 * n * sizeof(glm::vec4));
+    } else {
+        std::vector<glm::vec4> points(2 * n);
+        for (std::size_t i = 0; i < n; ++i) {
+            points[2 * i] = glm::vec4(positions[i], float_of_bits(keyed ? (*keys)[i].triangle : 0u));
+            points[2 * i + 1] = glm::vec4(directions[i], float_of_bits(keyed ? (*keys)[i].pixel_part : 0u));
+        }
+        gl::reserve_storage(f, points_, points.size() * sizeof(glm::vec4), points.data());
     }
+    points_->bind_base(BC_GL_CLUSTER_POINTS_BINDING);
     const ClusterState initial{};
-    gl::reserve_storage(f, points_, points.size() * sizeof(glm::vec4), points.data())
-        .bind_base(BC_GL_CLUSTER_POINTS_BINDING);
     gl::reserve_storage(f, labels_, n * sizeof(std::uint32_t)).bind_base(BC_GL_CLUSTER_LABELS_BINDING);
     gl::reserve_storage(f, state_, sizeof initial, &initial).bind_base(BC_GL_CLUSTER_STATE_BINDING);
     std::vector<ClusterViewFit> fits(2 * BC_CLUSTER_SLOTS, ClusterViewFit{});

@@ -39,11 +39,13 @@ public:
     // three more passes, read back with the rest). With `keys` (one per
     // ray, the rays in pixel order), group() may follow. Without
     // `read_labels` the rays' clusters stay on the GPU (cluster_of empty;
-    // cluster_of() reads them).
+    // cluster_of() reads them). With `on_gpu` (at least 32 bytes a ray) the
+    // same rays are already on the GPU in points_buffer()'s layout with the
+    // keys' words (GlSecondaryResolve's): copied there, not uploaded.
     Clustering<float> cluster(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& directions,
                               const ClusterOptions& options = {}, float tan_half_fov = 1.0f, float min_near = 1e-3f,
                               ClusterViews<float>* views = nullptr, const std::vector<RayGroupKey>* keys = nullptr,
-                              bool read_labels = true) const;
+                              bool read_labels = true, const gl::Buffer* on_gpu = nullptr) const;
 
     // The last cluster()'s Clustering::cluster_of, read back (4 bytes a ray).
     std::vector<int> cluster_of() const;

@@ -117,4 +117,9 @@ GlResolved GlSecondaryResolve::resolve(const GlResolveInput& in, const std::vect
     return out;
 }
 
+const gl::Buffer& GlSecondaryResolve::points_buffer() const {
+    if (!points_) throw gl::GlError("gl: no samples resolved yet, so no rays on the GPU");
+    return *points_;
+}
+
 }  // namespace blurcull::frontend

@@ -63,6 +63,10 @@ public:
     // Throws gl::GlError when GL reports an error or the sizes pass 32 bits.
     GlResolved resolve(const GlResolveInput& input, const std::vector<std::uint32_t>& sample_ids) const;
 
+    // The last resolve()'s rays on the GPU: 2 uvec4 a ray (GlResolved::points).
+    // Throws gl::GlError before the first call.
+    const gl::Buffer& points_buffer() const;
+
 private:
     const gl::HeadlessContext* context_;
     const gl::Functions* gl_;

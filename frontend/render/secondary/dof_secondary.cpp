@@ -529,16 +529,19 @@ RenderResult render_dof_secondary(const Scene& scene, const RenderSettings& sett
     const CameraModel model(scene.camera, settings.width, settings.height);
 
     Clock::time_point phase = Clock::now();
-    PrimaryResolve primary = resolve_primary(scene, model, settings, ids, options.lens_parts);
+    // The bouncer runs the image-space bounce only (exact and environment
+    // bounces stay on the host); it may resolve the samples too.
+    ClusterBouncer* const resident = options.bounces == SecondaryBounces::image_space ? bouncer : nullptr;
+    std::optional<PrimaryResolve> resolved;
+    if (resident != nullptr) resolved = resident->resolve(scene, model, settings, ids, options.lens_parts);
+    PrimaryResolve primary =
+        resolved ? std::move(*resolved) : resolve_primary(scene, model, settings, ids, options.lens_parts);
     const WorldTriangles world = world_triangles(scene, 0.5f);
     const std::vector<glm::vec3> colours = shade_all(scene);
     result.stats.ms_per_phase.emplace_back("resolve", ms_since(phase));
 
     phase = Clock::now();
     const float diagonal = std::max(world.diagonal(), 1e-6f);
-    // The bouncer runs the image-space bounce only (exact and environment
-    // bounces stay on the host).
-    ClusterBouncer* const resident = options.bounces == SecondaryBounces::image_space ? bouncer : nullptr;
     const bool moving = scene_moves(scene);
     const float tan_half_fov = std::tan(0.5f * options.fov_degrees * 3.14159265358979f / 180.0f);
     auto context_for = [&](const std::vector<SecondaryRay>& rays, const WorldTriangles& at) {

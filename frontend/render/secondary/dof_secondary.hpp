@@ -9,8 +9,10 @@
 #pragma once
 
 #include "render/common/bounce_shared.h"
+#include "render/common/camera_model.hpp"
 #include "render/common/render_types.hpp"
 #include "render/secondary/layer_images.hpp"
+#include "render/secondary/secondary_rays.hpp"
 #include "render/secondary/secondary_options.hpp"
 #include "scene/scene.hpp"
 
@@ -96,6 +98,14 @@ struct ClusterRays {
 class ClusterBouncer {
 public:
     virtual ~ClusterBouncer() = default;
+    // The primary samples resolved there (resolve_primary's result for
+    // `ids`, the same bit for bit where the GPU rounds as the host does);
+    // nullopt: the host resolves them. Called first, once per render.
+    virtual std::optional<PrimaryResolve> resolve(const Scene& /*scene*/, const CameraModel& /*model*/,
+                                                  const RenderSettings& /*settings*/,
+                                                  const std::vector<std::uint32_t>& /*ids*/, int /*lens_parts*/) {
+        return std::nullopt;
+    }
     // The batch's rays clustered there: cluster_reflector_pixels's result,
     // and each cluster's views in `views` (fit_cluster_views's; the GL
     // build's compute passes give both bit for bit); nullopt: the host
