@@ -11,7 +11,8 @@
 # bounce the host's own steps (clustering, views, shading; on the gl and
 # gl-compute variants the clustering is the GPU's compute passes, waited
 # for), on hardware GL the resident bounce's GPU time (gpu_bounce_layers +
-# gpu_bounce_trace + gpu_bounce_gpu_clustering, timer queries), and the PSNR
+# gpu_bounce_trace + gpu_bounce_gpu_clustering, and gl-compute's resolve on
+# the GPU, gpu_primary_resolve; timer queries), and the PSNR
 # against embree. The gl-compute variant scans the
 # layers in compute as well (GlLayerRaster::compute), gl on the GL rasterizer. docs/secondary-rays.md, "What the gl backend runs".
 #
@@ -42,7 +43,7 @@ say "gl: $renderer ($kind)"
 say "cpus: $(nproc); size $size, spp $spp, runs $runs, seed 1, sampler sobol"
 [ "$kind" = software ] && say "SOFTWARE GL (llvmpipe on the CPU): a smoke run, not GPU figures"
 
-echo "scene,variant,size,spp,run,ms_total,ms_primary,ms_resolve,ms_bounce,host_clustering,host_views,host_shading,gpu_bounce_layers,gpu_bounce_trace,gpu_bounce_clustering,psnr_db" >"$csv"
+echo "scene,variant,size,spp,run,ms_total,ms_primary,ms_resolve,ms_bounce,host_clustering,host_views,host_shading,gpu_bounce_layers,gpu_bounce_trace,gpu_bounce_clustering,gpu_primary_resolve,psnr_db" >"$csv"
 failed=0
 # One render: scene variant size spp run args...; appends a csv line.
 render() {
@@ -68,7 +69,7 @@ gpu = lambda k: "%.2f" % p[k] if k in p else ""
 print(",".join([scene, variant, size, spp, run, "%.1f" % d["ms_total"], "%.1f" % primary,
                 "%.1f" % p.get("resolve", 0.0), "%.1f" % p.get("bounce", 0.0), gpu("wall_bounce_clustering"),
                 gpu("wall_bounce_views"), gpu("wall_bounce_shading"), gpu("gpu_bounce_layers"),
-                gpu("gpu_bounce_trace"), gpu("gpu_bounce_gpu_clustering"), psnr]))
+                gpu("gpu_bounce_trace"), gpu("gpu_bounce_gpu_clustering"), gpu("gpu_primary_resolve"), psnr]))
 PY
 }
 # Every variant of one scene and size, embree first (the reference image).
@@ -90,7 +91,7 @@ summarize() {
 import csv, statistics, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
 keys = sorted({(r["scene"], r["size"], r["spp"]) for r in rows}, key=lambda k: (k[1], k[0]))
-print("scene size spp | variant: median ms total / primary / resolve / bounce (of it: clustering + views + shading, the clustering on the GPU for gl and gl-compute; GPU time of the resident bounce), PSNR against embree | bounce gl-readback / gl")
+print("scene size spp | variant: median ms total / primary / resolve / bounce (of it: clustering + views + shading, the clustering on the GPU for gl and gl-compute; GPU time of the resident bounce and, for gl-compute, resolve), PSNR against embree | bounce gl-readback / gl")
 for key in keys:
     line, bounce = [], {}
     for variant in ("embree", "gl", "gl-compute", "gl-readback"):
@@ -99,8 +100,8 @@ for key in keys:
             continue
         med = lambda f: statistics.median(float(r[f]) for r in rs)
         bounce[variant] = med("ms_bounce")
-        gpu = [float(r["gpu_bounce_layers"]) + float(r["gpu_bounce_trace"]) + float(r["gpu_bounce_clustering"] or 0)
-               for r in rs if r["gpu_bounce_layers"]]
+        gpu = [float(r["gpu_bounce_layers"]) + float(r["gpu_bounce_trace"]) + float(r["gpu_bounce_clustering"] or 0) +
+               float(r["gpu_primary_resolve"] or 0) for r in rs if r["gpu_bounce_layers"]]
         host = [sum(float(r[k]) for k in ("host_clustering", "host_views", "host_shading")) for r in rs
                 if r["host_clustering"]]
         psnr = rs[-1]["psnr_db"]
