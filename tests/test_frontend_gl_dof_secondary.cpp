@@ -624,7 +624,9 @@ TEST_CASE("dof-secondary: the primary resolve on the GPU gives the host's sample
             CAPTURE(scene.name);
             CAPTURE(parts);
             const PrimaryResolve host = resolve_primary(scene, model, settings, ids, parts);
-            const GlResolved gpu = passes.resolve(resolve_input(scene, model, settings, parts), ids);
+            const std::optional<GlResolved> resolved = passes.resolve(resolve_input(scene, model, settings, parts), ids);
+            REQUIRE(resolved.has_value());
+            const GlResolved& gpu = *resolved;
             REQUIRE(gpu.sample_colour.size() == host.sample_colour.size());
             long colours_differ = 0, rays_differ = 0;
             for (std::size_t k = 0; k < host.sample_colour.size(); ++k)

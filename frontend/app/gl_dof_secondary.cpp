@@ -96,10 +96,11 @@ public:
         if (resolve_ == nullptr) return std::nullopt;
         make_timers();
         timers_->begin(resolve_phase);
-        const GlResolved gpu = resolve_->resolve(resolve_input(scene, model, settings, lens_parts), ids);
+        const std::optional<GlResolved> gpu = resolve_->resolve(resolve_input(scene, model, settings, lens_parts), ids);
         timers_->end(resolve_phase);
-        resolved_rays_ = gpu.info.size();
-        return to_primary_resolve(gpu, lens_parts);
+        resolved_rays_ = gpu ? gpu->info.size() : 0;
+        if (!gpu) return std::nullopt;  // past the GL's storage blocks: the host resolves them
+        return to_primary_resolve(*gpu, lens_parts);
     }
 
     std::optional<Clustering<float>> cluster(const std::vector<glm::vec3>& positions,

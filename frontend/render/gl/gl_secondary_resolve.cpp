@@ -1,5 +1,6 @@
 #include "render/gl/gl_secondary_resolve.hpp"
 
+#include "render/gl/gl_render_targets.hpp"
 #include "render/gl/gpu_layout_shared.h"
 #include "render/gl/shader_stages.hpp"
 
@@ -31,16 +32,19 @@ GlSecondaryResolve::GlSecondaryResolve(const gl::HeadlessContext& context)
 // The program's and buffers' glDelete* act on the current context: this one's.
 GlSecondaryResolve::~GlSecondaryResolve() { context_->make_current_for_release(); }
 
-GlResolved GlSecondaryResolve::resolve(const GlResolveInput& in, const std::vector<std::uint32_t>& sample_ids) const {
+std::optional<GlResolved> GlSecondaryResolve::resolve(const GlResolveInput& in,
+                                                      const std::vector<std::uint32_t>& sample_ids) const {
     const std::size_t n = sample_ids.size();
     if (n != std::size_t(in.width) * std::size_t(in.height) * std::size_t(in.spp) || n == 0)
         throw gl::GlError("gl: the resolve got " + std::to_string(n) + " sample ids for a " + std::to_string(in.width) +
                           "x" + std::to_string(in.height) + " image of " + std::to_string(in.spp) + " spp");
     const std::size_t chunks = (n + chunk - 1) / chunk;
-    // Rays of up to two a sample, and every index, in 32 bits; the keys' pixels in 28.
-    if (2 * n + 2 * chunks + 2 > 0xffffffffu || n / std::size_t(in.spp) >= (std::size_t{1} << 28))
-        throw gl::GlError("gl: " + std::to_string(n) + " samples are more than the resolve's 32-bit indices hold");
     const gl::Functions& f = *gl_;
+    const auto block = static_cast<std::size_t>(static_cast<unsigned>(get_integer(f, GL_MAX_SHADER_STORAGE_BLOCK_SIZE)));
+    // Rays of up to two a sample, and every index, in 32 bits; the keys' pixels in 28; the colours in a block.
+    if (2 * n + 2 * chunks + 2 > 0xffffffffu || n / std::size_t(in.spp) >= (std::size_t{1} << 28) ||
+        n * sizeof(glm::vec4) > block)
+        return std::nullopt;
     std::vector<glm::vec4> vertices;
     vertices.reserve(4 * in.view_open.size());
     for (std::size_t v = 0; v < in.view_open.size(); ++v) {
@@ -94,6 +98,10 @@ GlResolved GlSecondaryResolve::resolve(const GlResolveInput& in, const std::vect
     std::uint32_t totals[2] = {0, 0};
     counts_->read(totals, sizeof totals, (n + 2 * chunks) * 4);
     const std::size_t rays = totals[0];
+    if (2 * rays * sizeof(glm::uvec4) > block) {
+        f.UseProgram(0);
+        return std::nullopt;
+    }
     gl::reserve_storage(f, info_, rays * sizeof(glm::uvec4)).bind_base(BC_GL_RESOLVE_RAYS_BINDING);
     gl::reserve_storage(f, points_, 2 * rays * sizeof(glm::uvec4)).bind_base(BC_GL_CLUSTER_POINTS_BINDING);
     f.UseProgram(id);

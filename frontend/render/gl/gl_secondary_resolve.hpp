@@ -59,9 +59,12 @@ public:
 
     // resolve_primary of the winning triangles `sample_ids` (no_sample_hit
     // for none): four passes, two waits (the rays' count, then the colours
-    // and rays read back).
-    // Throws gl::GlError when GL reports an error or the sizes pass 32 bits.
-    GlResolved resolve(const GlResolveInput& input, const std::vector<std::uint32_t>& sample_ids) const;
+    // and rays read back). nullopt where the samples' colours (16 bytes a
+    // sample) or the rays' points (32 bytes a ray) would pass the GL's
+    // largest storage block, or an index 32 bits, or a pixel the keys' 28
+    // bits: the caller resolves on the host then.
+    // Throws gl::GlError when GL reports an error or the ids do not fit the input's size.
+    std::optional<GlResolved> resolve(const GlResolveInput& input, const std::vector<std::uint32_t>& sample_ids) const;
 
     // The last resolve()'s rays on the GPU: 2 uvec4 a ray (GlResolved::points).
     // Throws gl::GlError before the first call.
