@@ -159,22 +159,30 @@ std::vector<std::uint32_t> host_outputs(const std::vector<float>& in) {
     return out;
 }
 
-std::vector<std::uint32_t> gpu_outputs(const gl::HeadlessContext& context, const std::vector<float>& in) {
+// Runs `main` after the kernel's GLSL and the embedded `headers` over
+// `count` invocations (uniform `count`): the floats `in` at binding 0,
+// `outputs` words back from binding 1.
+std::vector<std::uint32_t> run_parity_shader(const gl::HeadlessContext& context,
+                                             const std::vector<std::string_view>& headers, const char* main,
+                                             const std::vector<float>& in, std::size_t outputs, std::uint32_t count) {
     const gl::Functions& f = context.gl();
-    const std::string_view optics_source = glsl::render_shader_source("optics_shared.h");
-    REQUIRE_FALSE(optics_source.empty());
-    gl::Program program(f, {{GL_COMPUTE_SHADER, {glsl::kernel_source(), optics_source, kOpticsMain}}});
+    std::vector<std::string_view> sources{glsl::kernel_source()};
+    for (std::string_view name : headers) {
+        sources.push_back(glsl::render_shader_source(name));
+        REQUIRE_FALSE(sources.back().empty());
+    }
+    sources.push_back(main);
+    gl::Program program(f, {{GL_COMPUTE_SHADER, sources}});
     gl::Buffer inputs(f, GL_SHADER_STORAGE_BUFFER, in.size() * 4, in.data());
-    std::vector<std::uint32_t> out(kOutputs * std::size_t{kCount}, 0u);
+    std::vector<std::uint32_t> out(outputs, 0u);
     gl::Buffer result(f, GL_SHADER_STORAGE_BUFFER, out.size() * 4);
     inputs.bind_base(0);
     result.bind_base(1);
     f.UseProgram(program.id());
-    f.Uniform1ui(f.GetUniformLocation(program.id(), "count"), kCount);
-    f.DispatchCompute(kCount / 64u, 1, 1);
+    f.Uniform1ui(f.GetUniformLocation(program.id(), "count"), count);
+    f.DispatchCompute((count + 63u) / 64u, 1, 1);
     f.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    f.Finish();
-    gl::check_gl(f, "running the optics parity shader");
+    gl::check_gl(f, "running a parity shader");
     result.read(out.data(), out.size() * 4);
     f.UseProgram(0);
     return out;
@@ -187,7 +195,8 @@ TEST_CASE("GLSL optics_shared.h equals the host's: mirror, refraction, Fresnel, 
     if (!context) return;
     const std::vector<float> inputs = make_inputs();
     const std::vector<std::uint32_t> host = host_outputs(inputs);
-    const std::vector<std::uint32_t> gpu = gpu_outputs(*context, inputs);
+    const std::vector<std::uint32_t> gpu =
+        run_parity_shader(*context, {"optics_shared.h"}, kOpticsMain, inputs, kOutputs * std::size_t{kCount}, kCount);
     // Largest absolute difference of the unit directions (both sides round
     // their dot products differently and m = i - 2 (n.i) n cancels, so ULPs
     // of a small component mean nothing), of R and of the sky.
@@ -350,24 +359,8 @@ TEST_CASE("GLSL resolve_shared.h (fp64) equals the host's sample hits and spawne
                         r.direction1.z, r.weight1})
             host.push_back(bits_of(x));
     }
-    const gl::Functions& f = context->gl();
-    const std::string_view optics_source = glsl::render_shader_source("optics_shared.h");
-    const std::string_view resolve_source = glsl::render_shader_source("resolve_shared.h");
-    REQUIRE_FALSE(resolve_source.empty());
-    gl::Program program(f,
-                        {{GL_COMPUTE_SHADER, {glsl::kernel_source(), optics_source, resolve_source, kResolveMain}}});
-    gl::Buffer inputs(f, GL_SHADER_STORAGE_BUFFER, in.size() * 4, in.data());
-    std::vector<std::uint32_t> gpu(host.size(), 0u);
-    gl::Buffer result(f, GL_SHADER_STORAGE_BUFFER, gpu.size() * 4);
-    inputs.bind_base(0);
-    result.bind_base(1);
-    f.UseProgram(program.id());
-    f.Uniform1ui(f.GetUniformLocation(program.id(), "count"), count);
-    f.DispatchCompute(count / 64u, 1, 1);
-    f.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    gl::check_gl(f, "running the resolve parity shader");
-    result.read(gpu.data(), gpu.size() * 4);
-    f.UseProgram(0);
+    const std::vector<std::uint32_t> gpu =
+        run_parity_shader(*context, {"optics_shared.h", "resolve_shared.h"}, kResolveMain, in, host.size(), count);
     const bool tolerant = probe_arithmetic(*context).tolerant();
     long valid_differ = 0, values_differ = 0;
     float worst = 0.0f;
