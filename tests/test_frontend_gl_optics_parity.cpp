@@ -1,7 +1,9 @@
 // GPU/host parity of render/common/optics_shared.h (docs/reference-renderer.md,
 // "Materials and environment"): a compute shader built from the kernel's GLSL
 // and the embedded optics_shared.h evaluates the mirror and refracted
-// directions, the Fresnel reflectance and the procedural sky on 2^17 random
+// directions, the Fresnel reflectance, the procedural sky, a mirror's or
+// glass's environment colour and the environment seen along a direction
+// of any length on 2^17 random
 // (incident, normal, index) triples, including total internal reflection,
 // index 1 and grazing rays; the host runs the C++ side of the same text on the
 // same floats. The text spells every operation out in one order, each
@@ -46,7 +48,7 @@ namespace resolve = blurcull::frontend::resolve;
 namespace {
 
 constexpr std::uint32_t kCount = 1u << 17;
-constexpr int kOutputs = 10;  // mirror (3), refracted (3), reflectance (1), sky (3)
+constexpr int kOutputs = 16;  // mirror (3), refracted (3), reflectance (1), sky (3), specular colour (3), environment (3)
 // The tolerant comparison's base: what llvmpipe gave before the text was
 // spelt out (GLSL's dot and mix): 8.3e-6 (refracted rays within rounding of
 // the critical angle, where sqrt(1 - sin^2) amplifies), 4.8e-5 and 5 ULP.
@@ -99,11 +101,17 @@ void main() {
     vec3 t = bc_refract_direction(incident, normal, ior);
     float r = bc_dielectric_reflectance(incident, normal, ior);
     vec3 sky = bc_sky_radiance(incident);
-    uint o = 10u * i;
+    vec3 background = vec3(0.3, 0.4, 0.5);
+    vec3 colour = bc_specular_environment_colour(i % 3u == 0u, ior, true, background, incident, normal);
+    vec3 seen = bc_environment_radiance(i % 2u == 0u, background, 2.5 * incident);
+    uint o = 16u * i;
     out_[o] = floatBitsToUint(m.x); out_[o + 1u] = floatBitsToUint(m.y); out_[o + 2u] = floatBitsToUint(m.z);
     out_[o + 3u] = floatBitsToUint(t.x); out_[o + 4u] = floatBitsToUint(t.y); out_[o + 5u] = floatBitsToUint(t.z);
     out_[o + 6u] = floatBitsToUint(r);
     out_[o + 7u] = floatBitsToUint(sky.x); out_[o + 8u] = floatBitsToUint(sky.y); out_[o + 9u] = floatBitsToUint(sky.z);
+    out_[o + 10u] = floatBitsToUint(colour.x); out_[o + 11u] = floatBitsToUint(colour.y);
+    out_[o + 12u] = floatBitsToUint(colour.z);
+    out_[o + 13u] = floatBitsToUint(seen.x); out_[o + 14u] = floatBitsToUint(seen.y); out_[o + 15u] = floatBitsToUint(seen.z);
 }
 )glsl";
 
@@ -154,7 +162,13 @@ std::vector<std::uint32_t> host_outputs(const std::vector<float>& in) {
         const glm::vec3 t = optics::bc_refract_direction(incident, normal, a[6]);
         const float r = optics::bc_dielectric_reflectance(incident, normal, a[6]);
         const glm::vec3 sky = optics::bc_sky_radiance(incident);
-        for (float x : {m.x, m.y, m.z, t.x, t.y, t.z, r, sky.x, sky.y, sky.z}) out.push_back(bits_of(x));
+        const glm::vec3 background(0.3f, 0.4f, 0.5f);
+        const glm::vec3 colour =
+            optics::bc_specular_environment_colour(i % 3u == 0u, a[6], true, background, incident, normal);
+        const glm::vec3 seen = optics::bc_environment_radiance(i % 2u == 0u, background, 2.5f * incident);
+        for (float x : {m.x, m.y, m.z, t.x, t.y, t.z, r, sky.x, sky.y, sky.z, colour.x, colour.y, colour.z, seen.x,
+                        seen.y, seen.z})
+            out.push_back(bits_of(x));
     }
     return out;
 }
@@ -203,7 +217,7 @@ TEST_CASE("GLSL optics_shared.h equals the host's: mirror, refraction, Fresnel, 
     const ArithmeticProbe probe = probe_arithmetic(*context);
     MESSAGE(probe.describe());
     ToleranceTally model;  // the tolerant comparison's differences beyond the exact-GL limits
-    float max_direction = 0.0f, max_reflectance = 0.0f;
+    float max_direction = 0.0f, max_reflectance = 0.0f, max_colour = 0.0f;
     std::int64_t max_sky_ulps = 0;
     long decision_mismatches = 0, total_reflections = 0, index_one = 0;
     std::string first;
@@ -237,21 +251,29 @@ TEST_CASE("GLSL optics_shared.h equals the host's: mirror, refraction, Fresnel, 
         if (std::abs(host_r - gpu_r) > kMaxReflectanceError)
             model.note(std::abs(host_r - gpu_r) <= double(kMaxReflectanceError) + 4.0 * roundoff,
                        "reflectance of item " + std::to_string(i));
-        for (int k = 7; k < kOutputs; ++k) {
+        for (int k = 7; k < 10; ++k) {
             const std::int64_t d = ulp_distance(float_of(host[o + k]), float_of(gpu[o + k]));
             max_sky_ulps = std::max(max_sky_ulps, d);
             if (d > kMaxSkyUlps) model.note(d <= kModelSkyUlps, "sky of item " + std::to_string(i));
         }
+        // The specular colour and the environment: sums of the above, within 1e-3 of colours about 0.5.
+        for (int k = 10; k < kOutputs; ++k) {
+            const float d = std::abs(float_of(host[o + k]) - float_of(gpu[o + k]));
+            max_colour = std::max(max_colour, d);
+            if (d > 0.0f) model.note(d <= 1e-3f + 4.0 * roundoff, "colour of item " + std::to_string(i));
+        }
     }
     MESSAGE(kCount << " inputs, " << total_reflections << " totally reflected, " << index_one
                    << " at index 1; max differences: directions " << max_direction << ", R " << max_reflectance
-                   << ", sky " << max_sky_ulps << " ULP; " << decision_mismatches << " decisions differ");
+                   << ", sky " << max_sky_ulps << " ULP, specular and environment colours " << max_colour << "; "
+                   << decision_mismatches << " decisions differ");
     CHECK(total_reflections > 1000);
     if (!probe.tolerant()) {
         CHECK_MESSAGE(decision_mismatches == 0, first);
         CHECK(max_direction == 0.0f);
         CHECK(max_reflectance == 0.0f);
         CHECK(max_sky_ulps == 0);
+        CHECK(max_colour == 0.0f);
     } else {
         MESSAGE("tolerant comparison: beyond the exact-GL limits, " << model.within
                 << " differ within the model's (critical-angle condition, sky " << kModelSkyUlps << " ULP), "

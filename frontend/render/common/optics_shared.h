@@ -20,6 +20,8 @@
 #ifdef __cplusplus
 #include <glm/glm.hpp>
 
+#include <cmath>
+
 namespace blurcull::frontend::optics {
 using glm::vec3;
 using glm::max;
@@ -27,6 +29,8 @@ using glm::min;
 using glm::clamp;
 using glm::abs;
 using glm::sqrt;
+using std::isinf;
+using std::isnan;
 #define BC_OPTICS_FN inline
 #define BC_OPTICS_PRECISE
 #else
@@ -128,6 +132,34 @@ BC_OPTICS_FN vec3 bc_sky_radiance(vec3 direction) {
     vec3 sky = y >= 0.0f ? bc_optics_mix(horizon, zenith, sqrt(y)) : bc_optics_mix(horizon, ground, min(1.0f, below));
     BC_OPTICS_PRECISE vec3 banded = sky * (1.0f + bands);
     return banded;
+}
+
+// What a ray along `direction` (any length) that leaves the scene sees:
+// the procedural sky where `sky` (Scene::environment BC_ENVIRONMENT_SKY),
+// else the `background` colour; the background too along a zero or
+// non-finite direction.
+BC_OPTICS_FN vec3 bc_environment_radiance(bool sky, vec3 background, vec3 direction) {
+    float size = sqrt(bc_optics_dot(direction, direction));
+    if (!sky || !(size > 0.0f) || isinf(size) || isnan(size)) return background;
+    BC_OPTICS_PRECISE vec3 unit = direction / size;
+    return bc_sky_radiance(unit);
+}
+
+// The colour of a mirror (`mirror`) or a dielectric of index `ior` from the
+// environment alone, for the unit incident direction and unit geometric
+// normal (either side): a mirror's environment along the mirrored ray; a
+// dielectric's R times that plus 1 - R times the environment along the
+// refracted ray (none under total internal reflection). One bounce.
+BC_OPTICS_FN vec3 bc_specular_environment_colour(bool mirror, float ior, bool sky, vec3 background, vec3 incident,
+                                                 vec3 normal) {
+    vec3 reflected = bc_environment_radiance(sky, background, bc_mirror_direction(incident, normal));
+    if (mirror) return reflected;
+    float reflectance = bc_dielectric_reflectance(incident, normal, ior);
+    BC_OPTICS_PRECISE vec3 colour = reflectance * reflected;
+    if (!(reflectance < 1.0f)) return colour;
+    vec3 through = bc_environment_radiance(sky, background, bc_refract_direction(incident, normal, ior));
+    BC_OPTICS_PRECISE vec3 both = colour + (1.0f - reflectance) * through;
+    return both;
 }
 
 #ifdef __cplusplus

@@ -1,6 +1,8 @@
 // Mirror and dielectric hits shaded from the environment (the "primary-only"
-// rule), and the environment itself, for every backend. The optics are those
-// of optics_shared.h; this file only decides which directions are looked up.
+// rule), and the environment itself, for every backend. The optics and the
+// environment are optics_shared.h's (bc_environment_radiance,
+// bc_specular_environment_colour: the text a GPU shading pass runs too);
+// this file maps a scene and a material onto them.
 //
 //  * environment_radiance: what a ray leaving the scene along a WORLD
 //    direction sees: the procedural sky (BC_ENVIRONMENT_SKY) or the scene's
@@ -31,9 +33,7 @@ namespace blurcull::frontend {
 
 // Radiance seen along a world-space direction (any length) that leaves the scene.
 inline glm::vec3 environment_radiance(const Scene& scene, glm::vec3 direction) {
-    const float length = glm::length(direction);
-    if (scene.environment != BC_ENVIRONMENT_SKY || !(length > 0.0f) || !std::isfinite(length)) return scene.background;
-    return optics::bc_sky_radiance(direction / length);
+    return optics::bc_environment_radiance(scene.environment == BC_ENVIRONMENT_SKY, scene.background, direction);
 }
 
 // The colour of a mirror or dielectric hit from the environment alone.
@@ -42,17 +42,10 @@ inline glm::vec3 environment_radiance(const Scene& scene, glm::vec3 direction) {
 // shade diffuse hits with shade().
 inline glm::vec3 specular_environment_colour(const Scene& scene, const Material& material, glm::vec3 incident,
                                              glm::vec3 normal) {
-    if (material.kind == MaterialKind::mirror) {
-        return environment_radiance(scene, optics::bc_mirror_direction(incident, normal));
-    }
-    if (material.kind != MaterialKind::dielectric) return glm::vec3(0.0f);
-    const float reflectance = optics::bc_dielectric_reflectance(incident, normal, material.ior);
-    glm::vec3 colour = reflectance * environment_radiance(scene, optics::bc_mirror_direction(incident, normal));
-    if (reflectance < 1.0f) {
-        colour += (1.0f - reflectance) *
-                  environment_radiance(scene, optics::bc_refract_direction(incident, normal, material.ior));
-    }
-    return colour;
+    if (material.kind != MaterialKind::mirror && material.kind != MaterialKind::dielectric) return glm::vec3(0.0f);
+    return optics::bc_specular_environment_colour(material.kind == MaterialKind::mirror, material.ior,
+                                                  scene.environment == BC_ENVIRONMENT_SKY, scene.background, incident,
+                                                  normal);
 }
 
 // The primary-only colour of a mirror or dielectric triangle (see the top of
