@@ -1,6 +1,7 @@
 #include "app/gl_dof_secondary.hpp"
 
 #include "render/common/shading.hpp"
+#include "render/gl/gl_cluster_shared.h"
 #include "render/gl/gl_phase_timers.hpp"
 
 #include <cstdint>
@@ -16,7 +17,7 @@ namespace {
 
 // resolve_primary's result from the GPU resolve's read-back (its rays'
 // words decoded; the lens part from the pixel key).
-PrimaryResolve to_primary_resolve(const GlResolved& gpu, int lens_parts) {
+PrimaryResolve to_primary_resolve(const GlResolved& gpu) {
     auto float_of = [](std::uint32_t bits) {
         float value;
         std::memcpy(&value, &bits, sizeof value);
@@ -33,7 +34,7 @@ PrimaryResolve to_primary_resolve(const GlResolved& gpu, int lens_parts) {
         ray.direction = glm::vec3(float_of(d.x), float_of(d.y), float_of(d.z));
         ray.weight = glm::vec3(float_of(info.z));
         ray.sample = info.x;
-        ray.lens_part = lens_parts > 1 ? d.w & 15u : 0u;
+        ray.lens_part = d.w & ((1u << BC_GROUP_PART_BITS) - 1u);
         ray.triangle = p.w;
         ray.time = float_of(info.y);
     }
@@ -100,7 +101,7 @@ public:
         timers_->end(resolve_phase);
         resolved_rays_ = gpu ? gpu->info.size() : 0;
         if (!gpu) return std::nullopt;  // past the GL's storage blocks: the host resolves them
-        return to_primary_resolve(*gpu, lens_parts);
+        return to_primary_resolve(*gpu);
     }
 
     std::optional<Clustering<float>> cluster(const std::vector<glm::vec3>& positions,
@@ -283,7 +284,7 @@ GlResolveInput resolve_input(const Scene& scene, const CameraModel& model, const
     in.k_x = model.k_x;
     in.k_y = model.k_y;
     in.lens_radius = model.lens_radius;
-    in.lens_slope = kernelf::camera_coc(1.0f, model.lens_radius, model.focus_distance).y;  // CameraModel::lens_ray's
+    in.lens_slope = model.lens_slope();
     in.background = scene.background;
     for (std::size_t v = 0; v < scene.position_open.size(); ++v) {
         in.view_open.push_back(model.view_position(scene, v, 0));

@@ -126,6 +126,9 @@ struct CameraModel {
         return glm::vec2((clip.x + lens_uv.x * c.x) / clip.z, (clip.y + lens_uv.y * c.y) / clip.z);
     }
 
+    // R / F, 0 with no lens: the CoC slope b of a unit projection scale (lens_ray's).
+    float lens_slope() const { return kernelf::camera_coc(1.0f, lens_radius, focus_distance).y; }
+
     // The ray from lens point (u R, v R, 0) through the in-focus point of the
     // pinhole ray at NDC `ndc`: every point on it projects, through (u, v), to `ndc`.
     Ray lens_ray(glm::vec2 ndc, glm::vec2 lens_uv) const {
@@ -133,9 +136,8 @@ struct CameraModel {
         ray.origin = glm::vec3(lens_uv.x * lens_radius, lens_uv.y * lens_radius, 0.0f);
         // Pinhole point at depth F is (X F / k_x, Y F / k_y, -F); dividing
         // (that - origin) by F makes direction.z = -1.
-        // R / F, 0 with no lens: the CoC slope b of a unit projection scale.
-        const float lens_slope = kernelf::camera_coc(1.0f, lens_radius, focus_distance).y;
-        ray.direction = glm::vec3(ndc.x / k_x - lens_uv.x * lens_slope, ndc.y / k_y - lens_uv.y * lens_slope, -1.0f);
+        const float slope = lens_slope();
+        ray.direction = glm::vec3(ndc.x / k_x - lens_uv.x * slope, ndc.y / k_y - lens_uv.y * slope, -1.0f);
         ray.t_near = znear;
         return ray;
     }

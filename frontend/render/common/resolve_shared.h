@@ -18,8 +18,10 @@
 #include <glm/glm.hpp>
 
 #include <cmath>
+#include <cstdint>
 
 namespace blurcull::frontend::resolve {
+using uint = std::uint32_t;
 using optics::bc_dielectric_reflectance;
 using optics::bc_mirror_direction;
 using optics::bc_optics_dot;
@@ -27,7 +29,10 @@ using optics::bc_refract_direction;
 using glm::dmat4;
 using glm::dvec3;
 using glm::dvec4;
+using glm::vec2;
 using glm::vec3;
+using glm::clamp;
+using glm::floor;
 using std::isinf;
 using std::isnan;
 using std::sqrt;
@@ -121,6 +126,19 @@ BC_RESOLVE_FN SampleHit bc_sample_hit(dvec3 v0, dvec3 v1, dvec3 v2, dvec3 w0, dv
     hit.normal = vec3(unit_normal);
     hit.valid = true;
     return hit;
+}
+
+// The part of the lens that lens position (u, v) in [-1, 1]^2 is in: 0 for
+// one part, the quadrant (0..3) for 4, a cell of the 4 x 4 grid (0..15)
+// for 16 (each sample's rays are clipped with its pixel's others in it).
+BC_RESOLVE_FN int bc_lens_cell(float c, int cells) {
+    BC_RESOLVE_PRECISE float scaled = (c + 1.0f) * 0.5f * float(cells);
+    return clamp(int(floor(scaled)), 0, cells - 1);
+}
+BC_RESOLVE_FN uint bc_lens_part(vec2 lens, int parts) {
+    if (parts <= 1) return 0u;
+    int cells = parts == 4 ? 2 : 4;
+    return uint(bc_lens_cell(lens.y, cells) * cells + bc_lens_cell(lens.x, cells));
 }
 
 // GLM's normalize: v (1 / sqrt(v . v)).

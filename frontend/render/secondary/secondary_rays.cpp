@@ -51,14 +51,7 @@ void spawn_rays(const Material& material, const SampleHit& hit, std::uint32_t sa
 
 }  // namespace
 
-std::uint32_t lens_part_of(glm::vec2 lens, int parts) {
-    if (parts <= 1) return 0;
-    const int cells = parts == 4 ? 2 : 4;
-    auto cell = [&](float c) {
-        return std::clamp(static_cast<int>(std::floor((c + 1.0f) * 0.5f * float(cells))), 0, cells - 1);
-    };
-    return static_cast<std::uint32_t>(cell(lens.y) * cells + cell(lens.x));
-}
+std::uint32_t lens_part_of(glm::vec2 lens, int parts) { return resolve::bc_lens_part(lens, parts); }
 
 PrimaryResolve resolve_primary(const Scene& scene, const CameraModel& model, const RenderSettings& settings,
                                const std::vector<std::uint32_t>& sample_ids, int lens_parts) {

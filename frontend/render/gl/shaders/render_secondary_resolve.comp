@@ -48,7 +48,7 @@ uniform int lens_parts;
 uniform float k_x;
 uniform float k_y;
 uniform float lens_radius;
-uniform float lens_slope;  // CameraModel::lens_ray's: camera_coc(1, R, F).y
+uniform float lens_slope;  // CameraModel::lens_slope()
 uniform vec3 background;
 
 uint item() { return (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * 64u + gl_LocalInvocationID.x; }
@@ -59,24 +59,6 @@ dmat4 frame_matrix(uint at) {
     return dmat4(frame[at], frame[at + 1u], frame[at + 2u], frame[at + 3u], frame[at + 4u], frame[at + 5u],
                  frame[at + 6u], frame[at + 7u], frame[at + 8u], frame[at + 9u], frame[at + 10u], frame[at + 11u],
                  frame[at + 12u], frame[at + 13u], frame[at + 14u], frame[at + 15u]);
-}
-
-// GLM's mix of two points: x (1 - t) + y t.
-vec3 mix_at(vec3 x, vec3 y, float t) {
-    precise vec3 mixed = x * (1.0 - t) + y * t;
-    return mixed;
-}
-
-// lens_part_of (secondary_rays.cpp): 0 for one part, the quadrant for 4, a
-// cell of the 4 x 4 grid for 16.
-int cell_of(float c, int cells) {
-    precise float scaled = (c + 1.0) * 0.5 * float(cells);
-    return clamp(int(floor(scaled)), 0, cells - 1);
-}
-uint lens_part_of(vec2 lens) {
-    if (lens_parts <= 1) return 0u;
-    int cells = lens_parts == 4 ? 2 : 4;
-    return uint(cell_of(lens.y, cells) * cells + cell_of(lens.x, cells));
 }
 
 // A reflector sample: its pattern sample, hit and the rays it spawns.
@@ -101,8 +83,8 @@ ReflectorSample reflector_sample(uint k, uint id, uint kind) {
     dvec3 v[3], w[3];
     for (uint c = 0u; c < 3u; ++c) {
         uint vertex_at = 4u * triangle_word[at + c];
-        v[c] = dvec3(mix_at(vertex[vertex_at].xyz, vertex[vertex_at + 1u].xyz, r.s.time));
-        w[c] = dvec3(mix_at(vertex[vertex_at + 2u].xyz, vertex[vertex_at + 3u].xyz, r.s.time));
+        v[c] = dvec3(bc_optics_mix(vertex[vertex_at].xyz, vertex[vertex_at + 1u].xyz, r.s.time));
+        w[c] = dvec3(bc_optics_mix(vertex[vertex_at + 2u].xyz, vertex[vertex_at + 3u].xyz, r.s.time));
     }
     dvec3 lens_world = bc_lens_world(frame_matrix(0u), frame_matrix(16u), o, double(r.s.time));
     r.hit = bc_sample_hit(v[0], v[1], v[2], w[0], w[1], w[2], o, dvec3(vec3(dx, dy, -1.0)), lens_world);
@@ -116,7 +98,7 @@ void write_ray(uint ray, uint k, uint id, ReflectorSample r, vec3 direction, flo
     uint pixel = k / spp;
     point_word[2u * ray] = uvec4(floatBitsToUint(r.hit.point), id);
     point_word[2u * ray + 1u] =
-        uvec4(floatBitsToUint(direction), (pixel << BC_GROUP_PART_BITS) | lens_part_of(r.s.lens));
+        uvec4(floatBitsToUint(direction), (pixel << BC_GROUP_PART_BITS) | bc_lens_part(r.s.lens, lens_parts));
     ray_info[ray] = uvec4(k, floatBitsToUint(r.s.time), floatBitsToUint(weight), 0u);
 }
 
